@@ -1,0 +1,168 @@
+//! The columnar table that chart kinds read: numbers, times and categories, one row per record.
+
+/// The values of one column.
+#[derive(Clone, Debug, PartialEq)]
+pub enum ColumnValues {
+    /// Numbers as `f64`; missing cells are NaN.
+    Number(Vec<f64>),
+    /// Instants as milliseconds since the Unix epoch (UTC); missing cells are NaN.
+    Time(Vec<f64>),
+    /// Text (and booleans) as categories.
+    Text(Categories),
+}
+
+/// Text values stored as codes into a list of distinct levels (in order of first appearance).
+#[derive(Clone, Debug, PartialEq, Default)]
+pub struct Categories {
+    /// Distinct values in order of first appearance.
+    pub levels: Vec<String>,
+    /// One code per row: an index into `levels`, or [`Categories::MISSING`].
+    pub codes: Vec<u32>,
+}
+
+impl Categories {
+    /// The code of a missing cell.
+    pub const MISSING: u32 = u32::MAX;
+
+    /// Build categories from optional strings.
+    pub fn from_values<'a>(values: impl IntoIterator<Item = Option<&'a str>>) -> Categories {
+        let mut index = std::collections::HashMap::<&'a str, u32>::new();
+        let mut cats = Categories::default();
+        for value in values {
+            let code = match value {
+                None => Categories::MISSING,
+                Some(s) => *index.entry(s).or_insert_with(|| {
+                    cats.levels.push(s.to_string());
+                    (cats.levels.len() - 1) as u32
+                }),
+            };
+            cats.codes.push(code);
+        }
+        cats
+    }
+
+    /// The text of row `row`, if present.
+    pub fn value(&self, row: usize) -> Option<&str> {
+        let code = *self.codes.get(row)?;
+        self.levels.get(code as usize).map(String::as_str)
+    }
+}
+
+/// A named column.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Column {
+    /// Column name as in the source.
+    pub name: String,
+    /// Its values.
+    pub values: ColumnValues,
+}
+
+impl Column {
+    /// Number of rows.
+    pub fn len(&self) -> usize {
+        match &self.values {
+            ColumnValues::Number(v) | ColumnValues::Time(v) => v.len(),
+            ColumnValues::Text(c) => c.codes.len(),
+        }
+    }
+    /// Whether the column has no rows.
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+    /// The numeric values (numbers or times), if the column is numeric.
+    pub fn numbers(&self) -> Option<&[f64]> {
+        match &self.values {
+            ColumnValues::Number(v) | ColumnValues::Time(v) => Some(v),
+            ColumnValues::Text(_) => None,
+        }
+    }
+    /// The categories, if the column holds text.
+    pub fn categories(&self) -> Option<&Categories> {
+        match &self.values {
+            ColumnValues::Text(c) => Some(c),
+            _ => None,
+        }
+    }
+    /// Whether the column holds instants.
+    pub fn is_time(&self) -> bool {
+        matches!(self.values, ColumnValues::Time(_))
+    }
+    /// A short name of the column's type for messages: "number", "time" or "text".
+    pub fn type_name(&self) -> &'static str {
+        match self.values {
+            ColumnValues::Number(_) => "number",
+            ColumnValues::Time(_) => "time",
+            ColumnValues::Text(_) => "text",
+        }
+    }
+}
+
+/// Counts of unusable cells found in a numeric column.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct NonFinite {
+    /// Missing (null) or NaN cells.
+    pub nan: usize,
+    /// +∞ or −∞ cells (including overflowing literals such as `1e999`).
+    pub infinite: usize,
+}
+
+impl NonFinite {
+    /// Count the non-finite values of a slice.
+    pub fn count(values: &[f64]) -> NonFinite {
+        let mut counts = NonFinite::default();
+        for v in values {
+            if v.is_nan() {
+                counts.nan += 1;
+            } else if v.is_infinite() {
+                counts.infinite += 1;
+            }
+        }
+        counts
+    }
+    /// Total unusable cells.
+    pub fn total(&self) -> usize {
+        self.nan + self.infinite
+    }
+}
+
+/// A loaded data source: named columns of equal length.
+#[derive(Clone, Debug, PartialEq, Default)]
+pub struct Table {
+    /// Columns in source order.
+    pub columns: Vec<Column>,
+    /// Number of rows.
+    pub rows: usize,
+}
+
+impl Table {
+    /// A column by exact name.
+    pub fn column(&self, name: &str) -> Option<&Column> {
+        self.columns.iter().find(|c| c.name == name)
+    }
+    /// The column names in source order.
+    pub fn column_names(&self) -> Vec<&str> {
+        self.columns.iter().map(|c| c.name.as_str()).collect()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn categories_keep_first_appearance_order_and_missing() {
+        let c = Categories::from_values([Some("b"), Some("a"), None, Some("b")]);
+        assert_eq!(c.levels, vec!["b", "a"]);
+        assert_eq!(c.codes, vec![0, 1, Categories::MISSING, 0]);
+        assert_eq!(c.value(1), Some("a"));
+        assert_eq!(c.value(2), None);
+        assert_eq!(c.value(99), None);
+    }
+
+    #[test]
+    fn non_finite_counts_nan_and_infinities() {
+        let n = NonFinite::count(&[1.0, f64::NAN, f64::INFINITY, f64::NEG_INFINITY, 2.0]);
+        assert_eq!(n, NonFinite { nan: 1, infinite: 2 });
+        assert_eq!(n.total(), 3);
+    }
+}

@@ -1,0 +1,291 @@
+//! Colour maps (continuous and categorical) and colour parsing.
+//!
+//! Continuous maps come from the `colorous` crate (matplotlib's perceptually uniform maps and the
+//! ColorBrewer schemes). A `_r` suffix reverses any continuous map. Names are case-insensitive.
+
+use crate::scene::Color;
+
+/// The default palette for categories: Okabe–Ito, safe for colour-blind readers.
+pub const DEFAULT_CATEGORICAL: &str = "okabe-ito";
+/// The default map for ordered values.
+pub const DEFAULT_SEQUENTIAL: &str = "viridis";
+/// The default map for values diverging from a midpoint.
+pub const DEFAULT_DIVERGING: &str = "rdbu";
+/// The colour [`ContinuousMap::at`] returns for a missing (NaN) value: a neutral mid grey.
+pub const MISSING: Color = Color::rgb(0xbd, 0xbd, 0xbd);
+
+/// Continuous map names, sequential first, then diverging (without the `_r` forms).
+const CONTINUOUS: [(&str, colorous::Gradient, bool); 17] = [
+    ("viridis", colorous::VIRIDIS, false),
+    ("magma", colorous::MAGMA, false),
+    ("inferno", colorous::INFERNO, false),
+    ("plasma", colorous::PLASMA, false),
+    ("cividis", colorous::CIVIDIS, false),
+    ("blues", colorous::BLUES, false),
+    ("greens", colorous::GREENS, false),
+    ("greys", colorous::GREYS, false),
+    ("oranges", colorous::ORANGES, false),
+    ("purples", colorous::PURPLES, false),
+    ("reds", colorous::REDS, false),
+    ("rdbu", colorous::RED_BLUE, true),
+    ("brbg", colorous::BROWN_GREEN, true),
+    ("puor", colorous::PURPLE_ORANGE, true),
+    ("piyg", colorous::PINK_GREEN, true),
+    ("prgn", colorous::PURPLE_GREEN, true),
+    ("rdylbu", colorous::RED_YELLOW_BLUE, true),
+];
+
+const CONTINUOUS_NAMES: [&str; 17] = [
+    "viridis", "magma", "inferno", "plasma", "cividis", "blues", "greens", "greys", "oranges", "purples", "reds",
+    "rdbu", "brbg", "puor", "piyg", "prgn", "rdylbu",
+];
+
+const CATEGORICAL_NAMES: [&str; 5] = ["okabe-ito", "tableau10", "category10", "set2", "dark2"];
+
+/// Okabe & Ito (2008), in the order used for successive categories.
+const OKABE_ITO: [Color; 8] = [
+    Color::rgb(0x00, 0x72, 0xb2), // blue
+    Color::rgb(0xe6, 0x9f, 0x00), // orange
+    Color::rgb(0x00, 0x9e, 0x73), // bluish green
+    Color::rgb(0xd5, 0x5e, 0x00), // vermillion
+    Color::rgb(0xcc, 0x79, 0xa7), // reddish purple
+    Color::rgb(0x56, 0xb4, 0xe9), // sky blue
+    Color::rgb(0xf0, 0xe4, 0x42), // yellow
+    Color::rgb(0x00, 0x00, 0x00), // black
+];
+
+/// A continuous colour map from 0..=1 to colours.
+#[derive(Clone, Debug)]
+pub struct ContinuousMap {
+    name: String,
+    gradient: colorous::Gradient,
+    reversed: bool,
+    diverging: bool,
+}
+
+impl ContinuousMap {
+    /// The colour at `t`, clamped to 0..=1 (±∞ go to the ends); NaN gives [`MISSING`].
+    pub fn at(&self, t: f64) -> Color {
+        if t.is_nan() {
+            return MISSING;
+        }
+        let t = t.clamp(0.0, 1.0);
+        let t = if self.reversed { 1.0 - t } else { t };
+        let c = self.gradient.eval_continuous(t);
+        Color::rgb(c.r, c.g, c.b)
+    }
+
+    /// The canonical name, e.g. `viridis` or `rdbu_r`.
+    pub fn name(&self) -> &str {
+        &self.name
+    }
+
+    /// Whether the map diverges from a light midpoint (for values around a centre).
+    pub fn is_diverging(&self) -> bool {
+        self.diverging
+    }
+
+    /// Whether this is the `_r` form of a map.
+    pub fn is_reversed(&self) -> bool {
+        self.reversed
+    }
+}
+
+/// The continuous map called `name` (case-insensitive; a `_r` suffix reverses it), if known.
+pub fn continuous(name: &str) -> Option<ContinuousMap> {
+    let lower = name.trim().to_ascii_lowercase();
+    let (base, reversed) = match lower.strip_suffix("_r") {
+        Some(base) => (base, true),
+        None => (lower.as_str(), false),
+    };
+    let base = if base == "grays" { "greys" } else { base };
+    let (canonical, gradient, diverging) = CONTINUOUS.iter().find(|(n, _, _)| *n == base)?;
+    let name = if reversed { format!("{canonical}_r") } else { canonical.to_string() };
+    Some(ContinuousMap { name, gradient: *gradient, reversed, diverging: *diverging })
+}
+
+/// The colours of the categorical palette called `name` (case-insensitive), if known.
+pub fn categorical(name: &str) -> Option<Vec<Color>> {
+    let from = |cs: &[colorous::Color]| cs.iter().map(|c| Color::rgb(c.r, c.g, c.b)).collect();
+    match name.trim().to_ascii_lowercase().as_str() {
+        "okabe-ito" | "okabe_ito" | "okabeito" => Some(OKABE_ITO.to_vec()),
+        "tableau10" => Some(from(&colorous::TABLEAU10)),
+        "category10" => Some(from(&colorous::CATEGORY10)),
+        "set2" => Some(from(&colorous::SET2)),
+        "dark2" => Some(from(&colorous::DARK2)),
+        _ => None,
+    }
+}
+
+/// Names accepted by [`continuous`] (each also with `_r`), for "did you mean" hints.
+pub fn continuous_names() -> &'static [&'static str] {
+    &CONTINUOUS_NAMES
+}
+
+/// Names accepted by [`categorical`], for "did you mean" hints.
+pub fn categorical_names() -> &'static [&'static str] {
+    &CATEGORICAL_NAMES
+}
+
+/// Parse `#rgb`, `#rgba`, `#rrggbb`, `#rrggbbaa` or a common CSS colour name (case-insensitive,
+/// e.g. `steelblue`, `grey`/`gray`, `transparent`).
+pub fn parse_color(s: &str) -> Option<Color> {
+    let s = s.trim();
+    match s.strip_prefix('#') {
+        Some(hex) => parse_hex(hex),
+        None => named(&s.to_ascii_lowercase()),
+    }
+}
+
+fn parse_hex(hex: &str) -> Option<Color> {
+    let digits: Vec<u8> = hex.chars().map(|c| c.to_digit(16).map(|d| d as u8)).collect::<Option<_>>()?;
+    let pair = |i: usize| Some(digits.get(i)? * 16 + digits.get(i + 1)?);
+    let single = |i: usize| Some(digits.get(i)? * 17);
+    let (r, g, b, a) = match digits.len() {
+        3 => (single(0)?, single(1)?, single(2)?, 255),
+        4 => (single(0)?, single(1)?, single(2)?, single(3)?),
+        6 => (pair(0)?, pair(2)?, pair(4)?, 255),
+        8 => (pair(0)?, pair(2)?, pair(4)?, pair(6)?),
+        _ => return None,
+    };
+    Some(Color { r, g, b, a })
+}
+
+/// Common CSS named colours (values from CSS Color Module Level 4).
+fn named(name: &str) -> Option<Color> {
+    let rgb = match name {
+        "black" => 0x000000,
+        "white" => 0xffffff,
+        "grey" | "gray" => 0x808080,
+        "darkgrey" | "darkgray" => 0xa9a9a9,
+        "dimgrey" | "dimgray" => 0x696969,
+        "lightgrey" | "lightgray" => 0xd3d3d3,
+        "silver" => 0xc0c0c0,
+        "gainsboro" => 0xdcdcdc,
+        "whitesmoke" => 0xf5f5f5,
+        "red" => 0xff0000,
+        "darkred" => 0x8b0000,
+        "crimson" => 0xdc143c,
+        "firebrick" => 0xb22222,
+        "salmon" => 0xfa8072,
+        "tomato" => 0xff6347,
+        "coral" => 0xff7f50,
+        "orange" => 0xffa500,
+        "darkorange" => 0xff8c00,
+        "gold" => 0xffd700,
+        "yellow" => 0xffff00,
+        "khaki" => 0xf0e68c,
+        "green" => 0x008000,
+        "darkgreen" => 0x006400,
+        "lime" => 0x00ff00,
+        "limegreen" => 0x32cd32,
+        "forestgreen" => 0x228b22,
+        "seagreen" => 0x2e8b57,
+        "olive" => 0x808000,
+        "teal" => 0x008080,
+        "cyan" | "aqua" => 0x00ffff,
+        "turquoise" => 0x40e0d0,
+        "blue" => 0x0000ff,
+        "navy" => 0x000080,
+        "darkblue" => 0x00008b,
+        "royalblue" => 0x4169e1,
+        "steelblue" => 0x4682b4,
+        "skyblue" => 0x87ceeb,
+        "lightblue" => 0xadd8e6,
+        "dodgerblue" => 0x1e90ff,
+        "slategrey" | "slategray" => 0x708090,
+        "purple" => 0x800080,
+        "indigo" => 0x4b0082,
+        "violet" => 0xee82ee,
+        "magenta" | "fuchsia" => 0xff00ff,
+        "orchid" => 0xda70d6,
+        "pink" => 0xffc0cb,
+        "hotpink" => 0xff69b4,
+        "brown" => 0xa52a2a,
+        "chocolate" => 0xd2691e,
+        "tan" => 0xd2b48c,
+        "beige" => 0xf5f5dc,
+        "maroon" => 0x800000,
+        "transparent" => return Some(Color::TRANSPARENT),
+        _ => return None,
+    };
+    let [_, r, g, b] = u32::to_be_bytes(rgb);
+    Some(Color::rgb(r, g, b))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn viridis_endpoints_and_reversal() {
+        let v = continuous("viridis").unwrap();
+        assert_eq!(v.at(0.0).hex(), "#440154");
+        assert_eq!(v.at(1.0).hex(), "#fde725");
+        assert_eq!(v.at(-3.0), v.at(0.0));
+        assert_eq!(v.at(f64::INFINITY), v.at(1.0));
+        assert_eq!(v.at(f64::NAN), MISSING);
+        let r = continuous("Viridis_R").unwrap();
+        assert_eq!(r.name(), "viridis_r");
+        assert!(r.is_reversed() && !v.is_reversed());
+        assert_eq!(r.at(0.0).hex(), "#fde725");
+        assert_eq!(r.at(0.3), v.at(0.7));
+    }
+
+    #[test]
+    fn diverging_maps_are_light_in_the_middle() {
+        for name in ["rdbu", "brbg", "puor", "piyg", "prgn", "rdylbu"] {
+            let m = continuous(name).unwrap();
+            assert!(m.is_diverging(), "{name}");
+            let mid = m.at(0.5);
+            let end = m.at(0.0);
+            let lightness = |c: Color| c.r as u32 + c.g as u32 + c.b as u32;
+            assert!(lightness(mid) > 650, "{name} midpoint {}", mid.hex());
+            assert!(lightness(mid) > lightness(end) + 150, "{name}");
+        }
+        // colorous interpolates RdBu with a B-spline: the midpoint is #f1efed, near white.
+        let mid = continuous("rdbu").unwrap().at(0.5);
+        assert!(mid.r >= 0xe8 && mid.g >= 0xe8 && mid.b >= 0xe8, "{}", mid.hex());
+        assert!(!continuous("blues").unwrap().is_diverging());
+    }
+
+    #[test]
+    fn every_listed_name_resolves() {
+        for name in continuous_names() {
+            assert!(continuous(name).is_some(), "{name}");
+            assert!(continuous(&format!("{name}_r")).is_some(), "{name}_r");
+        }
+        for name in categorical_names() {
+            assert!(categorical(name).is_some_and(|p| p.len() >= 8), "{name}");
+        }
+        assert!(continuous("jet").is_none());
+        assert!(continuous("_r").is_none());
+        assert!(categorical("rainbow").is_none());
+        assert_eq!(continuous(DEFAULT_SEQUENTIAL).unwrap().name(), "viridis");
+        assert!(continuous(DEFAULT_DIVERGING).unwrap().is_diverging());
+    }
+
+    #[test]
+    fn okabe_ito_order() {
+        let p = categorical(DEFAULT_CATEGORICAL).unwrap();
+        let hex: Vec<String> = p.iter().map(|c| c.hex()).collect();
+        assert_eq!(hex, ["#0072b2", "#e69f00", "#009e73", "#d55e00", "#cc79a7", "#56b4e9", "#f0e442", "#000000"]);
+        assert_eq!(categorical("tableau10").unwrap()[0].hex(), "#4e79a7");
+        assert_eq!(categorical("category10").unwrap()[1].hex(), "#ff7f0e");
+    }
+
+    #[test]
+    fn parsing_colours() {
+        assert_eq!(parse_color("#fff"), Some(Color::WHITE));
+        assert_eq!(parse_color("#1A2b3C"), Some(Color::rgb(0x1a, 0x2b, 0x3c)));
+        assert_eq!(parse_color("#00000080"), Some(Color { r: 0, g: 0, b: 0, a: 0x80 }));
+        assert_eq!(parse_color("#f008"), Some(Color { r: 255, g: 0, b: 0, a: 0x88 }));
+        assert_eq!(parse_color(" SteelBlue "), Some(Color::rgb(0x46, 0x82, 0xb4)));
+        assert_eq!(parse_color("grey"), parse_color("gray"));
+        assert_eq!(parse_color("darkgrey"), Some(Color::rgb(0xa9, 0xa9, 0xa9)));
+        assert_eq!(parse_color("transparent"), Some(Color::TRANSPARENT));
+        for bad in ["", "#", "#ff", "#fffff", "#ggg", "#ééé", "#123456789", "notacolour", "rgb(1,2,3)"] {
+            assert_eq!(parse_color(bad), None, "{bad}");
+        }
+    }
+}

@@ -1,0 +1,249 @@
+//! The frame of a cartesian chart: title, caption, axes and legends placed around a plot area
+//! whose size is what remains of the canvas once every guide has room.
+
+use std::fmt;
+
+use super::Theme;
+use super::axis::{self, Side};
+use super::legend::{Legend, truncate_to_width};
+use super::scale::{BandScale, LinearScale, LogScale, Scale, ScaleError, TimeScale};
+use crate::scene::{Anchor, Baseline, Item, Point, Rect, Role, Shape, Style, Text};
+use crate::spec::ScaleKind;
+use crate::text::measure;
+
+/// The smallest plot area (either side, in pixels) a chart may be left with.
+pub const MIN_PLOT_SIDE: f64 = 24.0;
+
+/// The data extent of a positional axis.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Domain {
+    /// Numbers or instants (ms since the epoch): the smallest and largest value.
+    Continuous(f64, f64),
+    /// Categories in display order.
+    Categories(Vec<String>),
+}
+
+/// One positional axis of a cartesian chart, as resolved from the spec and the data.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PositionAxis {
+    /// Axis title including its unit.
+    pub title: String,
+    /// Scale type.
+    pub kind: ScaleKind,
+    /// Data extent.
+    pub domain: Domain,
+    /// Extend the domain to nice ticks.
+    pub nice: bool,
+    /// Requested tick count, if any.
+    pub ticks: Option<u32>,
+    /// Draw grid lines.
+    pub grid: bool,
+    /// Pixels kept free at both ends of the axis so marks at the extremes are not cut by the
+    /// plot's clip (e.g. the largest marker radius). Ignored by band scales.
+    pub inset: f64,
+}
+
+/// Everything a cartesian frame needs.
+#[derive(Clone, Debug)]
+pub struct FrameSpec {
+    /// Canvas width.
+    pub width: f64,
+    /// Canvas height.
+    pub height: f64,
+    /// Chart title.
+    pub title: Option<String>,
+    /// Caption under the chart.
+    pub caption: Option<String>,
+    /// Horizontal axis.
+    pub x: PositionAxis,
+    /// Vertical axis.
+    pub y: PositionAxis,
+    /// Legends stacked on the right.
+    pub legends: Vec<Legend>,
+    /// Sizes and colours.
+    pub theme: Theme,
+}
+
+/// A laid-out frame: the plot area, its scales, and the guide items to draw under and over the data.
+#[derive(Clone, Debug)]
+pub struct Frame {
+    /// The plot area.
+    pub plot: Rect,
+    /// Horizontal scale, mapping into the plot area.
+    pub x: Scale,
+    /// Vertical scale, mapping into the plot area (upwards).
+    pub y: Scale,
+    /// Background and grid, drawn before the data.
+    pub under: Vec<Item>,
+    /// Axes, titles, caption and legends, drawn after the data.
+    pub over: Vec<Item>,
+}
+
+/// Why a frame could not be laid out.
+#[derive(Debug, Clone, PartialEq)]
+pub enum LayoutError {
+    /// An axis' scale could not be built.
+    Scale {
+        /// "x" or "y".
+        axis: &'static str,
+        /// The scale's error.
+        error: ScaleError,
+    },
+    /// The guides leave no room for the plot.
+    TooSmall {
+        /// Plot width left.
+        plot_width: f64,
+        /// Plot height left.
+        plot_height: f64,
+    },
+}
+
+impl fmt::Display for LayoutError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            LayoutError::Scale { axis, error } => write!(f, "{axis} axis: {error}"),
+            LayoutError::TooSmall { plot_width, plot_height } => write!(
+                f,
+                "the canvas is too small: titles, axes and legends leave a {plot_width:.0}×{plot_height:.0} px plot area (at least {MIN_PLOT_SIDE} px each way is needed)"
+            ),
+        }
+    }
+}
+
+impl std::error::Error for LayoutError {}
+
+/// Build a scale for an axis over a pixel range.
+pub fn build_scale(axis: &PositionAxis, range: (f64, f64), target: usize) -> Result<Scale, ScaleError> {
+    let target = axis.ticks.map(|t| t as usize).unwrap_or(target).clamp(2, 50);
+    let inset = if axis.inset.is_finite() { axis.inset.clamp(0.0, (range.1 - range.0).abs() / 4.0) } else { 0.0 };
+    let dir = if range.1 >= range.0 { 1.0 } else { -1.0 };
+    let inner = (range.0 + dir * inset, range.1 - dir * inset);
+    match (&axis.domain, axis.kind) {
+        (Domain::Categories(cats), _) => Ok(Scale::Band(BandScale::new(cats.clone(), range, 0.2, 0.1)?)),
+        (Domain::Continuous(lo, hi), ScaleKind::Log) => {
+            Ok(Scale::Log(LogScale::new((*lo, *hi), inner, axis.nice)?.with_tick_target(target)))
+        }
+        (Domain::Continuous(lo, hi), ScaleKind::Time) => Ok(Scale::Time(TimeScale::new((*lo, *hi), inner, target)?)),
+        (Domain::Continuous(lo, hi), _) => Ok(Scale::Linear(LinearScale::new((*lo, *hi), inner, axis.nice, target)?)),
+    }
+}
+
+fn x_target(length: f64, theme: &Theme) -> usize {
+    ((length / (theme.font_size * 6.0)).round() as usize).clamp(2, 10)
+}
+
+fn y_target(length: f64, theme: &Theme) -> usize {
+    ((length / (theme.font_size * 3.5)).round() as usize).clamp(2, 10)
+}
+
+/// Height of a one-line text block at `size` with some breathing room.
+fn line_block(size: f64) -> f64 {
+    let m = measure("Ag", size);
+    (m.ascent + m.descent) * 1.35
+}
+
+/// Lay out a cartesian chart.
+pub fn cartesian(spec: &FrameSpec) -> Result<Frame, LayoutError> {
+    let theme = &spec.theme;
+    let m = theme.margin;
+    let title = spec.title.as_deref().filter(|t| !t.trim().is_empty());
+    let caption = spec.caption.as_deref().filter(|t| !t.trim().is_empty());
+    let top = m + title.map(|_| line_block(theme.title_size) + theme.font_size * 0.4).unwrap_or(theme.font_size * 0.5);
+    let bottom_reserved = m + caption.map(|_| line_block(theme.caption_size)).unwrap_or(0.0);
+    let legend_room = (spec.height - top - bottom_reserved).max(0.0);
+    let legend_sizes: Vec<(f64, f64)> = spec.legends.iter().map(|l| l.extent(theme, legend_room)).collect();
+    let legend_width = legend_sizes.iter().map(|s| s.0).fold(0.0, f64::max);
+    let right = m + if legend_width > 0.0 { legend_width + theme.font_size * 1.5 } else { 0.0 };
+
+    let x_title = Some(spec.x.title.as_str());
+    let y_title = Some(spec.y.title.as_str());
+    // Two passes: tick labels depend on the scale, the scale on the space left by the labels.
+    let mut left = m + theme.font_size * 4.0;
+    let mut bottom = bottom_reserved + theme.font_size * 3.0;
+    let mut right_overhang = 0.0;
+    let mut plot = Rect::new(0.0, 0.0, 0.0, 0.0);
+    let mut scales = None;
+    for _ in 0..3 {
+        plot = Rect::new(left, top, spec.width - left - right - right_overhang, spec.height - top - bottom);
+        if plot.w < MIN_PLOT_SIDE || plot.h < MIN_PLOT_SIDE {
+            return Err(LayoutError::TooSmall { plot_width: plot.w.max(0.0), plot_height: plot.h.max(0.0) });
+        }
+        let x = build_scale(&spec.x, (plot.x, plot.right()), x_target(plot.w, theme))
+            .map_err(|error| LayoutError::Scale { axis: "x", error })?;
+        let y = build_scale(&spec.y, (plot.bottom(), plot.y), y_target(plot.h, theme))
+            .map_err(|error| LayoutError::Scale { axis: "y", error })?;
+        left = m + axis::thickness(&y, Side::Left, y_title, theme);
+        bottom = bottom_reserved + axis::thickness(&x, Side::Bottom, x_title, theme);
+        right_overhang = axis::visible_ticks(&x, Side::Bottom, theme)
+            .last()
+            .map(|t| (measure(&t.label, theme.font_size).width / 2.0 - (plot.right() - t.position)).max(0.0))
+            .unwrap_or(0.0);
+        scales = Some((x, y));
+    }
+    let final_plot = Rect::new(left, top, spec.width - left - right - right_overhang, spec.height - top - bottom);
+    if final_plot.w < MIN_PLOT_SIDE || final_plot.h < MIN_PLOT_SIDE {
+        return Err(LayoutError::TooSmall { plot_width: final_plot.w.max(0.0), plot_height: final_plot.h.max(0.0) });
+    }
+    if final_plot != plot || scales.is_none() {
+        plot = final_plot;
+        let x = build_scale(&spec.x, (plot.x, plot.right()), x_target(plot.w, theme))
+            .map_err(|error| LayoutError::Scale { axis: "x", error })?;
+        let y = build_scale(&spec.y, (plot.bottom(), plot.y), y_target(plot.h, theme))
+            .map_err(|error| LayoutError::Scale { axis: "y", error })?;
+        scales = Some((x, y));
+    }
+    let Some((x, y)) = scales else {
+        return Err(LayoutError::TooSmall { plot_width: 0.0, plot_height: 0.0 });
+    };
+
+    let mut under = vec![Item::new(
+        Role::Background,
+        Shape::Rect(Rect::new(0.0, 0.0, spec.width, spec.height)),
+        Style::fill(theme.background),
+    )];
+    if spec.x.grid {
+        under.extend(axis::grid(&x, Side::Bottom, plot, theme));
+    }
+    if spec.y.grid {
+        under.extend(axis::grid(&y, Side::Left, plot, theme));
+    }
+
+    let mut over = Vec::new();
+    over.extend(axis::draw(&x, Side::Bottom, plot, x_title, theme));
+    over.extend(axis::draw(&y, Side::Left, plot, y_title, theme));
+    if let Some(t) = title {
+        over.push(Item::text(
+            Role::Title,
+            Text {
+                at: Point::new(m, m),
+                content: truncate_to_width(t, spec.width - 2.0 * m, theme.title_size),
+                size: theme.title_size,
+                anchor: Anchor::Start,
+                baseline: Baseline::Top,
+                angle: 0.0,
+                color: theme.text,
+            },
+        ));
+    }
+    if let Some(c) = caption {
+        over.push(Item::text(
+            Role::Caption,
+            Text {
+                at: Point::new(m, spec.height - m),
+                content: truncate_to_width(c, spec.width - 2.0 * m, theme.caption_size),
+                size: theme.caption_size,
+                anchor: Anchor::Start,
+                baseline: Baseline::Bottom,
+                angle: 0.0,
+                color: theme.muted_text,
+            },
+        ));
+    }
+    let mut legend_y = top;
+    let legend_x = spec.width - m - legend_width;
+    for (legend, (_, h)) in spec.legends.iter().zip(&legend_sizes) {
+        over.extend(legend.draw(Point::new(legend_x, legend_y), theme, legend_room));
+        legend_y += h + theme.font_size * 1.5;
+    }
+    Ok(Frame { plot, x, y, under, over })
+}

@@ -1,0 +1,291 @@
+//! Legends: categorical swatches, continuous colour bars and marker-size keys.
+
+use std::sync::Arc;
+
+use super::Theme;
+use super::color::ContinuousMap;
+use super::scale::{LinearScale, Scale};
+use crate::scene::{Anchor, Baseline, Color, Item, PathCmd, Point, Raster, Rect, Role, Shape, Style, Text};
+use crate::text::measure;
+
+/// Entries beyond this many are summarised as "… and N more".
+pub const MAX_ENTRIES: usize = 24;
+/// Entry labels wider than this many pixels (at the legend font size) are truncated with "…".
+const MAX_LABEL_WIDTH: f64 = 160.0;
+
+/// How a categorical legend draws its swatch.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Symbol {
+    /// A filled circle (scatter points).
+    Circle,
+    /// A short line (line series).
+    Line,
+}
+
+/// A legend block placed beside the plot.
+#[derive(Clone, Debug)]
+pub enum Legend {
+    /// One swatch per category.
+    Categorical {
+        /// Legend title.
+        title: String,
+        /// Labels and their colours, in display order.
+        entries: Vec<(String, Color)>,
+        /// Swatch shape.
+        symbol: Symbol,
+    },
+    /// A continuous colour ramp with a numeric axis.
+    ColorBar {
+        /// Colour-bar title.
+        title: String,
+        /// The colour map.
+        map: ContinuousMap,
+        /// Data values at the bottom and top of the ramp.
+        domain: (f64, f64),
+    },
+    /// Reference circles for a size (area) encoding.
+    Size {
+        /// Legend title.
+        title: String,
+        /// Labels and radii of the reference circles, smallest first.
+        entries: Vec<(String, f64)>,
+        /// Circle colour.
+        color: Color,
+    },
+}
+
+const COLOR_BAR_WIDTH: f64 = 12.0;
+
+impl Legend {
+    /// Width and height the legend needs, given the height available beside the plot.
+    pub fn extent(&self, theme: &Theme, available_height: f64) -> (f64, f64) {
+        let title_h = self.title_height(theme);
+        let row = row_height(theme);
+        match self {
+            Legend::Categorical { title, entries, .. } => {
+                let shown = displayed_entries(entries);
+                let label_w = shown.iter().map(|(l, _)| measure(l, theme.font_size).width).fold(0.0, f64::max);
+                let w = (swatch_width(theme) + theme.font_size * 0.5 + label_w).max(measure(title, theme.label_size).width);
+                (w, title_h + row * shown.len() as f64)
+            }
+            Legend::ColorBar { title, .. } => {
+                let h = color_bar_length(available_height - title_h) + title_h;
+                let scale = self.color_bar_scale(theme, available_height);
+                let label_w = scale
+                    .map(|s| s.ticks().iter().map(|t| measure(&t.label, theme.font_size).width).fold(0.0, f64::max))
+                    .unwrap_or(0.0);
+                let w = (COLOR_BAR_WIDTH + theme.tick_length + 3.0 + label_w).max(measure(title, theme.label_size).width);
+                (w, h + theme.font_size * 0.5)
+            }
+            Legend::Size { title, entries, .. } => {
+                let max_r = entries.iter().map(|e| e.1).fold(0.0, f64::max);
+                let label_w = entries.iter().map(|(l, _)| measure(l, theme.font_size).width).fold(0.0, f64::max);
+                let h: f64 = entries.iter().map(|e| (2.0 * e.1).max(row)).sum::<f64>() + 4.0 * entries.len() as f64;
+                let w = (2.0 * max_r + theme.font_size * 0.5 + label_w).max(measure(title, theme.label_size).width);
+                (w, title_h + h)
+            }
+        }
+    }
+
+    fn title(&self) -> &str {
+        match self {
+            Legend::Categorical { title, .. } | Legend::ColorBar { title, .. } | Legend::Size { title, .. } => title,
+        }
+    }
+
+    fn title_height(&self, theme: &Theme) -> f64 {
+        if self.title().is_empty() { 0.0 } else { theme.label_size * 1.6 }
+    }
+
+    fn color_bar_scale(&self, theme: &Theme, available_height: f64) -> Option<Scale> {
+        let Legend::ColorBar { domain, .. } = self else { return None };
+        let length = color_bar_length(available_height - self.title_height(theme));
+        let target = ((length / (theme.font_size * 3.0)).floor() as usize).clamp(2, 8);
+        LinearScale::new(*domain, (length, 0.0), false, target).ok().map(Scale::Linear)
+    }
+
+    /// Draw the legend with its top-left corner at `at`.
+    pub fn draw(&self, at: Point, theme: &Theme, available_height: f64) -> Vec<Item> {
+        let mut items = Vec::new();
+        let title_h = self.title_height(theme);
+        if title_h > 0.0 {
+            items.push(Item::text(
+                Role::Legend,
+                Text {
+                    at,
+                    content: self.title().to_string(),
+                    size: theme.label_size,
+                    anchor: Anchor::Start,
+                    baseline: Baseline::Top,
+                    angle: 0.0,
+                    color: theme.text,
+                },
+            ));
+        }
+        let top = at.y + title_h;
+        let row = row_height(theme);
+        match self {
+            Legend::Categorical { entries, symbol, .. } => {
+                for (i, (label, color)) in displayed_entries(entries).iter().enumerate() {
+                    let cy = top + row * (i as f64 + 0.5);
+                    if *color != Color::TRANSPARENT {
+                        items.push(swatch(*symbol, Point::new(at.x, cy), *color, theme));
+                    }
+                    items.push(entry_label(Point::new(at.x + swatch_width(theme) + theme.font_size * 0.5, cy), label, theme));
+                }
+            }
+            Legend::ColorBar { map, .. } => {
+                let length = color_bar_length(available_height - title_h);
+                let bar = Rect::new(at.x, top + theme.font_size * 0.5, COLOR_BAR_WIDTH, length);
+                items.push(Item::new(Role::Legend, Shape::Image(ramp(map, bar)), Style::default()));
+                items.push(Item::new(Role::Legend, Shape::Rect(bar), Style::stroke(theme.axis, 0.5)));
+                if let Some(scale) = self.color_bar_scale(theme, available_height) {
+                    let mut ticks = Vec::new();
+                    for t in scale.ticks() {
+                        let y = bar.y + t.position;
+                        ticks.push(PathCmd::MoveTo(Point::new(bar.right(), y)));
+                        ticks.push(PathCmd::LineTo(Point::new(bar.right() + theme.tick_length, y)));
+                        items.push(Item::text(
+                            Role::Legend,
+                            Text {
+                                at: Point::new(bar.right() + theme.tick_length + 3.0, y),
+                                content: t.label.clone(),
+                                size: theme.font_size,
+                                anchor: Anchor::Start,
+                                baseline: Baseline::Middle,
+                                angle: 0.0,
+                                color: theme.muted_text,
+                            },
+                        ));
+                    }
+                    items.push(Item::new(Role::Legend, Shape::Path(ticks), Style::stroke(theme.axis, 1.0)));
+                }
+            }
+            Legend::Size { entries, color, .. } => {
+                let max_r = entries.iter().map(|e| e.1).fold(0.0, f64::max);
+                let mut y = top;
+                for (label, r) in entries {
+                    let h = (2.0 * r).max(row);
+                    let cy = y + h / 2.0;
+                    items.push(Item::new(
+                        Role::Legend,
+                        Shape::Circle { center: Point::new(at.x + max_r, cy), radius: *r },
+                        Style { fill: Some(color.with_opacity(0.35)), stroke: Some(crate::scene::Stroke::solid(*color, 1.0)) },
+                    ));
+                    items.push(entry_label(Point::new(at.x + 2.0 * max_r + theme.font_size * 0.5, cy), label, theme));
+                    y += h + 4.0;
+                }
+            }
+        }
+        items
+    }
+}
+
+fn row_height(theme: &Theme) -> f64 {
+    theme.font_size * 1.5
+}
+
+fn swatch_width(theme: &Theme) -> f64 {
+    theme.font_size * 1.2
+}
+
+fn color_bar_length(available: f64) -> f64 {
+    available.clamp(60.0, 220.0)
+}
+
+/// Entries to show: at most [`MAX_ENTRIES`], labels truncated, and a summary line for the rest.
+fn displayed_entries(entries: &[(String, Color)]) -> Vec<(String, Color)> {
+    let mut shown: Vec<(String, Color)> = entries
+        .iter()
+        .take(MAX_ENTRIES)
+        .map(|(l, c)| (truncate_to_width(l, MAX_LABEL_WIDTH, 12.0), *c))
+        .collect();
+    if entries.len() > MAX_ENTRIES {
+        shown.push((format!("… and {} more", entries.len() - MAX_ENTRIES), Color::TRANSPARENT));
+    }
+    shown
+}
+
+/// `text` shortened with a trailing "…" so that it measures at most `max_width` at `size`.
+pub fn truncate_to_width(text: &str, max_width: f64, size: f64) -> String {
+    if measure(text, size).width <= max_width {
+        return text.to_string();
+    }
+    let chars: Vec<char> = text.chars().collect();
+    let (mut lo, mut hi) = (0usize, chars.len());
+    while lo < hi {
+        let mid = (lo + hi).div_ceil(2);
+        let candidate: String = chars[..mid].iter().collect::<String>() + "…";
+        if measure(&candidate, size).width <= max_width { lo = mid } else { hi = mid - 1 }
+    }
+    chars[..lo].iter().collect::<String>() + "…"
+}
+
+fn swatch(symbol: Symbol, center: Point, color: Color, theme: &Theme) -> Item {
+    let w = swatch_width(theme);
+    match symbol {
+        Symbol::Circle => Item::new(
+            Role::Legend,
+            Shape::Circle { center: Point::new(center.x + w / 2.0, center.y), radius: theme.font_size * 0.35 },
+            Style::fill(color),
+        ),
+        Symbol::Line => Item::new(
+            Role::Legend,
+            Shape::Path(vec![
+                PathCmd::MoveTo(Point::new(center.x, center.y)),
+                PathCmd::LineTo(Point::new(center.x + w, center.y)),
+            ]),
+            Style::stroke(color, 2.5),
+        ),
+    }
+}
+
+fn entry_label(at: Point, label: &str, theme: &Theme) -> Item {
+    Item::text(
+        Role::Legend,
+        Text {
+            at,
+            content: label.to_string(),
+            size: theme.font_size,
+            anchor: Anchor::Start,
+            baseline: Baseline::Middle,
+            angle: 0.0,
+            color: theme.text,
+        },
+    )
+}
+
+/// A 1-pixel-wide raster of the colour map, top = high values.
+fn ramp(map: &ContinuousMap, dest: Rect) -> Raster {
+    const STEPS: u32 = 256;
+    let mut rgba = Vec::with_capacity(STEPS as usize * 4);
+    for i in 0..STEPS {
+        let t = 1.0 - i as f64 / (STEPS - 1) as f64;
+        let c = map.at(t);
+        rgba.extend_from_slice(&[c.r, c.g, c.b, c.a]);
+    }
+    Raster { dest, width: 1, height: STEPS, rgba: Arc::new(rgba), smooth: true }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn truncation_keeps_short_labels_and_shortens_long_ones() {
+        assert_eq!(truncate_to_width("setosa", 100.0, 12.0), "setosa");
+        let long = "a".repeat(500);
+        let cut = truncate_to_width(&long, 100.0, 12.0);
+        assert!(cut.ends_with('…'));
+        assert!(measure(&cut, 12.0).width <= 100.0);
+        assert!(cut.chars().count() > 5);
+    }
+
+    #[test]
+    fn many_categories_are_summarised() {
+        let entries: Vec<(String, Color)> = (0..30).map(|i| (format!("c{i}"), Color::BLACK)).collect();
+        let shown = displayed_entries(&entries);
+        assert_eq!(shown.len(), MAX_ENTRIES + 1);
+        assert_eq!(shown[MAX_ENTRIES].0, "… and 6 more");
+    }
+}

@@ -1,0 +1,14 @@
+//! Guides shared by every chart kind: scales and ticks, number and time formats, colour maps,
+//! axes, legends and colour bars, and the frame that places them around a plot area.
+
+pub mod axis;
+pub mod color;
+pub mod format;
+pub mod layout;
+pub mod legend;
+pub mod scale;
+pub mod theme;
+pub mod ticks;
+pub mod time;
+
+pub use theme::Theme;

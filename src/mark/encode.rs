@@ -1,0 +1,367 @@
+//! Encodings shared by chart kinds: columns for channels, the non-finite row policy, positional
+//! axes from channels, and colour encodings with their legends.
+
+use crate::data::{Categories, Column, NonFinite, Table};
+use crate::guide::axis::title_with_unit;
+use crate::guide::color::{self, ContinuousMap};
+use crate::guide::format::format_value;
+use crate::guide::layout::{Domain, PositionAxis};
+use crate::guide::legend::{Legend, Symbol};
+use crate::guide::scale::Scale;
+use crate::scene::Color;
+use crate::spec::{ChannelOptions, ColorChannel, ColorType, ScaleKind};
+
+use super::MarkError;
+
+/// Grey used for rows whose colour value is missing.
+pub const MISSING_COLOR: Color = Color::rgb(0xa0, 0xa0, 0xa0);
+/// Default mark colour when nothing encodes colour (the first categorical colour).
+pub const DEFAULT_MARK_COLOR: Color = Color::rgb(0x00, 0x72, 0xb2);
+
+/// The message and hint for a column name that is not in the table.
+pub fn missing_column(chart: &str, data: &str, field: &str, table: &Table) -> (String, String) {
+    let names = table.column_names();
+    let message = format!("chart \"{chart}\": data \"{data}\" has no column `{field}`");
+    let listing = names.iter().map(|n| format!("`{n}`")).collect::<Vec<_>>().join(", ");
+    let hint = match crate::spec::suggest::did_you_mean(field, names.iter().copied()) {
+        Some(best) => format!("did you mean `{best}`? columns: {listing}"),
+        None => format!("columns: {listing}"),
+    };
+    (message, hint)
+}
+
+/// The column a channel names, or an error pointing at the channel's key.
+pub fn column<'t>(
+    chart: &crate::spec::Chart,
+    index: usize,
+    key: &str,
+    field: &str,
+    table: &'t Table,
+) -> Result<&'t Column, MarkError> {
+    table.column(field).ok_or_else(|| {
+        let (message, hint) = missing_column(&chart.name, &chart.data, field, table);
+        MarkError::at(index, &[key], message, hint)
+    })
+}
+
+/// Rows whose numeric channel values are all finite, plus the warning that counts the rest.
+///
+/// This is the one non-finite policy of every chart kind: a row with a missing, NaN or infinite
+/// value in any numeric column the chart uses is dropped, and a warning says how many rows were
+/// dropped and why. Text columns never drop rows (missing text is its own category).
+pub fn finite_rows(chart: &str, rows: usize, numeric: &[(&str, &Column)]) -> (Vec<u32>, Option<String>) {
+    let mut kept = Vec::with_capacity(rows);
+    let slices: Vec<&[f64]> = numeric.iter().filter_map(|(_, c)| c.numbers()).collect();
+    for row in 0..rows {
+        if slices.iter().all(|s| s.get(row).is_some_and(|v| v.is_finite())) {
+            kept.push(row as u32);
+        }
+    }
+    if kept.len() == rows {
+        return (kept, None);
+    }
+    let details: Vec<String> = numeric
+        .iter()
+        .filter_map(|(name, c)| {
+            let n = NonFinite::count(c.numbers()?);
+            (n.total() > 0).then(|| {
+                let mut parts = Vec::new();
+                if n.nan > 0 {
+                    parts.push(format!("{} missing or NaN", n.nan));
+                }
+                if n.infinite > 0 {
+                    parts.push(format!("{} infinite", n.infinite));
+                }
+                format!("`{name}`: {}", parts.join(", "))
+            })
+        })
+        .collect();
+    let warning = format!(
+        "chart \"{chart}\": dropped {} of {rows} rows with missing or non-finite values ({})",
+        rows - kept.len(),
+        details.join("; ")
+    );
+    (kept, Some(warning))
+}
+
+/// The extent of `values` over `rows` (finite values only).
+pub fn extent(values: &[f64], rows: &[u32]) -> Option<(f64, f64)> {
+    let mut lo = f64::INFINITY;
+    let mut hi = f64::NEG_INFINITY;
+    for &r in rows {
+        if let Some(&v) = values.get(r as usize) {
+            if v.is_finite() {
+                lo = lo.min(v);
+                hi = hi.max(v);
+            }
+        }
+    }
+    (lo <= hi).then_some((lo, hi))
+}
+
+/// Resolve a positional axis from a channel, its column and the kept rows.
+pub fn position_axis(
+    chart: &crate::spec::Chart,
+    index: usize,
+    key: &str,
+    options: &ChannelOptions,
+    column: &Column,
+    rows: &[u32],
+) -> Result<PositionAxis, MarkError> {
+    let title = title_with_unit(options.title.as_deref().unwrap_or(&options.field), options.unit.as_deref());
+    let kind = match (options.scale, column.categories().is_some(), column.is_time()) {
+        (Some(ScaleKind::Band), _, _) | (None, true, _) => ScaleKind::Band,
+        (Some(kind), true, _) => {
+            return Err(MarkError::at(
+                index,
+                &[key, "scale"],
+                format!(
+                    "chart \"{}\": column `{}` holds text, which a {} scale cannot place",
+                    chart.name,
+                    options.field,
+                    scale_name(kind)
+                ),
+                "use scale = \"band\" for categories, or a numeric column",
+            ));
+        }
+        (None, false, true) => ScaleKind::Time,
+        (None, false, false) => ScaleKind::Linear,
+        (Some(kind), false, _) => kind,
+    };
+    let domain = if let Some(cats) = column.categories() {
+        Domain::Categories(used_levels(cats, rows))
+    } else {
+        let values = column.numbers().unwrap_or(&[]);
+        let (mut lo, mut hi) = match (options.domain, extent(values, rows)) {
+            (Some([a, b]), _) => (a, b),
+            (None, Some(e)) => e,
+            (None, None) => {
+                return Err(MarkError::at(
+                    index,
+                    &[key],
+                    format!("chart \"{}\": column `{}` has no finite values to plot", chart.name, options.field),
+                    "check the column's contents; non-finite cells are dropped",
+                ));
+            }
+        };
+        if options.zero == Some(true) && kind == ScaleKind::Linear {
+            lo = lo.min(0.0);
+            hi = hi.max(0.0);
+        }
+        Domain::Continuous(lo, hi)
+    };
+    Ok(PositionAxis {
+        title,
+        kind,
+        domain,
+        nice: options.nice.unwrap_or(true) && options.domain.is_none(),
+        ticks: options.ticks,
+        grid: options.grid.unwrap_or(kind != ScaleKind::Band),
+        inset: 0.0,
+    })
+}
+
+fn scale_name(kind: ScaleKind) -> &'static str {
+    match kind {
+        ScaleKind::Linear => "linear",
+        ScaleKind::Log => "log",
+        ScaleKind::Time => "time",
+        ScaleKind::Band => "band",
+    }
+}
+
+/// Category levels that occur in `rows`, in order of first appearance in the data.
+pub fn used_levels(cats: &Categories, rows: &[u32]) -> Vec<String> {
+    let mut used = vec![false; cats.levels.len()];
+    let mut any_missing = false;
+    for &r in rows {
+        match cats.codes.get(r as usize) {
+            Some(&c) if c != Categories::MISSING => {
+                if let Some(u) = used.get_mut(c as usize) {
+                    *u = true;
+                }
+            }
+            _ => any_missing = true,
+        }
+    }
+    let mut levels: Vec<String> =
+        cats.levels.iter().zip(&used).filter(|(_, u)| **u).map(|(l, _)| l.clone()).collect();
+    if any_missing {
+        levels.push(MISSING_LABEL.to_string());
+    }
+    levels
+}
+
+/// Label of the category of missing text cells.
+pub const MISSING_LABEL: &str = "(missing)";
+
+/// Pixel position of `row` of `column` on `scale` (band scales place categories at band centres).
+pub fn position(scale: &Scale, column: &Column, row: u32) -> f64 {
+    match (scale, column.categories()) {
+        (Scale::Band(band), Some(cats)) => {
+            let label = cats.value(row as usize).unwrap_or(MISSING_LABEL);
+            band.band_of(label).map(|i| band.center(i)).unwrap_or(f64::NAN)
+        }
+        _ => column.numbers().and_then(|v| v.get(row as usize)).map(|&v| scale.map(v)).unwrap_or(f64::NAN),
+    }
+}
+
+/// How marks are coloured.
+#[derive(Clone, Debug)]
+pub enum ColorEncoding {
+    /// One colour for every mark.
+    Fixed(Color),
+    /// A colour per category.
+    Categorical {
+        /// Codes per row.
+        categories: Categories,
+        /// Colour per level code.
+        colors: Vec<Color>,
+    },
+    /// A continuous colour map over a numeric column.
+    Continuous {
+        /// Values per row.
+        values: Vec<f64>,
+        /// The map.
+        map: ContinuousMap,
+        /// Value at the low end.
+        lo: f64,
+        /// Value at the high end.
+        hi: f64,
+    },
+}
+
+impl ColorEncoding {
+    /// The colour of `row`.
+    pub fn color_of(&self, row: u32) -> Color {
+        match self {
+            ColorEncoding::Fixed(c) => *c,
+            ColorEncoding::Categorical { categories, colors } => categories
+                .codes
+                .get(row as usize)
+                .and_then(|&c| colors.get(c as usize))
+                .copied()
+                .unwrap_or(MISSING_COLOR),
+            ColorEncoding::Continuous { values, map, lo, hi } => {
+                let v = values.get(row as usize).copied().unwrap_or(f64::NAN);
+                let t = if hi > lo { (v - lo) / (hi - lo) } else { 0.5 };
+                map.at(t)
+            }
+        }
+    }
+}
+
+/// A fixed mark colour from the spec (`mark_color`), or the default.
+pub fn fixed_color(index: usize, value: Option<&str>) -> Result<Color, MarkError> {
+    match value {
+        None => Ok(DEFAULT_MARK_COLOR),
+        Some(s) => color::parse_color(s).ok_or_else(|| {
+            MarkError::at(
+                index,
+                &["mark_color"],
+                format!("`{s}` is not a colour"),
+                "use a CSS colour name such as \"steelblue\" or a hex colour such as \"#1f77b4\"",
+            )
+        }),
+    }
+}
+
+/// A categorical palette by name (default Okabe–Ito), or an error listing the names.
+pub fn palette(index: usize, keys: &[&str], name: Option<&str>) -> Result<Vec<Color>, MarkError> {
+    let name = name.unwrap_or(color::DEFAULT_CATEGORICAL);
+    color::categorical(name).ok_or_else(|| {
+        let names = color::categorical_names();
+        let hint = match crate::spec::suggest::did_you_mean(name, names.iter().copied()) {
+            Some(best) => format!("did you mean `{best}`? categorical schemes: {}", names.join(", ")),
+            None => format!("categorical schemes: {}", names.join(", ")),
+        };
+        MarkError::at(index, keys, format!("unknown categorical colour scheme `{name}`"), hint)
+    })
+}
+
+/// Build the colour encoding and its legend for a colour channel over the kept rows.
+pub fn color_encoding(
+    chart: &crate::spec::Chart,
+    index: usize,
+    channel: Option<&ColorChannel>,
+    mark_color: Option<&str>,
+    table: &Table,
+    rows: &[u32],
+    symbol: Symbol,
+) -> Result<(ColorEncoding, Option<Legend>), MarkError> {
+    let Some(channel) = channel else {
+        return Ok((ColorEncoding::Fixed(fixed_color(index, mark_color)?), None));
+    };
+    let options = channel.options();
+    let col = column(chart, index, "color", &options.field, table)?;
+    let title = title_with_unit(options.title.as_deref().unwrap_or(&options.field), options.unit.as_deref());
+    let categorical = match (options.r#type, col.categories().is_some()) {
+        (Some(ColorType::Categorical), _) | (None, true) => true,
+        (Some(ColorType::Continuous), true) => {
+            return Err(MarkError::at(
+                index,
+                &["color", "type"],
+                format!("chart \"{}\": column `{}` holds text and cannot be coloured continuously", chart.name, options.field),
+                "remove `type = \"continuous\"` or colour by a numeric column",
+            ));
+        }
+        _ => false,
+    };
+    if categorical {
+        let categories = match col.categories() {
+            Some(c) => c.clone(),
+            None => number_categories(col.numbers().unwrap_or(&[])),
+        };
+        let palette = palette(index, &["color", "scheme"], options.scheme.as_deref())?;
+        let colors: Vec<Color> =
+            (0..categories.levels.len()).map(|i| palette.get(i % palette.len().max(1)).copied().unwrap_or(MISSING_COLOR)).collect();
+        let mut entries: Vec<(String, Color)> = Vec::new();
+        for level in used_levels(&categories, rows) {
+            let color = categories
+                .levels
+                .iter()
+                .position(|l| *l == level)
+                .and_then(|i| colors.get(i).copied())
+                .unwrap_or(MISSING_COLOR);
+            entries.push((level, color));
+        }
+        let legend = Legend::Categorical { title, entries, symbol };
+        return Ok((ColorEncoding::Categorical { categories, colors }, Some(legend)));
+    }
+    let values = col.numbers().unwrap_or(&[]).to_vec();
+    let scheme = options.scheme.as_deref().unwrap_or(color::DEFAULT_SEQUENTIAL);
+    let map = color::continuous(scheme).ok_or_else(|| {
+        let names = color::continuous_names();
+        let hint = match crate::spec::suggest::did_you_mean(scheme, names.iter().copied()) {
+            Some(best) => format!("did you mean `{best}`? continuous schemes: {}", names.join(", ")),
+            None => format!("continuous schemes: {}", names.join(", ")),
+        };
+        MarkError::at(index, &["color", "scheme"], format!("unknown continuous colour scheme `{scheme}`"), hint)
+    })?;
+    let (mut lo, mut hi) = extent(&values, rows).unwrap_or((0.0, 1.0));
+    if map.is_diverging() {
+        let mid = options.midpoint.unwrap_or((lo + hi) / 2.0);
+        let half = (hi - mid).abs().max((mid - lo).abs());
+        lo = mid - half;
+        hi = mid + half;
+    }
+    if lo == hi {
+        lo -= 0.5;
+        hi += 0.5;
+    }
+    let legend = Legend::ColorBar { title, map: map.clone(), domain: (lo, hi) };
+    Ok((ColorEncoding::Continuous { values, map, lo, hi }, Some(legend)))
+}
+
+/// Distinct numbers as sorted categories (for `type = "categorical"` on a numeric column).
+fn number_categories(values: &[f64]) -> Categories {
+    let mut distinct: Vec<f64> = values.iter().copied().filter(|v| v.is_finite()).collect();
+    distinct.sort_by(f64::total_cmp);
+    distinct.dedup();
+    let levels: Vec<String> = distinct.iter().map(|&v| format_value(v)).collect();
+    let codes = values
+        .iter()
+        .map(|v| distinct.binary_search_by(|d| d.total_cmp(v)).map(|i| i as u32).unwrap_or(Categories::MISSING))
+        .collect();
+    Categories { levels, codes }
+}

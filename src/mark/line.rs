@@ -1,0 +1,307 @@
+//! `line`: one or more series drawn as polylines through (x, y), sorted by x, broken at dropped rows.
+
+use super::derived::{Derived, DerivedColumn};
+use super::encode;
+use super::{ChartOutput, DEFAULT_SIZE, MarkError};
+use crate::data::{Categories, Column, Table};
+use crate::guide::Theme;
+use crate::guide::axis::title_with_unit;
+use crate::guide::layout::{self, Domain, FrameSpec};
+use crate::guide::legend::{Legend, Symbol};
+use crate::scene::{Color, Item, PathCmd, PerPoint, Point, PointBatch, Role, Scene, Shape, Stroke, Style};
+use crate::spec::{Chart, LineOptions};
+
+/// One series: its name, colour and the rows it draws (sorted by x; `None` marks a break).
+struct Series<'t> {
+    name: String,
+    y: &'t Column,
+    rows: Vec<u32>,
+    color: Color,
+}
+
+/// Draw a line chart.
+pub fn draw(chart: &Chart, options: &LineOptions, index: usize, table: &Table) -> Result<ChartOutput, MarkError> {
+    let x_opts = options.x.options();
+    let x_col = encode::column(chart, index, "x", &x_opts.field, table)?;
+    let y_channels = options.y.as_slice();
+    if y_channels.is_empty() {
+        return Err(MarkError::at(index, &["y"], format!("chart \"{}\": `y` lists no columns", chart.name), "name at least one column, e.g. y = \"value\""));
+    }
+    if options.series.is_some() && y_channels.len() > 1 {
+        return Err(MarkError::at(
+            index,
+            &["series"],
+            format!("chart \"{}\": `series` splits one `y` column, but {} are given", chart.name, y_channels.len()),
+            "either list several y columns (wide data) or give one y column and `series` (long data)",
+        ));
+    }
+    let mut y_cols = Vec::new();
+    for (i, channel) in y_channels.iter().enumerate() {
+        let key_path: &[&str] = &["y"];
+        let col = encode::column(chart, index, key_path[0], channel.field(), table).map_err(|mut e| {
+            if y_channels.len() > 1 {
+                e.path.push(crate::spec::PathSeg::Index(i));
+            }
+            e
+        })?;
+        if col.numbers().is_none() {
+            return Err(MarkError::at(
+                index,
+                &["y"],
+                format!("chart \"{}\": y column `{}` holds text; a line needs numbers", chart.name, channel.field()),
+                "use a numeric column for y (put categories in `series`)",
+            ));
+        }
+        y_cols.push((channel, col));
+    }
+    let series_col = match &options.series {
+        Some(field) => Some(encode::column(chart, index, "series", field, table)?),
+        None => None,
+    };
+
+    // Non-finite policy: rows with a non-finite x (or y) are dropped and counted.
+    let mut numeric: Vec<(&str, &Column)> = Vec::new();
+    if x_col.numbers().is_some() {
+        numeric.push((x_opts.field.as_str(), x_col));
+    }
+    let mut warnings = Vec::new();
+    let all_rows: Vec<u32> = (0..table.rows as u32).collect();
+    let palette = encode::palette(index, &["scheme"], options.scheme.as_deref())?;
+    let single_color = encode::fixed_color(index, options.mark_color.as_deref())?;
+
+    let mut series: Vec<Series> = Vec::new();
+    for (channel, col) in &y_cols {
+        let mut used = numeric.clone();
+        used.push((channel.field(), col));
+        let (kept, warning) = encode::finite_rows(&chart.name, table.rows, &used);
+        warnings.extend(warning);
+        let title = channel.options().title.unwrap_or_else(|| channel.field().to_string());
+        match series_col {
+            Some(sc) => {
+                let cats = sc.categories().cloned().unwrap_or_else(|| numeric_categories(sc));
+                for (code, level) in cats.levels.iter().enumerate() {
+                    let rows: Vec<u32> =
+                        kept.iter().copied().filter(|&r| cats.codes.get(r as usize) == Some(&(code as u32))).collect();
+                    if !rows.is_empty() {
+                        series.push(Series { name: level.clone(), y: col, rows, color: Color::BLACK });
+                    }
+                }
+            }
+            None => series.push(Series { name: title, y: col, rows: kept, color: Color::BLACK }),
+        }
+    }
+    series.retain(|s| !s.rows.is_empty());
+    if series.is_empty() {
+        return Err(MarkError::at(
+            index,
+            &[],
+            format!("chart \"{}\": no rows left to plot ({} rows in data \"{}\")", chart.name, table.rows, chart.data),
+            "check the columns' values: rows with missing or non-finite values are dropped",
+        ));
+    }
+    let n_series = series.len();
+    for (i, s) in series.iter_mut().enumerate() {
+        s.color = if n_series == 1 { single_color } else { palette.get(i % palette.len().max(1)).copied().unwrap_or(single_color) };
+    }
+    let x_numbers = x_col.numbers();
+    let band_order = x_col.categories();
+    for s in &mut series {
+        sort_rows(&mut s.rows, x_numbers, band_order);
+    }
+
+    // Axes: x from the x channel; y from the union of all series.
+    let all_series_rows: Vec<u32> = {
+        let mut v: Vec<u32> = series.iter().flat_map(|s| s.rows.iter().copied()).collect();
+        v.sort_unstable();
+        v.dedup();
+        v
+    };
+    let x_axis = encode::position_axis(chart, index, "x", &x_opts, x_col, &all_series_rows)?;
+    let first_y = y_cols[0].0.options();
+    let mut y_axis = encode::position_axis(chart, index, "y", &first_y, y_cols[0].1, &series[0].rows)?;
+    let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+    for s in &series {
+        if let Some((a, b)) = encode::extent(s.y.numbers().unwrap_or(&[]), &s.rows) {
+            lo = lo.min(a);
+            hi = hi.max(b);
+        }
+    }
+    if first_y.domain.is_none() && lo <= hi {
+        if first_y.zero == Some(true) {
+            lo = lo.min(0.0);
+            hi = hi.max(0.0);
+        }
+        y_axis.domain = Domain::Continuous(lo, hi);
+    }
+    if y_cols.len() > 1 {
+        // Several y columns: the channel titles name the series (in the legend); the axis gets
+        // `y_title` or the joined names, with the first unit any channel gives.
+        let names: Vec<String> = y_cols.iter().map(|(c, _)| c.options().title.unwrap_or_else(|| c.field().to_string())).collect();
+        let unit = y_cols.iter().find_map(|(c, _)| c.options().unit);
+        let title = options.y_title.clone().unwrap_or_else(|| names.join(", "));
+        y_axis.title = title_with_unit(&title, unit.as_deref());
+    } else if let Some(t) = &options.y_title {
+        y_axis.title = title_with_unit(t, first_y.unit.as_deref());
+    }
+    let stroke_width = options.stroke_width.unwrap_or(2.0);
+    let markers = options.markers.unwrap_or(false);
+    let inset = if markers { stroke_width * 1.6 + 1.5 } else { stroke_width / 2.0 + 0.5 };
+    y_axis.inset = inset;
+    let mut x_axis = x_axis;
+    x_axis.inset = inset;
+    let legends = if n_series > 1 {
+        let title = options.series.clone().unwrap_or_default();
+        vec![Legend::Categorical { title, entries: series.iter().map(|s| (s.name.clone(), s.color)).collect(), symbol: Symbol::Line }]
+    } else {
+        Vec::new()
+    };
+
+    let [width, height] = chart.size.unwrap_or(DEFAULT_SIZE);
+    let theme = Theme::with_font_size(chart.font_size.unwrap_or(12.0));
+    let frame = layout::cartesian(&FrameSpec {
+        width,
+        height,
+        title: chart.title.clone(),
+        caption: chart.caption.clone(),
+        x: x_axis,
+        y: y_axis,
+        legends,
+        theme: theme.clone(),
+    })
+    .map_err(|e| MarkError::layout(index, &chart.name, e))?;
+
+    let mut marks = Vec::new();
+    let mut derived_series = Vec::new();
+    let mut derived_x = Vec::new();
+    let mut derived_y = Vec::new();
+    let mut derived_row = Vec::new();
+    for s in &series {
+        let dropped = dropped_between(&s.rows, &all_rows, x_numbers, s.y.numbers());
+        let mut cmds = Vec::with_capacity(s.rows.len() + 1);
+        let mut centers = Vec::new();
+        let mut pen_down = false;
+        for (k, &r) in s.rows.iter().enumerate() {
+            let p = Point::new(encode::position(&frame.x, x_col, r), encode::position(&frame.y, s.y, r));
+            if dropped.get(k).copied().unwrap_or(false) {
+                pen_down = false;
+            }
+            cmds.push(if pen_down { PathCmd::LineTo(p) } else { PathCmd::MoveTo(p) });
+            pen_down = true;
+            centers.push(p);
+            derived_series.push(s.name.clone());
+            derived_row.push(r as f64);
+            derived_x.push(x_numbers.and_then(|v| v.get(r as usize)).copied().unwrap_or(f64::NAN));
+            derived_y.push(s.y.numbers().and_then(|v| v.get(r as usize)).copied().unwrap_or(f64::NAN));
+        }
+        let mut style = Style::stroke(s.color, stroke_width);
+        if let Some(stroke) = style.stroke.as_mut() {
+            stroke.width = stroke_width;
+        }
+        marks.push(Item::new(Role::DataMark, Shape::Path(cmds), style).with_rows(s.rows.clone()).labelled(s.name.clone()));
+        if markers {
+            marks.push(
+                Item::new(
+                    Role::DataMark,
+                    Shape::Points(PointBatch {
+                        centers,
+                        radius: PerPoint::Uniform(stroke_width * 1.6),
+                        fill: PerPoint::Uniform(s.color),
+                        stroke: Some(Stroke::solid(Color::WHITE, 1.0)),
+                    }),
+                    Style::default(),
+                )
+                .with_rows(s.rows.clone())
+                .labelled(s.name.clone()),
+            );
+        }
+    }
+    let mut items = frame.under;
+    items.push(Item::group(Role::DataMark, marks, Some(frame.plot)));
+    items.extend(frame.over);
+    let scene = Scene { width, height, background: theme.background, title: chart.title.clone(), items };
+
+    let mut derived = Derived::default();
+    derived.push("series", DerivedColumn::Text(derived_series));
+    derived.push("row", DerivedColumn::Number(derived_row));
+    if let Some(cats) = x_col.categories() {
+        derived.push(&x_opts.field, DerivedColumn::Text(
+            series.iter().flat_map(|s| s.rows.iter().map(|&r| cats.value(r as usize).unwrap_or("").to_string())).collect(),
+        ));
+    } else {
+        derived.push(&x_opts.field, DerivedColumn::Number(derived_x));
+    }
+    derived.push("y", DerivedColumn::Number(derived_y));
+    Ok(ChartOutput { scene, derived, warnings })
+}
+
+/// Numbers as categories (a numeric `series` column).
+fn numeric_categories(col: &Column) -> Categories {
+    let texts: Vec<Option<String>> = col
+        .numbers()
+        .unwrap_or(&[])
+        .iter()
+        .map(|v| v.is_finite().then(|| crate::guide::format::format_value(*v)))
+        .collect();
+    Categories::from_values(texts.iter().map(|t| t.as_deref()))
+}
+
+/// Sort rows by x (numbers or category order), stable so ties keep data order.
+fn sort_rows(rows: &mut [u32], x: Option<&[f64]>, cats: Option<&Categories>) {
+    if let Some(values) = x {
+        rows.sort_by(|&a, &b| {
+            let va = values.get(a as usize).copied().unwrap_or(f64::NAN);
+            let vb = values.get(b as usize).copied().unwrap_or(f64::NAN);
+            va.total_cmp(&vb)
+        });
+    } else if let Some(c) = cats {
+        rows.sort_by_key(|&r| c.codes.get(r as usize).copied().unwrap_or(u32::MAX));
+    }
+}
+
+/// For each kept row (sorted by x), whether a dropped row lies between it and the previous kept
+/// row in x order: the line is broken there rather than drawn across the missing data.
+fn dropped_between(kept: &[u32], all: &[u32], x: Option<&[f64]>, y: Option<&[f64]>) -> Vec<bool> {
+    let (Some(x), Some(y)) = (x, y) else { return vec![false; kept.len()] };
+    // x positions of rows whose x is finite but y is not: gaps in the series.
+    let mut gaps: Vec<f64> = all
+        .iter()
+        .filter_map(|&r| {
+            let xv = *x.get(r as usize)?;
+            let yv = *y.get(r as usize)?;
+            (xv.is_finite() && !yv.is_finite()).then_some(xv)
+        })
+        .collect();
+    gaps.sort_by(f64::total_cmp);
+    let mut out = vec![false; kept.len()];
+    for k in 1..kept.len() {
+        let a = x.get(kept[k - 1] as usize).copied().unwrap_or(f64::NAN);
+        let b = x.get(kept[k] as usize).copied().unwrap_or(f64::NAN);
+        let i = gaps.partition_point(|g| *g <= a);
+        if gaps.get(i).is_some_and(|g| *g < b || (*g == b && a < b)) {
+            out[k] = true;
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn gaps_break_the_line_only_where_y_is_missing() {
+        let x = [0.0, 1.0, 2.0, 3.0];
+        let y = [1.0, f64::NAN, 2.0, 3.0];
+        let kept = [0u32, 2, 3];
+        let all = [0u32, 1, 2, 3];
+        assert_eq!(dropped_between(&kept, &all, Some(&x), Some(&y)), vec![false, true, false]);
+    }
+
+    #[test]
+    fn rows_sort_by_x_stably() {
+        let x = [3.0, 1.0, 2.0, 1.0];
+        let mut rows = vec![0u32, 1, 2, 3];
+        sort_rows(&mut rows, Some(&x), None);
+        assert_eq!(rows, vec![1, 3, 2, 0]);
+    }
+}

@@ -1,0 +1,89 @@
+//! Marks: one module per chart kind, each turning a table and a chart spec into a [`Scene`].
+//!
+//! Shared pieces — reading channels from the table, the non-finite policy, colour and size
+//! encodings — live in [`encode`] so that kinds only describe their own geometry.
+
+pub mod derived;
+pub mod encode;
+pub mod line;
+pub mod scatter;
+
+use std::fmt;
+
+pub use derived::{Derived, DerivedColumn};
+
+use crate::data::Table;
+use crate::guide::layout::LayoutError;
+use crate::scene::Scene;
+use crate::spec::{Chart, ChartKind, PathSeg};
+
+/// A chart drawn: its scene, its derived geometry and the warnings raised on the way.
+#[derive(Clone, Debug)]
+pub struct ChartOutput {
+    /// What to render.
+    pub scene: Scene,
+    /// Derived geometry in data coordinates (`--format csv`).
+    pub derived: Derived,
+    /// Non-fatal notes, e.g. rows dropped for non-finite values.
+    pub warnings: Vec<String>,
+}
+
+/// Why a chart could not be drawn. Each error carries the spec path it is about.
+#[derive(Clone, Debug, PartialEq)]
+pub struct MarkError {
+    /// What went wrong.
+    pub message: String,
+    /// How to fix it.
+    pub hint: String,
+    /// Where in the spec (e.g. `chart[2].x`).
+    pub path: Vec<PathSeg>,
+}
+
+impl fmt::Display for MarkError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(&self.message)
+    }
+}
+
+impl std::error::Error for MarkError {}
+
+impl MarkError {
+    /// An error about the chart at `index`, pointing at `key` (or the whole chart if empty).
+    pub fn at(index: usize, keys: &[&str], message: impl Into<String>, hint: impl Into<String>) -> MarkError {
+        let mut path = vec![PathSeg::Key("chart".into()), PathSeg::Index(index)];
+        path.extend(keys.iter().map(|k| PathSeg::Key(k.to_string())));
+        MarkError { message: message.into(), hint: hint.into(), path }
+    }
+
+    /// A layout error of the chart at `index`.
+    pub fn layout(index: usize, name: &str, error: LayoutError) -> MarkError {
+        let (key, hint) = match &error {
+            LayoutError::TooSmall { .. } => ("size", "make `size` larger or `font_size` smaller"),
+            LayoutError::Scale { axis, .. } => {
+                (if *axis == "x" { "x" } else { "y" }, "check the axis' scale and the column's values")
+            }
+        };
+        MarkError::at(index, &[key], format!("chart \"{name}\": {error}"), hint)
+    }
+}
+
+/// Draw chart number `index` of a spec from its table.
+pub fn draw(chart: &Chart, index: usize, table: &Table) -> Result<ChartOutput, MarkError> {
+    match &chart.kind {
+        ChartKind::Scatter(options) => scatter::draw(chart, options, index, table),
+        ChartKind::Line(options) => line::draw(chart, options, index, table),
+    }
+}
+
+/// The spec keys of a chart kind whose values name columns (a string, a table with `field`, or
+/// a list of those). Used to check column names even when the rest of the spec has errors.
+pub fn column_keys(kind: &str) -> &'static [&'static str] {
+    match kind {
+        "scatter" => &["x", "y", "color", "point_size"],
+        "line" => &["x", "y", "series"],
+        _ => &[],
+    }
+}
+
+/// Default canvas size when the spec gives none.
+pub const DEFAULT_SIZE: [f64; 2] = [640.0, 420.0];

@@ -1,0 +1,229 @@
+//! `scatter`: points at (x, y), coloured and sized by columns, drawn as one compact point batch.
+
+use super::derived::{Derived, DerivedColumn};
+use super::encode::{self, ColorEncoding};
+use super::{ChartOutput, DEFAULT_SIZE, MarkError};
+use crate::data::Table;
+use crate::guide::format::format_value;
+use crate::guide::layout::{self, FrameSpec};
+use crate::guide::legend::{Legend, Symbol};
+use crate::guide::ticks::extended;
+use crate::guide::Theme;
+use crate::scene::{Color, Item, PerPoint, Point, PointBatch, Role, Scene, Shape, Stroke, Style};
+use crate::spec::{Chart, ScatterOptions};
+
+/// Default marker radius for `n` points: smaller as the plot fills up.
+pub fn default_radius(n: usize) -> f64 {
+    match n {
+        0..=1_000 => 3.5,
+        1_001..=10_000 => 2.5,
+        10_001..=100_000 => 1.5,
+        _ => 1.0,
+    }
+}
+
+/// Default marker opacity for `n` points: lower as overplotting grows.
+pub fn default_opacity(n: usize) -> f64 {
+    match n {
+        0..=1_000 => 0.85,
+        1_001..=10_000 => 0.6,
+        10_001..=100_000 => 0.35,
+        _ => 0.2,
+    }
+}
+
+/// Draw a scatter chart.
+pub fn draw(chart: &Chart, options: &ScatterOptions, index: usize, table: &Table) -> Result<ChartOutput, MarkError> {
+    let x_opts = options.x.options();
+    let y_opts = options.y.options();
+    let x_col = encode::column(chart, index, "x", &x_opts.field, table)?;
+    let y_col = encode::column(chart, index, "y", &y_opts.field, table)?;
+    let size_opts = options.point_size.as_ref().map(|s| s.options());
+    let size_col = match &size_opts {
+        Some(o) => Some(encode::column(chart, index, "point_size", &o.field, table)?),
+        None => None,
+    };
+    if let (Some(col), Some(o)) = (size_col, &size_opts) {
+        if col.numbers().is_none() {
+            return Err(MarkError::at(
+                index,
+                &["point_size"],
+                format!("chart \"{}\": `point_size` column `{}` holds text; marker area needs numbers", chart.name, o.field),
+                "size by a numeric column, or colour by this one instead",
+            ));
+        }
+    }
+    let color_numeric = options
+        .color
+        .as_ref()
+        .and_then(|c| table.column(c.field()))
+        .filter(|c| c.numbers().is_some());
+
+    let mut numeric: Vec<(&str, &crate::data::Column)> = Vec::new();
+    for (field, col) in [(x_opts.field.as_str(), x_col), (y_opts.field.as_str(), y_col)] {
+        if col.numbers().is_some() {
+            numeric.push((field, col));
+        }
+    }
+    if let (Some(col), Some(o)) = (size_col, &size_opts) {
+        numeric.push((&o.field, col));
+    }
+    if let (Some(col), Some(c)) = (color_numeric, &options.color) {
+        numeric.push((c.field(), col));
+    }
+    let (mut rows, warning) = encode::finite_rows(&chart.name, table.rows, &numeric);
+    let mut warnings: Vec<String> = warning.into_iter().collect();
+
+    // Marker area is proportional to the value, so negative sizes have no honest mark.
+    let mut max_size = 0.0f64;
+    if let Some(values) = size_col.and_then(|c| c.numbers()) {
+        let before = rows.len();
+        rows.retain(|&r| values.get(r as usize).is_some_and(|v| *v >= 0.0));
+        if rows.len() < before {
+            warnings.push(format!(
+                "chart \"{}\": dropped {} rows with negative `point_size` values (marker area cannot be negative)",
+                chart.name,
+                before - rows.len()
+            ));
+        }
+        max_size = rows.iter().filter_map(|&r| values.get(r as usize)).fold(0.0, |a, &b| a.max(b));
+    }
+    if rows.is_empty() {
+        return Err(MarkError::at(
+            index,
+            &[],
+            format!("chart \"{}\": no rows left to plot ({} rows in data \"{}\")", chart.name, table.rows, chart.data),
+            "check the columns' values: rows with missing or non-finite values are dropped",
+        ));
+    }
+
+    let n = rows.len();
+    let opacity = options.opacity.unwrap_or_else(|| default_opacity(n));
+    let (colors, color_legend) =
+        encode::color_encoding(chart, index, options.color.as_ref(), options.mark_color.as_deref(), table, &rows, Symbol::Circle)?;
+    let max_radius = size_opts.as_ref().and_then(|o| o.max_radius).unwrap_or(12.0);
+    let mut legends: Vec<Legend> = color_legend.into_iter().collect();
+    if let (Some(o), true) = (&size_opts, max_size > 0.0) {
+        legends.push(size_legend(&o.title.clone().unwrap_or(o.field.clone()), o.unit.as_deref(), max_size, max_radius));
+    }
+
+    let [width, height] = chart.size.unwrap_or(DEFAULT_SIZE);
+    let theme = Theme::with_font_size(chart.font_size.unwrap_or(12.0));
+    let base_radius = options.radius.unwrap_or_else(|| default_radius(n));
+    let largest_radius = if size_col.is_some() && max_size > 0.0 { max_radius } else { base_radius };
+    let mut x_axis = encode::position_axis(chart, index, "x", &x_opts, x_col, &rows)?;
+    let mut y_axis = encode::position_axis(chart, index, "y", &y_opts, y_col, &rows)?;
+    x_axis.inset = largest_radius + 1.0;
+    y_axis.inset = largest_radius + 1.0;
+    let frame = layout::cartesian(&FrameSpec {
+        width,
+        height,
+        title: chart.title.clone(),
+        caption: chart.caption.clone(),
+        x: x_axis,
+        y: y_axis,
+        legends,
+        theme: theme.clone(),
+    })
+    .map_err(|e| MarkError::layout(index, &chart.name, e))?;
+
+    let mut centers = Vec::with_capacity(n);
+    for &r in &rows {
+        centers.push(Point::new(encode::position(&frame.x, x_col, r), encode::position(&frame.y, y_col, r)));
+    }
+    let fill = match &colors {
+        ColorEncoding::Fixed(c) => PerPoint::Uniform(c.with_opacity(opacity)),
+        other => PerPoint::Each(rows.iter().map(|&r| other.color_of(r).with_opacity(opacity)).collect()),
+    };
+    let radius = match size_col.and_then(|c| c.numbers()) {
+        Some(values) if max_size > 0.0 => PerPoint::Each(
+            rows.iter()
+                .map(|&r| area_radius(values.get(r as usize).copied().unwrap_or(0.0), max_size, max_radius))
+                .collect(),
+        ),
+        _ => PerPoint::Uniform(base_radius),
+    };
+    // Large markers get a thin outline so overlapping ones stay distinguishable.
+    let stroke = (size_col.is_some() || (n <= 2_000 && base_radius >= 3.0))
+        .then(|| Stroke::solid(Color::WHITE.with_opacity(0.8), 0.6));
+    let batch = Item::new(Role::DataMark, Shape::Points(PointBatch { centers, radius, fill, stroke }), Style::default())
+        .with_rows(rows.clone())
+        .labelled(chart.name.clone());
+
+    let mut items = frame.under;
+    items.push(Item::group(Role::DataMark, vec![batch], Some(frame.plot)));
+    items.extend(frame.over);
+    let scene = Scene { width, height, background: theme.background, title: chart.title.clone(), items };
+
+    let mut derived = Derived::default();
+    derived.push("row", DerivedColumn::Number(rows.iter().map(|&r| r as f64).collect()));
+    derived.push(&x_opts.field, data_column(x_col, &rows));
+    derived.push(&y_opts.field, data_column(y_col, &rows));
+    if let Some(c) = &options.color {
+        if let Some(col) = table.column(c.field()) {
+            derived.push(c.field(), data_column(col, &rows));
+        }
+    }
+    if let (Some(col), Some(o)) = (size_col, &size_opts) {
+        derived.push(&o.field, data_column(col, &rows));
+    }
+    Ok(ChartOutput { scene, derived, warnings })
+}
+
+/// Radius whose area is proportional to `value` (the largest value gets `max_radius`).
+pub fn area_radius(value: f64, max_value: f64, max_radius: f64) -> f64 {
+    if max_value <= 0.0 || !value.is_finite() || value <= 0.0 {
+        return 0.0;
+    }
+    max_radius * (value / max_value).sqrt()
+}
+
+/// A size key with three nice reference values up to the largest value.
+fn size_legend(title: &str, unit: Option<&str>, max_value: f64, max_radius: f64) -> Legend {
+    let ticks = extended(0.0, max_value, 3, false);
+    let mut values: Vec<f64> = ticks.values.into_iter().filter(|v| *v > 0.0 && *v <= max_value * 1.0001).collect();
+    if values.is_empty() {
+        values.push(max_value);
+    }
+    let entries = values.iter().map(|&v| (format_value(v), area_radius(v, max_value, max_radius))).collect();
+    Legend::Size {
+        title: crate::guide::axis::title_with_unit(title, unit),
+        entries,
+        color: Color::rgb(0x55, 0x55, 0x55),
+    }
+}
+
+/// A column's values at `rows` for derived output.
+pub fn data_column(column: &crate::data::Column, rows: &[u32]) -> DerivedColumn {
+    match column.categories() {
+        Some(cats) => DerivedColumn::Text(
+            rows.iter().map(|&r| cats.value(r as usize).unwrap_or("").to_string()).collect(),
+        ),
+        None => {
+            let values = column.numbers().unwrap_or(&[]);
+            DerivedColumn::Number(rows.iter().map(|&r| values.get(r as usize).copied().unwrap_or(f64::NAN)).collect())
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn area_not_radius_is_proportional_to_value() {
+        let r1 = area_radius(1.0, 4.0, 10.0);
+        let r4 = area_radius(4.0, 4.0, 10.0);
+        assert!((r4 - 10.0).abs() < 1e-12);
+        // Four times the value, four times the area: twice the radius.
+        assert!((r4 / r1 - 2.0).abs() < 1e-12);
+        assert_eq!(area_radius(-1.0, 4.0, 10.0), 0.0);
+        assert_eq!(area_radius(f64::NAN, 4.0, 10.0), 0.0);
+    }
+
+    #[test]
+    fn defaults_shrink_with_point_count() {
+        assert!(default_radius(100) > default_radius(1_000_000));
+        assert!(default_opacity(100) > default_opacity(1_000_000));
+    }
+}

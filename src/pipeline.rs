@@ -1,0 +1,323 @@
+//! The whole pipeline for one spec file: check the spec, load its data, check the columns, draw
+//! every chart (in parallel) and write the requested outputs.
+
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+
+use rayon::prelude::*;
+use serde_json::Value;
+
+use crate::data::{self, PathPolicy, Table};
+use crate::mark::{self, ChartOutput, MarkError};
+use crate::render;
+use crate::spec::{self, Diagnostic, PathSeg, SourceFile, Spec, SpecDoc};
+
+/// A spec whose every check passed: ready to draw.
+#[derive(Debug)]
+pub struct Loaded {
+    /// The spec file's text, for rendering diagnostics.
+    pub source: SourceFile,
+    /// The typed spec.
+    pub spec: Spec,
+    /// Positions of everything in the spec.
+    pub doc: SpecDoc,
+    /// Loaded tables by data source name.
+    pub tables: BTreeMap<String, Table>,
+    /// Warnings found while loading (printed, not fatal).
+    pub warnings: Vec<Diagnostic>,
+}
+
+/// A spec that failed its checks: every problem found, with the text to render them against.
+#[derive(Debug)]
+pub struct Failed {
+    /// The spec file's text (empty if it could not be read).
+    pub source: SourceFile,
+    /// Every problem, errors and warnings.
+    pub diagnostics: Vec<Diagnostic>,
+}
+
+impl Failed {
+    /// All diagnostics rendered for a terminal.
+    pub fn render(&self) -> String {
+        self.diagnostics.iter().map(|d| self.source.render(d)).collect::<Vec<_>>().join("\n")
+    }
+}
+
+/// Read a spec file, validate it, load its data and check every column reference, reporting all
+/// problems at once.
+pub fn load(spec_path: &Path, policy: PathPolicy) -> Result<Loaded, Failed> {
+    let source = match std::fs::read(spec_path) {
+        Ok(bytes) => match String::from_utf8(bytes) {
+            Ok(text) => SourceFile { path: spec_path.to_path_buf(), text },
+            Err(_) => {
+                return Err(Failed {
+                    source: SourceFile { path: spec_path.to_path_buf(), text: String::new() },
+                    diagnostics: vec![Diagnostic::error(format!("spec file `{}` is not UTF-8 text", spec_path.display()))
+                        .with_hint("save the spec as UTF-8")],
+                });
+            }
+        },
+        Err(e) => {
+            return Err(Failed {
+                source: SourceFile { path: spec_path.to_path_buf(), text: String::new() },
+                diagnostics: vec![Diagnostic::error(format!("cannot read spec file `{}`: {e}", spec_path.display()))
+                    .with_hint("check the path; specs are TOML files such as examples/gallery.toml")],
+            });
+        }
+    };
+    let checked = spec::check(&source);
+    let mut diagnostics = checked.diagnostics;
+    let Some(doc) = checked.doc else {
+        return Err(Failed { source, diagnostics });
+    };
+    let json = doc.to_json();
+    let spec_dir = spec_path.parent().map(Path::to_path_buf).unwrap_or_else(|| PathBuf::from("."));
+
+    // Load every data source that is itself valid, even if other parts of the spec are not, so
+    // that column names can be checked in the same run.
+    let sources: BTreeMap<String, spec::DataSource> = match &checked.spec {
+        Some(s) => s.data.clone(),
+        None => valid_sources(&json),
+    };
+    let mut tables = BTreeMap::new();
+    for (name, source_spec) in &sources {
+        match data::load_source(source_spec, &spec_dir, policy) {
+            Ok(table) => {
+                tables.insert(name.clone(), table);
+            }
+            Err(e) => {
+                let key = if source_spec.path.is_some() { "path" } else { "values" };
+                let path = [PathSeg::Key("data".into()), PathSeg::Key(name.clone()), PathSeg::Key(key.into())];
+                let mut d = Diagnostic::error(format!("data \"{name}\": {e}")).with_hint(e.hint());
+                if let Some(span) = doc.span_of(&path) {
+                    d = d.at(span);
+                }
+                diagnostics.push(d);
+            }
+        }
+    }
+    diagnostics.extend(check_columns(&json, &doc, &tables));
+
+    let has_errors = diagnostics.iter().any(Diagnostic::is_error);
+    match checked.spec {
+        Some(spec) if !has_errors => Ok(Loaded { source, spec, doc, tables, warnings: diagnostics }),
+        _ => Err(Failed { source, diagnostics }),
+    }
+}
+
+/// The data sources of a spec that failed validation elsewhere, where they are valid themselves.
+fn valid_sources(doc: &Value) -> BTreeMap<String, spec::DataSource> {
+    let mut out = BTreeMap::new();
+    if let Some(Value::Object(map)) = doc.get("data") {
+        for (name, value) in map {
+            if let Ok(source) = serde_json::from_value::<spec::DataSource>(value.clone()) {
+                out.insert(name.clone(), source);
+            }
+        }
+    }
+    out
+}
+
+/// Check that every column a chart names exists in its data source. Works on the raw spec so it
+/// runs even when other parts of the spec have errors.
+fn check_columns(doc: &Value, spans: &SpecDoc, tables: &BTreeMap<String, Table>) -> Vec<Diagnostic> {
+    let mut out = Vec::new();
+    let Some(Value::Array(charts)) = doc.get("chart") else { return out };
+    for (index, chart) in charts.iter().enumerate() {
+        let Some(kind) = chart.get("kind").and_then(Value::as_str) else { continue };
+        let Some(data_name) = chart.get("data").and_then(Value::as_str) else { continue };
+        let Some(table) = tables.get(data_name) else { continue };
+        let chart_name = chart.get("name").and_then(Value::as_str).unwrap_or("?");
+        for key in mark::column_keys(kind) {
+            let Some(value) = chart.get(*key) else { continue };
+            let base = vec![PathSeg::Key("chart".into()), PathSeg::Index(index), PathSeg::Key(key.to_string())];
+            for (field, path) in field_refs(value, base) {
+                if table.column(&field).is_none() {
+                    let (message, hint) = mark::encode::missing_column(chart_name, data_name, &field, table);
+                    let mut d = Diagnostic::error(message).with_hint(hint).with_label("no such column");
+                    if let Some(span) = spans.span_of(&path) {
+                        d = d.at(span);
+                    }
+                    out.push(d);
+                }
+            }
+        }
+    }
+    out
+}
+
+/// Column names in a channel value: `"col"`, `{ field = "col" }`, or a list of those.
+fn field_refs(value: &Value, path: Vec<PathSeg>) -> Vec<(String, Vec<PathSeg>)> {
+    match value {
+        Value::String(s) => vec![(s.clone(), path)],
+        Value::Object(map) => match map.get("field") {
+            Some(Value::String(s)) => {
+                let mut p = path;
+                p.push(PathSeg::Key("field".into()));
+                vec![(s.clone(), p)]
+            }
+            _ => Vec::new(),
+        },
+        Value::Array(items) => items
+            .iter()
+            .enumerate()
+            .flat_map(|(i, v)| {
+                let mut p = path.clone();
+                p.push(PathSeg::Index(i));
+                field_refs(v, p)
+            })
+            .collect(),
+        _ => Vec::new(),
+    }
+}
+
+/// Which outputs to write.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Formats {
+    /// `NAME.svg`.
+    pub svg: bool,
+    /// `NAME.png`.
+    pub png: bool,
+    /// `NAME.csv` (derived geometry).
+    pub csv: bool,
+}
+
+/// Options of `dataink render`.
+#[derive(Clone, Debug)]
+pub struct RenderOptions {
+    /// Output folder (created if missing).
+    pub out_dir: PathBuf,
+    /// Which files to write.
+    pub formats: Formats,
+    /// Only these charts (all if empty).
+    pub charts: Vec<String>,
+    /// Device pixels per CSS pixel for PNG output.
+    pub scale: f64,
+}
+
+/// What rendering one chart produced.
+#[derive(Debug)]
+pub struct Rendered {
+    /// Chart name.
+    pub name: String,
+    /// Files written.
+    pub files: Vec<PathBuf>,
+    /// Warnings raised while drawing.
+    pub warnings: Vec<String>,
+}
+
+/// Charts selected by name, or a diagnostic naming the unknown ones.
+pub fn select_charts<'s>(spec: &'s Spec, names: &[String]) -> Result<Vec<(usize, &'s spec::Chart)>, Diagnostic> {
+    if names.is_empty() {
+        return Ok(spec.chart.iter().enumerate().collect());
+    }
+    let mut out = Vec::new();
+    for name in names {
+        match spec.chart.iter().enumerate().find(|(_, c)| &c.name == name) {
+            Some(found) => out.push(found),
+            None => {
+                let known: Vec<&str> = spec.chart.iter().map(|c| c.name.as_str()).collect();
+                let hint = match spec::suggest::did_you_mean(name, known.iter().copied()) {
+                    Some(best) => format!("did you mean `{best}`? charts: {}", known.join(", ")),
+                    None => format!("charts: {}", known.join(", ")),
+                };
+                return Err(Diagnostic::error(format!("no chart named `{name}` in the spec")).with_hint(hint));
+            }
+        }
+    }
+    Ok(out)
+}
+
+/// Draw one chart of a loaded spec.
+pub fn draw_chart(loaded: &Loaded, index: usize, chart: &spec::Chart) -> Result<ChartOutput, MarkError> {
+    let table = loaded.tables.get(&chart.data).ok_or_else(|| {
+        MarkError::at(index, &["data"], format!("chart \"{}\": data \"{}\" was not loaded", chart.name, chart.data), "")
+    })?;
+    mark::draw(chart, index, table)
+}
+
+/// A mark error as a diagnostic pointing into the spec.
+pub fn mark_diagnostic(loaded: &Loaded, error: &MarkError) -> Diagnostic {
+    let mut d = Diagnostic::error(error.message.clone());
+    if !error.hint.is_empty() {
+        d = d.with_hint(error.hint.clone());
+    }
+    let mut path = error.path.clone();
+    // Point at the deepest part of the path that exists in the spec.
+    while !path.is_empty() {
+        if let Some(span) = loaded.doc.span_of(&path) {
+            return d.at(span);
+        }
+        path.pop();
+    }
+    d
+}
+
+/// Draw and write the selected charts in parallel. `progress` is called once per finished chart.
+pub fn render_all(
+    loaded: &Loaded,
+    options: &RenderOptions,
+    progress: &(dyn Fn(&str) + Sync),
+) -> Result<Vec<Rendered>, Vec<Diagnostic>> {
+    let selected = select_charts(&loaded.spec, &options.charts).map_err(|d| vec![d])?;
+    // Check every canvas before any drawing allocates it.
+    let mut problems = Vec::new();
+    for (index, chart) in &selected {
+        let [w, h] = chart.size.unwrap_or(mark::DEFAULT_SIZE);
+        if options.formats.png {
+            if let Err(e) = render::png::check_canvas(w, h, options.scale) {
+                problems.push(mark_diagnostic(
+                    loaded,
+                    &MarkError::at(*index, &["size"], format!("chart \"{}\": {e}", chart.name), "reduce `size` or `--scale`"),
+                ));
+            }
+        }
+    }
+    if !problems.is_empty() {
+        return Err(problems);
+    }
+    if let Err(e) = std::fs::create_dir_all(&options.out_dir) {
+        return Err(vec![Diagnostic::error(format!("cannot create output folder `{}`: {e}", options.out_dir.display()))]);
+    }
+    let results: Vec<Result<Rendered, Diagnostic>> = selected
+        .par_iter()
+        .map(|(index, chart)| {
+            let out = draw_chart(loaded, *index, chart).map_err(|e| mark_diagnostic(loaded, &e))?;
+            let files = write_chart(&out, &chart.name, options)?;
+            progress(&chart.name);
+            Ok(Rendered { name: chart.name.clone(), files, warnings: out.warnings })
+        })
+        .collect();
+    let mut rendered = Vec::new();
+    let mut errors = Vec::new();
+    for r in results {
+        match r {
+            Ok(x) => rendered.push(x),
+            Err(d) => errors.push(d),
+        }
+    }
+    if errors.is_empty() { Ok(rendered) } else { Err(errors) }
+}
+
+fn write_chart(out: &ChartOutput, name: &str, options: &RenderOptions) -> Result<Vec<PathBuf>, Diagnostic> {
+    let mut files = Vec::new();
+    let write = |path: PathBuf, bytes: &[u8], files: &mut Vec<PathBuf>| -> Result<(), Diagnostic> {
+        std::fs::write(&path, bytes)
+            .map_err(|e| Diagnostic::error(format!("cannot write `{}`: {e}", path.display())))?;
+        files.push(path);
+        Ok(())
+    };
+    if options.formats.svg {
+        let svg = render::svg::to_svg(&out.scene);
+        write(options.out_dir.join(format!("{name}.svg")), svg.as_bytes(), &mut files)?;
+    }
+    if options.formats.png {
+        let png = render::png::to_png(&out.scene, options.scale)
+            .map_err(|e| Diagnostic::error(format!("chart \"{name}\": {e}")))?;
+        write(options.out_dir.join(format!("{name}.png")), &png, &mut files)?;
+    }
+    if options.formats.csv {
+        write(options.out_dir.join(format!("{name}.csv")), out.derived.to_csv().as_bytes(), &mut files)?;
+    }
+    Ok(files)
+}

@@ -1,0 +1,499 @@
+//! SVG 1.1 output.
+//!
+//! The document is self-contained and inspectable: every element carries `data-role`, data marks
+//! drawn from one row carry `data-row`, labels become `data-label`. All user strings are
+//! sanitized ([`crate::text::sanitize`]) and XML-escaped; no script or event attribute is ever
+//! written. Coordinates are rounded to two decimals. Text is placed on its alphabetic baseline
+//! computed from the embedded font's metrics, so browsers and resvg put it where the PNG does.
+
+use std::fmt::Write as _;
+
+use crate::scene::{Anchor, Color, Item, PathCmd, PerPoint, PointBatch, Raster, Scene, Shape, Style, Text};
+use crate::text::{FONT_FAMILY, FONT_WEIGHT, baseline_shift, sanitize};
+
+use super::{clean_path, dash_pattern, finite_point, normalized_rect, role_name, visible_stroke};
+
+/// Renders `scene` as a standalone SVG 1.1 document.
+///
+/// Items with non-finite geometry are left out; nothing else is dropped.
+pub fn to_svg(scene: &Scene) -> String {
+    let mut w = Writer { out: String::with_capacity(4096), next_clip: 0 };
+    let width = if scene.width.is_finite() && scene.width > 0.0 { scene.width } else { 0.0 };
+    let height = if scene.height.is_finite() && scene.height > 0.0 { scene.height } else { 0.0 };
+    let (ws, hs) = (num(width), num(height));
+    w.out.push_str("<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n");
+    let _ = writeln!(
+        w.out,
+        "<svg xmlns=\"http://www.w3.org/2000/svg\" xmlns:xlink=\"http://www.w3.org/1999/xlink\" \
+         version=\"1.1\" width=\"{ws}\" height=\"{hs}\" viewBox=\"0 0 {ws} {hs}\">"
+    );
+    if let Some(title) = &scene.title {
+        let _ = writeln!(w.out, "<title>{}</title>", escape(title));
+    }
+    if scene.background.a > 0 {
+        let _ = writeln!(
+            w.out,
+            "<rect data-role=\"background\" x=\"0\" y=\"0\" width=\"{ws}\" height=\"{hs}\"{}/>",
+            fill_attrs(Some(scene.background))
+        );
+    }
+    for item in &scene.items {
+        w.item(item);
+    }
+    w.out.push_str("</svg>\n");
+    w.out
+}
+
+/// Output buffer plus a counter for unique clip-path ids.
+struct Writer {
+    out: String,
+    next_clip: usize,
+}
+
+impl Writer {
+    /// Writes one item (and, for groups, its children).
+    fn item(&mut self, item: &Item) {
+        let common = common_attrs(item);
+        match &item.shape {
+            Shape::Rect(r) => {
+                let Some(r) = normalized_rect(*r) else { return };
+                let _ = writeln!(
+                    self.out,
+                    "<rect{common} x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\"{}/>",
+                    num(r.x),
+                    num(r.y),
+                    num(r.w),
+                    num(r.h),
+                    style_attrs(&item.style)
+                );
+            }
+            Shape::Circle { center, radius } => {
+                if !finite_point(*center) || !radius.is_finite() || *radius <= 0.0 {
+                    return;
+                }
+                let _ = writeln!(
+                    self.out,
+                    "<circle{common} cx=\"{}\" cy=\"{}\" r=\"{}\"{}/>",
+                    num(center.x),
+                    num(center.y),
+                    num(*radius),
+                    style_attrs(&item.style)
+                );
+            }
+            Shape::Path(cmds) => {
+                let Some(cmds) = clean_path(cmds) else { return };
+                let _ = writeln!(self.out, "<path{common} d=\"{}\"{}/>", path_data(&cmds), style_attrs(&item.style));
+            }
+            Shape::Text(text) => self.text(&common, text),
+            Shape::Image(raster) => self.image(&common, raster),
+            Shape::Points(batch) => self.points(item, &common, batch),
+            Shape::Group { items, clip } => {
+                let clip = match clip {
+                    Some(c) => match normalized_rect(*c) {
+                        Some(c) => Some(c),
+                        None => return,
+                    },
+                    None => None,
+                };
+                let clip_attr = match clip {
+                    Some(c) => {
+                        let id = format!("dataink-clip-{}", self.next_clip);
+                        self.next_clip += 1;
+                        let _ = writeln!(
+                            self.out,
+                            "<clipPath id=\"{id}\"><rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\"/></clipPath>",
+                            num(c.x),
+                            num(c.y),
+                            num(c.w),
+                            num(c.h)
+                        );
+                        format!(" clip-path=\"url(#{id})\"")
+                    }
+                    None => String::new(),
+                };
+                let _ = writeln!(self.out, "<g{common}{clip_attr}>");
+                for child in items {
+                    self.item(child);
+                }
+                self.out.push_str("</g>\n");
+            }
+        }
+    }
+
+    /// Writes a `<text>` element with its baseline computed from the embedded font.
+    fn text(&mut self, common: &str, text: &Text) {
+        let content = sanitize(&text.content);
+        if content.is_empty()
+            || !finite_point(text.at)
+            || !text.size.is_finite()
+            || text.size <= 0.0
+            || !text.angle.is_finite()
+            || text.color.a == 0
+        {
+            return;
+        }
+        let y = text.at.y + baseline_shift(text.baseline, text.size);
+        let anchor = match text.anchor {
+            Anchor::Start => "start",
+            Anchor::Middle => "middle",
+            Anchor::End => "end",
+        };
+        let angle = text.angle.rem_euclid(360.0);
+        let transform = if num(angle) == "0" || num(angle) == "360" {
+            String::new()
+        } else {
+            format!(" transform=\"rotate({} {} {})\"", num(angle), num(text.at.x), num(text.at.y))
+        };
+        let _ = writeln!(
+            self.out,
+            "<text{common} x=\"{}\" y=\"{}\" font-family=\"{}\" font-size=\"{}\" font-weight=\"{FONT_WEIGHT}\" \
+             text-anchor=\"{anchor}\"{}{transform} xml:space=\"preserve\" \
+             style=\"font-kerning:none;font-variant-ligatures:none\">{}</text>",
+            num(text.at.x),
+            num(y),
+            escape(FONT_FAMILY),
+            num(text.size),
+            fill_attrs(Some(text.color)),
+            escape(&content)
+        );
+    }
+
+    /// Writes an `<image>` with the raster as a base64 PNG data URI.
+    fn image(&mut self, common: &str, raster: &Raster) {
+        let Some(dest) = normalized_rect(raster.dest) else { return };
+        if dest.w <= 0.0 || dest.h <= 0.0 {
+            return;
+        }
+        let Ok(png) = super::png::encode_raster(raster) else { return };
+        let rendering = if raster.smooth {
+            ""
+        } else {
+            " image-rendering=\"optimizeSpeed\" style=\"image-rendering:pixelated\""
+        };
+        let _ = writeln!(
+            self.out,
+            "<image{common} x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" preserveAspectRatio=\"none\"{rendering} \
+             xlink:href=\"data:image/png;base64,{}\"/>",
+            num(dest.x),
+            num(dest.y),
+            num(dest.w),
+            num(dest.h),
+            base64(&png)
+        );
+    }
+
+    /// Writes a point batch as one `<g>` carrying the shared style and one `<circle>` per point.
+    fn points(&mut self, item: &Item, common: &str, batch: &PointBatch) {
+        let shared_fill = match &batch.fill {
+            PerPoint::Uniform(c) => fill_attrs(Some(*c)),
+            PerPoint::Each(_) => String::new(),
+        };
+        let stroke = stroke_attrs(&batch.stroke);
+        let _ = writeln!(self.out, "<g{common}{shared_fill}{stroke}>");
+        let per_point_rows = item.rows.len() == batch.centers.len() && item.rows.len() > 1;
+        for (i, c) in batch.centers.iter().enumerate() {
+            let r = batch.radius.at(i).unwrap_or(0.0);
+            if !finite_point(*c) || !r.is_finite() || r <= 0.0 {
+                continue;
+            }
+            let fill = match &batch.fill {
+                PerPoint::Uniform(_) => String::new(),
+                PerPoint::Each(_) => fill_attrs(batch.fill.at(i)),
+            };
+            let row = match item.rows.get(i) {
+                Some(row) if per_point_rows => format!(" data-row=\"{row}\""),
+                _ => String::new(),
+            };
+            let _ = writeln!(self.out, "<circle cx=\"{}\" cy=\"{}\" r=\"{}\"{fill}{row}/>", num(c.x), num(c.y), num(r));
+        }
+        self.out.push_str("</g>\n");
+    }
+}
+
+/// `data-role`, `data-row` (single-row items) and `data-label` attributes.
+fn common_attrs(item: &Item) -> String {
+    let mut s = format!(" data-role=\"{}\"", role_name(item.role));
+    if let [row] = item.rows.as_slice() {
+        let _ = write!(s, " data-row=\"{row}\"");
+    }
+    if let Some(label) = &item.label {
+        let _ = write!(s, " data-label=\"{}\"", escape(label));
+    }
+    s
+}
+
+/// `fill` and `fill-opacity` attributes (`fill="none"` when absent).
+fn fill_attrs(fill: Option<Color>) -> String {
+    match fill {
+        Some(c) if c.a > 0 => {
+            if c.a < 255 {
+                format!(" fill=\"{}\" fill-opacity=\"{}\"", c.hex(), opacity(c))
+            } else {
+                format!(" fill=\"{}\"", c.hex())
+            }
+        }
+        _ => " fill=\"none\"".to_string(),
+    }
+}
+
+/// Stroke attributes (nothing when there is no visible stroke; SVG's default is no stroke).
+fn stroke_attrs(stroke: &Option<crate::scene::Stroke>) -> String {
+    let Some(s) = visible_stroke(stroke) else { return String::new() };
+    let mut out = format!(" stroke=\"{}\" stroke-width=\"{}\"", s.color.hex(), num(s.width));
+    if s.color.a < 255 {
+        let _ = write!(out, " stroke-opacity=\"{}\"", opacity(s.color));
+    }
+    if let Some(d) = dash_pattern(&s.dash) {
+        let list: Vec<String> = d.iter().map(|v| num(*v)).collect();
+        let _ = write!(out, " stroke-dasharray=\"{}\"", list.join(" "));
+    }
+    out
+}
+
+/// Fill and stroke attributes of a shape.
+fn style_attrs(style: &Style) -> String {
+    let mut s = fill_attrs(style.fill);
+    s.push_str(&stroke_attrs(&style.stroke));
+    s
+}
+
+/// Alpha as a 0..1 number with three decimals.
+fn opacity(c: Color) -> String {
+    let v = (c.alpha() * 1000.0).round() / 1000.0;
+    let s = format!("{v:.3}");
+    trim_zeros(s)
+}
+
+/// A coordinate rounded to two decimals without trailing zeros (`-0` becomes `0`).
+fn num(v: f64) -> String {
+    if !v.is_finite() {
+        return "0".to_string();
+    }
+    let r = (v * 100.0).round() / 100.0;
+    if r == 0.0 {
+        return "0".to_string();
+    }
+    trim_zeros(format!("{r:.2}"))
+}
+
+/// Strips trailing zeros (and a trailing dot) after a decimal point.
+fn trim_zeros(s: String) -> String {
+    if s.contains('.') {
+        let t = s.trim_end_matches('0').trim_end_matches('.');
+        if t == "-0" { "0".to_string() } else { t.to_string() }
+    } else {
+        s
+    }
+}
+
+/// SVG path data for cleaned commands.
+fn path_data(cmds: &[PathCmd]) -> String {
+    let mut d = String::with_capacity(cmds.len() * 16);
+    for cmd in cmds {
+        if !d.is_empty() {
+            d.push(' ');
+        }
+        let _ = match cmd {
+            PathCmd::MoveTo(p) => write!(d, "M{} {}", num(p.x), num(p.y)),
+            PathCmd::LineTo(p) => write!(d, "L{} {}", num(p.x), num(p.y)),
+            PathCmd::QuadTo(a, p) => write!(d, "Q{} {} {} {}", num(a.x), num(a.y), num(p.x), num(p.y)),
+            PathCmd::CubicTo(a, b, p) => {
+                write!(d, "C{} {} {} {} {} {}", num(a.x), num(a.y), num(b.x), num(b.y), num(p.x), num(p.y))
+            }
+            PathCmd::Close => write!(d, "Z"),
+        };
+    }
+    d
+}
+
+/// Sanitizes and XML-escapes a user string for element content or an attribute value.
+pub fn escape(s: &str) -> String {
+    let clean = sanitize(s);
+    let mut out = String::with_capacity(clean.len() + 8);
+    for c in clean.chars() {
+        match c {
+            '&' => out.push_str("&amp;"),
+            '<' => out.push_str("&lt;"),
+            '>' => out.push_str("&gt;"),
+            '"' => out.push_str("&quot;"),
+            '\'' => out.push_str("&apos;"),
+            c => out.push(c),
+        }
+    }
+    out
+}
+
+/// Standard base64 (RFC 4648, with padding).
+pub fn base64(data: &[u8]) -> String {
+    const ALPHABET: &[u8; 64] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    let sym = |v: u32| char::from(ALPHABET[(v & 63) as usize]);
+    let mut out = String::with_capacity(data.len().div_ceil(3) * 4);
+    let mut chunks = data.chunks_exact(3);
+    for c in &mut chunks {
+        let n = (u32::from(c[0]) << 16) | (u32::from(c[1]) << 8) | u32::from(c[2]);
+        out.extend([sym(n >> 18), sym(n >> 12), sym(n >> 6), sym(n)]);
+    }
+    match *chunks.remainder() {
+        [a] => {
+            let n = u32::from(a) << 16;
+            out.extend([sym(n >> 18), sym(n >> 12), '=', '=']);
+        }
+        [a, b] => {
+            let n = (u32::from(a) << 16) | (u32::from(b) << 8);
+            out.extend([sym(n >> 18), sym(n >> 12), sym(n >> 6), '=']);
+        }
+        _ => {}
+    }
+    out
+}
+
+#[cfg(test)]
+pub(crate) mod tests {
+    use std::sync::Arc;
+
+    use super::*;
+    use crate::scene::{Baseline, Point, Rect, Role, Stroke};
+
+    /// A scene with every shape kind and hostile strings.
+    pub(crate) fn kitchen_sink() -> Scene {
+        let hostile = "<script>alert(1)</script> & \" ' \u{0007} שלום עולם";
+        let t = |at: Point, content: &str, anchor, baseline, angle| Text {
+            at,
+            content: content.to_string(),
+            size: 14.0,
+            anchor,
+            baseline,
+            angle,
+            color: Color::rgb(20, 20, 20),
+        };
+        let dashed = Stroke { color: Color::rgb(200, 0, 0).with_opacity(0.5), width: 2.0, dash: vec![6.0, 3.0] };
+        let mut rgba = Vec::new();
+        for y in 0..4u8 {
+            for x in 0..4u8 {
+                rgba.extend_from_slice(&[x * 60, y * 60, 128, 255]);
+            }
+        }
+        let points = PointBatch {
+            centers: vec![Point::new(250.0, 150.0), Point::new(270.0, 160.0), Point::new(f64::NAN, 1.0), Point::new(290.0, 140.0)],
+            radius: PerPoint::Each(vec![3.0, 4.0, 5.0, 6.0]),
+            fill: PerPoint::Each(vec![Color::rgb(0, 0, 255), Color::rgb(0, 128, 0).with_opacity(0.5), Color::BLACK, Color::rgb(255, 128, 0)]),
+            stroke: Some(Stroke::solid(Color::WHITE, 1.0)),
+        };
+        Scene {
+            width: 400.0,
+            height: 300.0,
+            background: Color::WHITE,
+            title: Some(hostile.to_string()),
+            items: vec![
+                Item::new(Role::DataMark, Shape::Rect(Rect::new(10.123456, 20.0, 50.0, 30.0)), Style::fill(Color::rgb(255, 0, 0)))
+                    .with_rows(vec![7])
+                    .labelled(hostile),
+                Item::new(Role::DataMark, Shape::Circle { center: Point::new(100.0, 100.0), radius: 10.0 }, Style {
+                    fill: Some(Color::rgb(0, 0, 255).with_opacity(0.4)),
+                    stroke: Some(dashed.clone()),
+                }),
+                Item::new(
+                    Role::Annotation,
+                    Shape::Path(vec![
+                        PathCmd::MoveTo(Point::new(10.0, 200.0)),
+                        PathCmd::LineTo(Point::new(60.0, 180.0)),
+                        PathCmd::QuadTo(Point::new(80.0, 150.0), Point::new(100.0, 200.0)),
+                        PathCmd::CubicTo(Point::new(120.0, 250.0), Point::new(140.0, 150.0), Point::new(160.0, 200.0)),
+                        PathCmd::Close,
+                    ]),
+                    Style { fill: None, stroke: Some(dashed) },
+                ),
+                Item::new(Role::DataMark, Shape::Rect(Rect::new(f64::NAN, 0.0, 1.0, 1.0)), Style::fill(Color::BLACK)),
+                Item::group(
+                    Role::DataMark,
+                    vec![
+                        Item::new(Role::DataMark, Shape::Points(points), Style::default()).with_rows(vec![0, 1, 2, 3]),
+                        Item::new(
+                            Role::DataMark,
+                            Shape::Image(Raster {
+                                dest: Rect::new(300.0, 200.0, 80.0, 80.0),
+                                width: 4,
+                                height: 4,
+                                rgba: Arc::new(rgba),
+                                smooth: false,
+                            }),
+                            Style::default(),
+                        ),
+                    ],
+                    Some(Rect::new(200.0, 100.0, 190.0, 190.0)),
+                ),
+                Item::text(Role::Title, t(Point::new(200.0, 10.0), hostile, Anchor::Middle, Baseline::Top, 0.0)),
+                Item::text(Role::AxisTitle, t(Point::new(20.0, 150.0), "Value (units)", Anchor::Middle, Baseline::Middle, -90.0)),
+                Item::text(Role::TickLabel, t(Point::new(380.0, 290.0), "1,000", Anchor::End, Baseline::Bottom, 0.0)),
+                Item::text(Role::Caption, t(Point::new(10.0, 280.0), "مرحبا بالعالم", Anchor::Start, Baseline::Alphabetic, 0.0)),
+            ],
+        }
+    }
+
+    #[test]
+    fn svg_parses_with_usvg() {
+        let svg = to_svg(&kitchen_sink());
+        let tree = usvg::Tree::from_str(&svg, &usvg::Options::default());
+        assert!(tree.is_ok(), "{:?}\n{svg}", tree.err());
+        if let Ok(tree) = tree {
+            assert_eq!(tree.size().width(), 400.0);
+        }
+    }
+
+    #[test]
+    fn hostile_strings_are_escaped() {
+        let svg = to_svg(&kitchen_sink());
+        assert!(!svg.contains("<script"));
+        assert!(!svg.to_lowercase().contains("onload") && !svg.contains("onclick"));
+        assert!(svg.contains("&lt;script&gt;alert(1)&lt;/script&gt; &amp; &quot; &apos;"));
+        assert!(!svg.contains('\u{7}'));
+        assert!(svg.contains("<title>&lt;script&gt;"));
+        assert!(svg.contains("שלום עולם") && svg.contains("مرحبا بالعالم"));
+        assert!(svg.contains("data-label=\"&lt;script&gt;"));
+    }
+
+    #[test]
+    fn attributes_and_rounding() {
+        let svg = to_svg(&kitchen_sink());
+        assert!(svg.contains("x=\"10.12\" y=\"20\" width=\"50\" height=\"30\""), "{svg}");
+        assert!(svg.contains("data-role=\"data-mark\" data-row=\"7\""));
+        assert!(svg.contains("data-role=\"tick-label\""));
+        assert!(svg.contains("fill=\"#0000ff\" fill-opacity=\"0.4\""));
+        assert!(svg.contains("stroke-opacity=\"0.502\"") && svg.contains("stroke-dasharray=\"6 3\""));
+        assert!(svg.contains("clip-path=\"url(#dataink-clip-0)\""));
+        assert!(svg.contains("transform=\"rotate(270 20 150)\""));
+        assert!(svg.contains("data:image/png;base64,iVBORw0KGgo"));
+        // The NaN rect and the NaN point are skipped; three valid points remain.
+        assert!(!svg.contains("NaN") && !svg.contains("inf"));
+        assert_eq!(svg.matches("<circle cx").count(), 3);
+        assert!(svg.contains("data-row=\"3\""));
+        assert_eq!(num(-0.001), "0");
+        assert_eq!(num(1.005e3), "1005");
+        assert_eq!(num(2.5), "2.5");
+        assert_eq!(num(-12.34567), "-12.35");
+    }
+
+    #[test]
+    fn text_baseline_matches_font_metrics() {
+        let m = crate::text::measure("x", 14.0);
+        let svg = to_svg(&kitchen_sink());
+        // The title is Top-anchored at y = 10: its baseline sits one ascent lower.
+        assert!(svg.contains(&format!("y=\"{}\" font-family", num(10.0 + m.ascent))));
+    }
+
+    #[test]
+    fn base64_known_vectors() {
+        assert_eq!(base64(b""), "");
+        assert_eq!(base64(b"f"), "Zg==");
+        assert_eq!(base64(b"fo"), "Zm8=");
+        assert_eq!(base64(b"foo"), "Zm9v");
+        assert_eq!(base64(b"foobar"), "Zm9vYmFy");
+    }
+
+    #[test]
+    fn empty_and_degenerate_scenes() {
+        let s = Scene { width: f64::NAN, height: -1.0, background: Color::TRANSPARENT, title: None, items: vec![] };
+        let svg = to_svg(&s);
+        assert!(usvg::Tree::from_str(&svg, &usvg::Options::default()).is_err() || svg.contains("width=\"0\""));
+    }
+}

@@ -1,0 +1,373 @@
+//! Scene: the immutable tree of geometry that every renderer draws and every lint rule reads.
+//!
+//! Coordinates are floats in canvas units (CSS pixels at scale 1), origin top-left, y down.
+//! Every item carries a [`Role`] and, for data marks, the source rows it was drawn from, so that
+//! lint rules can reason about what the reader sees and the explorer can link views by row.
+
+use std::sync::Arc;
+
+/// An RGBA colour with straight (non-premultiplied) 8-bit channels.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct Color {
+    /// Red channel.
+    pub r: u8,
+    /// Green channel.
+    pub g: u8,
+    /// Blue channel.
+    pub b: u8,
+    /// Alpha channel: 0 transparent, 255 opaque.
+    pub a: u8,
+}
+
+impl Color {
+    /// Opaque black.
+    pub const BLACK: Color = Color::rgb(0, 0, 0);
+    /// Opaque white.
+    pub const WHITE: Color = Color::rgb(255, 255, 255);
+    /// Fully transparent.
+    pub const TRANSPARENT: Color = Color { r: 0, g: 0, b: 0, a: 0 };
+
+    /// An opaque colour.
+    pub const fn rgb(r: u8, g: u8, b: u8) -> Color {
+        Color { r, g, b, a: 255 }
+    }
+
+    /// The same colour with its alpha multiplied by `opacity` (clamped to 0..=1).
+    pub fn with_opacity(self, opacity: f64) -> Color {
+        let o = if opacity.is_finite() { opacity.clamp(0.0, 1.0) } else { 1.0 };
+        Color { a: (self.a as f64 * o).round() as u8, ..self }
+    }
+
+    /// `#rrggbb` (alpha is written separately by renderers).
+    pub fn hex(self) -> String {
+        format!("#{:02x}{:02x}{:02x}", self.r, self.g, self.b)
+    }
+
+    /// Alpha as a fraction in 0..=1.
+    pub fn alpha(self) -> f64 {
+        self.a as f64 / 255.0
+    }
+}
+
+/// A point in canvas coordinates.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Point {
+    /// Horizontal position, growing rightwards.
+    pub x: f64,
+    /// Vertical position, growing downwards.
+    pub y: f64,
+}
+
+impl Point {
+    /// A point at (x, y).
+    pub const fn new(x: f64, y: f64) -> Point {
+        Point { x, y }
+    }
+}
+
+/// An axis-aligned rectangle in canvas coordinates.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Rect {
+    /// Left edge.
+    pub x: f64,
+    /// Top edge.
+    pub y: f64,
+    /// Width (≥ 0).
+    pub w: f64,
+    /// Height (≥ 0).
+    pub h: f64,
+}
+
+impl Rect {
+    /// A rectangle from its left, top, width and height.
+    pub const fn new(x: f64, y: f64, w: f64, h: f64) -> Rect {
+        Rect { x, y, w, h }
+    }
+    /// Right edge.
+    pub fn right(&self) -> f64 {
+        self.x + self.w
+    }
+    /// Bottom edge.
+    pub fn bottom(&self) -> f64 {
+        self.y + self.h
+    }
+    /// Whether the two rectangles share interior area.
+    pub fn intersects(&self, other: &Rect) -> bool {
+        self.x < other.right() && other.x < self.right() && self.y < other.bottom() && other.y < self.bottom()
+    }
+    /// Whether `other` lies entirely inside this rectangle (within `eps`).
+    pub fn contains_rect(&self, other: &Rect, eps: f64) -> bool {
+        other.x >= self.x - eps
+            && other.y >= self.y - eps
+            && other.right() <= self.right() + eps
+            && other.bottom() <= self.bottom() + eps
+    }
+}
+
+/// What an item is for. Lint rules and the explorer select items by role.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Role {
+    /// The canvas or plot background.
+    Background,
+    /// A mark that encodes data rows (points, lines, bars, cells).
+    DataMark,
+    /// An axis line or tick mark.
+    Axis,
+    /// The text of a tick label.
+    TickLabel,
+    /// The title of an axis.
+    AxisTitle,
+    /// A grid line.
+    Grid,
+    /// Any part of a legend or colour bar (swatches, ramp, labels, title).
+    Legend,
+    /// The chart title.
+    Title,
+    /// The chart caption or subtitle.
+    Caption,
+    /// Any other annotation (reference lines, notes).
+    Annotation,
+}
+
+/// A stroke: colour, width in canvas units, and optional dash pattern.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Stroke {
+    /// Stroke colour (alpha included).
+    pub color: Color,
+    /// Line width in canvas units.
+    pub width: f64,
+    /// Dash lengths, alternating on/off, in canvas units; empty for a solid line.
+    pub dash: Vec<f64>,
+}
+
+impl Stroke {
+    /// A solid stroke.
+    pub fn solid(color: Color, width: f64) -> Stroke {
+        Stroke { color, width, dash: Vec::new() }
+    }
+}
+
+/// Fill and stroke of a shape. Either may be absent.
+#[derive(Clone, Debug, PartialEq, Default)]
+pub struct Style {
+    /// Interior colour.
+    pub fill: Option<Color>,
+    /// Outline.
+    pub stroke: Option<Stroke>,
+}
+
+impl Style {
+    /// Filled, no outline.
+    pub fn fill(color: Color) -> Style {
+        Style { fill: Some(color), stroke: None }
+    }
+    /// Outlined, no fill.
+    pub fn stroke(color: Color, width: f64) -> Style {
+        Style { fill: None, stroke: Some(Stroke::solid(color, width)) }
+    }
+}
+
+/// One drawing command of a path.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum PathCmd {
+    /// Start a new subpath.
+    MoveTo(Point),
+    /// Straight segment.
+    LineTo(Point),
+    /// Quadratic Bézier segment: control, end.
+    QuadTo(Point, Point),
+    /// Cubic Bézier segment: control 1, control 2, end.
+    CubicTo(Point, Point, Point),
+    /// Close the current subpath.
+    Close,
+}
+
+/// Horizontal anchoring of text relative to its position.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Anchor {
+    /// Text starts at the position.
+    Start,
+    /// Text is centred on the position.
+    Middle,
+    /// Text ends at the position.
+    End,
+}
+
+/// Vertical anchoring of text relative to its position.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Baseline {
+    /// The top of the em box (ascent) is at the position.
+    Top,
+    /// The middle of the em box is at the position.
+    Middle,
+    /// The alphabetic baseline is at the position.
+    Alphabetic,
+    /// The bottom of the em box (descent) is at the position.
+    Bottom,
+}
+
+/// A single line of text drawn with the embedded font.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Text {
+    /// Anchor position.
+    pub at: Point,
+    /// The text itself, as given by the user (renderers escape it).
+    pub content: String,
+    /// Font size in canvas units.
+    pub size: f64,
+    /// Horizontal anchoring.
+    pub anchor: Anchor,
+    /// Vertical anchoring.
+    pub baseline: Baseline,
+    /// Rotation in degrees, clockwise, about the anchor position.
+    pub angle: f64,
+    /// Text colour.
+    pub color: Color,
+}
+
+/// A value given once for all points of a batch, or once per point.
+#[derive(Clone, Debug, PartialEq)]
+pub enum PerPoint<T> {
+    /// The same value for every point.
+    Uniform(T),
+    /// One value per point, in point order.
+    Each(Vec<T>),
+}
+
+impl<T: Copy> PerPoint<T> {
+    /// The value for point `i` (falls back to the first value if `i` is out of range).
+    pub fn at(&self, i: usize) -> Option<T> {
+        match self {
+            PerPoint::Uniform(v) => Some(*v),
+            PerPoint::Each(vs) => vs.get(i).or(vs.first()).copied(),
+        }
+    }
+}
+
+/// Many circles drawn the same way: the scatter plot's mark, kept compact for millions of points.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PointBatch {
+    /// Centres, in drawing order.
+    pub centers: Vec<Point>,
+    /// Radii in canvas units.
+    pub radius: PerPoint<f64>,
+    /// Fill colours (alpha included).
+    pub fill: PerPoint<Color>,
+    /// Optional outline, the same for every point.
+    pub stroke: Option<Stroke>,
+}
+
+/// An RGBA raster placed into a rectangle of the canvas (heatmaps, LIC, pixel displays).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Raster {
+    /// Where the image goes.
+    pub dest: Rect,
+    /// Pixel columns.
+    pub width: u32,
+    /// Pixel rows.
+    pub height: u32,
+    /// Straight-alpha RGBA bytes, row-major, `width * height * 4` long.
+    pub rgba: Arc<Vec<u8>>,
+    /// Bilinear smoothing when scaled (otherwise nearest neighbour).
+    pub smooth: bool,
+}
+
+/// The geometry of one item.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Shape {
+    /// A rectangle.
+    Rect(Rect),
+    /// A circle.
+    Circle {
+        /// Centre.
+        center: Point,
+        /// Radius.
+        radius: f64,
+    },
+    /// A path of lines and curves.
+    Path(Vec<PathCmd>),
+    /// A line of text.
+    Text(Text),
+    /// An embedded raster image.
+    Image(Raster),
+    /// Many circles at once.
+    Points(PointBatch),
+    /// A group of items, optionally clipped to a rectangle.
+    Group {
+        /// Children, drawn in order.
+        items: Vec<Item>,
+        /// Clip rectangle for the children.
+        clip: Option<Rect>,
+    },
+}
+
+/// One node of the scene tree.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Item {
+    /// What the item is for.
+    pub role: Role,
+    /// Its geometry.
+    pub shape: Shape,
+    /// How it is painted (ignored for text, images and groups).
+    pub style: Style,
+    /// Source rows: for a data mark the rows it encodes (for a point batch, one per point, in
+    /// order); empty for everything else.
+    pub rows: Vec<u32>,
+    /// An optional human-readable name (e.g. the series or axis), used by lint messages and SVG ids.
+    pub label: Option<String>,
+}
+
+impl Item {
+    /// An item with no source rows and no label.
+    pub fn new(role: Role, shape: Shape, style: Style) -> Item {
+        Item { role, shape, style, rows: Vec::new(), label: None }
+    }
+    /// The same item with a label.
+    pub fn labelled(mut self, label: impl Into<String>) -> Item {
+        self.label = Some(label.into());
+        self
+    }
+    /// The same item with its source rows.
+    pub fn with_rows(mut self, rows: Vec<u32>) -> Item {
+        self.rows = rows;
+        self
+    }
+    /// A group of items.
+    pub fn group(role: Role, items: Vec<Item>, clip: Option<Rect>) -> Item {
+        Item::new(role, Shape::Group { items, clip }, Style::default())
+    }
+    /// A text item.
+    pub fn text(role: Role, text: Text) -> Item {
+        Item::new(role, Shape::Text(text), Style::default())
+    }
+}
+
+/// A finished chart: canvas size, background and the items drawn on it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Scene {
+    /// Canvas width in canvas units.
+    pub width: f64,
+    /// Canvas height in canvas units.
+    pub height: f64,
+    /// Canvas background.
+    pub background: Color,
+    /// Accessible title (SVG `<title>`), usually the chart title.
+    pub title: Option<String>,
+    /// Items drawn in order, first at the back.
+    pub items: Vec<Item>,
+}
+
+impl Scene {
+    /// Visit every item depth-first (groups before their children).
+    pub fn walk<'a>(&'a self, mut visit: impl FnMut(&'a Item)) {
+        fn go<'a>(items: &'a [Item], visit: &mut impl FnMut(&'a Item)) {
+            for item in items {
+                visit(item);
+                if let Shape::Group { items, .. } = &item.shape {
+                    go(items, visit);
+                }
+            }
+        }
+        go(&self.items, &mut visit);
+    }
+}

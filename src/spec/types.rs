@@ -1,0 +1,380 @@
+//! The spec file's types: what a user may write in a `dataink` TOML spec.
+//!
+//! Every field's doc comment is also its description in the JSON Schema (`dataink schema`), so
+//! keep them short and written for the spec's author.
+
+use std::collections::BTreeMap;
+
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
+
+/// A whole spec file: named data sources and the charts drawn from them.
+#[derive(Clone, Debug, Deserialize, Serialize, JsonSchema, PartialEq)]
+pub struct Spec {
+    /// Title of the collection (used by reports).
+    #[serde(default)]
+    pub title: Option<String>,
+    /// Data sources by name, e.g. `[data.iris]`.
+    #[serde(default)]
+    pub data: BTreeMap<String, DataSource>,
+    /// Charts, each a `[[chart]]` table.
+    #[serde(default)]
+    pub chart: Vec<Chart>,
+}
+
+/// Where a table comes from: a file next to the spec, or rows written inline.
+#[derive(Clone, Debug, Deserialize, Serialize, JsonSchema, PartialEq)]
+pub struct DataSource {
+    /// File path relative to the spec file (`.csv`, `.parquet`, `.json`).
+    #[serde(default)]
+    #[schemars(example = &"data/iris.csv")]
+    pub path: Option<String>,
+    /// File format; inferred from the path's extension when omitted.
+    #[serde(default)]
+    pub format: Option<DataFormat>,
+    /// Inline rows, e.g. `values = [{ x = 1, y = 2 }, { x = 2, y = 3 }]` (instead of `path`).
+    #[serde(default)]
+    pub values: Option<Vec<BTreeMap<String, serde_json::Value>>>,
+    /// CSV field separator (one character; default `,`).
+    #[serde(default)]
+    #[schemars(length(min = 1, max = 1), example = &";")]
+    pub delimiter: Option<String>,
+}
+
+/// Supported file formats.
+#[derive(Clone, Copy, Debug, Deserialize, Serialize, JsonSchema, PartialEq, Eq)]
+#[serde(rename_all = "lowercase")]
+pub enum DataFormat {
+    /// Comma-separated values with a header row.
+    Csv,
+    /// Apache Parquet.
+    Parquet,
+    /// A JSON array of records (`[{"x": 1}, ...]`) or newline-delimited records.
+    Json,
+}
+
+/// One chart: options shared by every kind, plus the options of its `kind`.
+#[derive(Clone, Debug, Deserialize, Serialize, JsonSchema, PartialEq)]
+pub struct Chart {
+    /// Output file stem: letters, digits, `-`, `_` and `.` only.
+    #[schemars(pattern(r"^[A-Za-z0-9._-]+$"), example = &"iris-scatter")]
+    pub name: String,
+    /// Name of the data source (a key of `[data]`).
+    #[schemars(example = &"iris")]
+    pub data: String,
+    /// Title drawn above the chart.
+    #[serde(default)]
+    pub title: Option<String>,
+    /// Caption drawn below the chart (source, notes).
+    #[serde(default)]
+    pub caption: Option<String>,
+    /// Canvas size `[width, height]` in CSS pixels, each at most 16384 (default `[640, 420]`).
+    #[serde(default)]
+    #[schemars(inner(range(max = 16384)), transform = positive_items, example = example_size())]
+    pub size: Option<[f64; 2]>,
+    /// Base font size in CSS pixels for tick labels, 1 to 200 (titles scale from it; default 12).
+    #[serde(default)]
+    #[schemars(range(min = 1, max = 200), example = 12)]
+    pub font_size: Option<f64>,
+    /// What to draw and how.
+    #[serde(flatten)]
+    pub kind: ChartKind,
+}
+
+/// The chart kinds. Each kind has its own options.
+#[derive(Clone, Debug, Deserialize, Serialize, JsonSchema, PartialEq)]
+#[serde(tag = "kind", rename_all = "lowercase")]
+pub enum ChartKind {
+    /// Points at (x, y), optionally coloured and sized by columns.
+    Scatter(ScatterOptions),
+    /// One or more series drawn as lines through (x, y).
+    Line(LineOptions),
+}
+
+impl ChartKind {
+    /// The kind's name as written in the spec.
+    pub fn name(&self) -> &'static str {
+        match self {
+            ChartKind::Scatter(_) => "scatter",
+            ChartKind::Line(_) => "line",
+        }
+    }
+}
+
+/// Options of `kind = "scatter"`.
+#[derive(Clone, Debug, Deserialize, Serialize, JsonSchema, PartialEq)]
+pub struct ScatterOptions {
+    /// Horizontal position: a column name or a table with `field`, `title`, `unit`, `scale`, ...
+    #[schemars(example = &"sepal_length")]
+    pub x: Channel,
+    /// Vertical position: a column name or a table with `field`, `title`, `unit`, `scale`, ...
+    #[schemars(example = &"petal_length")]
+    pub y: Channel,
+    /// Colour by a column (categorical columns get a legend, numeric ones a colour bar).
+    #[serde(default)]
+    #[schemars(example = &"species")]
+    pub color: Option<ColorChannel>,
+    /// Marker area proportional to a numeric column.
+    #[serde(default)]
+    #[schemars(example = &"population")]
+    pub point_size: Option<SizeChannel>,
+    /// Marker radius in pixels when `point_size` is not given (default: 3, smaller for many points).
+    #[serde(default)]
+    #[schemars(extend("exclusiveMinimum" = 0), example = 3)]
+    pub radius: Option<f64>,
+    /// Marker colour when `color` is not given (CSS name or `#rrggbb`).
+    #[serde(default)]
+    pub mark_color: Option<String>,
+    /// Marker opacity in 0..=1 (default: 0.8, lower for many points).
+    #[serde(default)]
+    #[schemars(range(min = 0, max = 1), example = 0.5)]
+    pub opacity: Option<f64>,
+}
+
+/// Options of `kind = "line"`.
+#[derive(Clone, Debug, Deserialize, Serialize, JsonSchema, PartialEq)]
+pub struct LineOptions {
+    /// Horizontal position: a column name or a table with `field`, `title`, `unit`, `scale`, ...
+    #[schemars(example = &"date")]
+    pub x: Channel,
+    /// Vertical position: one column (long form, split by `series`) or several (one series each).
+    #[schemars(example = &"price")]
+    pub y: OneOrMany<Channel>,
+    /// Column whose values split the rows into series (long-form data).
+    #[serde(default)]
+    pub series: Option<String>,
+    /// Title of the y axis when several y columns are drawn (their own titles name the series).
+    #[serde(default)]
+    pub y_title: Option<String>,
+    /// Draw a marker at every data point.
+    #[serde(default)]
+    pub markers: Option<bool>,
+    /// Line width in pixels (default 2).
+    #[serde(default)]
+    #[schemars(extend("exclusiveMinimum" = 0), example = 2)]
+    pub stroke_width: Option<f64>,
+    /// Categorical colour scheme for the series (default `okabe-ito`).
+    #[serde(default)]
+    pub scheme: Option<String>,
+    /// Line colour when there is a single series (CSS name or `#rrggbb`).
+    #[serde(default)]
+    pub mark_color: Option<String>,
+}
+
+/// A single value or a list of them.
+#[derive(Clone, Debug, Deserialize, Serialize, JsonSchema, PartialEq)]
+#[serde(untagged)]
+pub enum OneOrMany<T> {
+    /// Just one.
+    One(T),
+    /// Several.
+    Many(Vec<T>),
+}
+
+impl<T> OneOrMany<T> {
+    /// The values as a slice.
+    pub fn as_slice(&self) -> &[T] {
+        match self {
+            OneOrMany::One(v) => std::slice::from_ref(v),
+            OneOrMany::Many(vs) => vs,
+        }
+    }
+}
+
+/// A positional encoding: a column name, or a table with options.
+#[derive(Clone, Debug, Deserialize, Serialize, JsonSchema, PartialEq)]
+#[serde(untagged)]
+pub enum Channel {
+    /// Just the column name.
+    Field(String),
+    /// A column with axis options.
+    Detailed(ChannelOptions),
+}
+
+/// Axis options of a positional encoding.
+#[derive(Clone, Debug, Default, Deserialize, Serialize, JsonSchema, PartialEq)]
+pub struct ChannelOptions {
+    /// Column name.
+    #[schemars(example = &"petal_length")]
+    pub field: String,
+    /// Axis title (default: the column name).
+    #[serde(default)]
+    pub title: Option<String>,
+    /// Unit shown in the axis title, e.g. `"cm"` → "Petal length (cm)".
+    #[serde(default)]
+    pub unit: Option<String>,
+    /// Scale type (default: `time` for date/time columns, `band` for text, else `linear`).
+    #[serde(default)]
+    pub scale: Option<ScaleKind>,
+    /// Fixed domain `[min, max]` instead of the data's extent.
+    #[serde(default)]
+    #[schemars(example = example_domain())]
+    pub domain: Option<[f64; 2]>,
+    /// Include zero in the domain.
+    #[serde(default)]
+    pub zero: Option<bool>,
+    /// Extend the domain to nice tick values (default true).
+    #[serde(default)]
+    pub nice: Option<bool>,
+    /// Approximate number of ticks, 2 to 50 (default: from the axis length).
+    #[serde(default)]
+    #[schemars(range(min = 2, max = 50), example = 5)]
+    pub ticks: Option<u32>,
+    /// Draw grid lines at the ticks (default true).
+    #[serde(default)]
+    pub grid: Option<bool>,
+}
+
+impl Channel {
+    /// The column name.
+    pub fn field(&self) -> &str {
+        match self {
+            Channel::Field(f) => f,
+            Channel::Detailed(o) => &o.field,
+        }
+    }
+    /// The options, with defaults for a bare column name.
+    pub fn options(&self) -> ChannelOptions {
+        match self {
+            Channel::Field(f) => ChannelOptions { field: f.clone(), ..ChannelOptions::default() },
+            Channel::Detailed(o) => o.clone(),
+        }
+    }
+}
+
+/// Scale types.
+#[derive(Clone, Copy, Debug, Deserialize, Serialize, JsonSchema, PartialEq, Eq)]
+#[serde(rename_all = "lowercase")]
+pub enum ScaleKind {
+    /// Linear numbers.
+    Linear,
+    /// Base-10 logarithm (all values must be > 0).
+    Log,
+    /// Dates and times.
+    Time,
+    /// Categories placed in equal bands.
+    Band,
+}
+
+/// A colour encoding: a column name, or a table with options.
+#[derive(Clone, Debug, Deserialize, Serialize, JsonSchema, PartialEq)]
+#[serde(untagged)]
+pub enum ColorChannel {
+    /// Just the column name.
+    Field(String),
+    /// A column with colour options.
+    Detailed(ColorOptions),
+}
+
+/// Options of a colour encoding.
+#[derive(Clone, Debug, Default, Deserialize, Serialize, JsonSchema, PartialEq)]
+pub struct ColorOptions {
+    /// Column name.
+    #[schemars(example = &"petal_length")]
+    pub field: String,
+    /// Legend or colour-bar title (default: the column name).
+    #[serde(default)]
+    pub title: Option<String>,
+    /// Unit shown in the colour-bar title.
+    #[serde(default)]
+    pub unit: Option<String>,
+    /// Colour scheme: a categorical palette (`okabe-ito`, `tableau10`, ...) or a continuous map
+    /// (`viridis`, `magma`, `rdbu`, ...; append `_r` to reverse).
+    #[serde(default)]
+    pub scheme: Option<String>,
+    /// Treat the column as categories or as a continuous quantity (default: from its type).
+    #[serde(default)]
+    pub r#type: Option<ColorType>,
+    /// Centre of a diverging scheme (default: the middle of the domain).
+    #[serde(default)]
+    pub midpoint: Option<f64>,
+}
+
+impl ColorChannel {
+    /// The column name.
+    pub fn field(&self) -> &str {
+        match self {
+            ColorChannel::Field(f) => f,
+            ColorChannel::Detailed(o) => &o.field,
+        }
+    }
+    /// The options, with defaults for a bare column name.
+    pub fn options(&self) -> ColorOptions {
+        match self {
+            ColorChannel::Field(f) => ColorOptions { field: f.clone(), ..ColorOptions::default() },
+            ColorChannel::Detailed(o) => o.clone(),
+        }
+    }
+}
+
+/// How a colour column is read.
+#[derive(Clone, Copy, Debug, Deserialize, Serialize, JsonSchema, PartialEq, Eq)]
+#[serde(rename_all = "lowercase")]
+pub enum ColorType {
+    /// Distinct categories with a legend.
+    Categorical,
+    /// A continuous quantity with a colour bar.
+    Continuous,
+}
+
+/// A size encoding: marker area proportional to a column.
+#[derive(Clone, Debug, Deserialize, Serialize, JsonSchema, PartialEq)]
+#[serde(untagged)]
+pub enum SizeChannel {
+    /// Just the column name.
+    Field(String),
+    /// A column with size options.
+    Detailed(SizeOptions),
+}
+
+/// Options of a size encoding.
+#[derive(Clone, Debug, Default, Deserialize, Serialize, JsonSchema, PartialEq)]
+pub struct SizeOptions {
+    /// Column name (numeric, ≥ 0).
+    #[schemars(example = &"population")]
+    pub field: String,
+    /// Legend title (default: the column name).
+    #[serde(default)]
+    pub title: Option<String>,
+    /// Unit shown in the legend title.
+    #[serde(default)]
+    pub unit: Option<String>,
+    /// Largest marker radius in pixels (default 12); area is proportional to the value.
+    #[serde(default)]
+    #[schemars(extend("exclusiveMinimum" = 0), example = 12)]
+    pub max_radius: Option<f64>,
+}
+
+impl SizeChannel {
+    /// The column name.
+    pub fn field(&self) -> &str {
+        match self {
+            SizeChannel::Field(f) => f,
+            SizeChannel::Detailed(o) => &o.field,
+        }
+    }
+    /// The options, with defaults for a bare column name.
+    pub fn options(&self) -> SizeOptions {
+        match self {
+            SizeChannel::Field(f) => SizeOptions { field: f.clone(), ..SizeOptions::default() },
+            SizeChannel::Detailed(o) => o.clone(),
+        }
+    }
+}
+
+/// Schema transform: the items of an array field must be greater than zero.
+fn positive_items(schema: &mut schemars::Schema) {
+    if let Some(items) = schema.get_mut("items").and_then(serde_json::Value::as_object_mut) {
+        items.insert("exclusiveMinimum".to_owned(), serde_json::Value::from(0));
+    }
+}
+
+/// Schema example of `size`.
+fn example_size() -> [u32; 2] {
+    [800, 600]
+}
+
+/// Schema example of `domain`.
+fn example_domain() -> [u32; 2] {
+    [0, 100]
+}

@@ -1,0 +1,390 @@
+//! The one embedded font: text measurement for layout and lint, and glyph outlines for the PNG
+//! renderer.
+//!
+//! Every backend uses the same face — Ubuntu Light from `epaint_default_fonts`, the proportional
+//! font the egui window uses too — so SVG, PNG and the window agree without any system font.
+//! Text is a single line laid out left to right from advance widths (plus `kern` table pairs
+//! when the font has them); there is no shaping, bidi reordering or font fallback. Characters
+//! the font lacks are measured and drawn as its `.notdef` glyph.
+
+use std::sync::OnceLock;
+
+use ttf_parser::{Face, GlyphId, OutlineBuilder};
+
+use crate::scene::{Anchor, Baseline, Point, Rect, Text};
+
+/// CSS `font-family` list for SVG: the embedded face first, then generic fallbacks.
+pub const FONT_FAMILY: &str = "Ubuntu Light, Ubuntu, DejaVu Sans, Helvetica Neue, Arial, sans-serif";
+
+/// CSS `font-weight` of the embedded face (Light), written next to [`FONT_FAMILY`] in SVG.
+pub const FONT_WEIGHT: u16 = 300;
+
+/// Horizontal and vertical extent of a line of text at a given size, in canvas units.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TextMetrics {
+    /// Advance width of the whole line.
+    pub width: f64,
+    /// Distance from the baseline up to the ascent line (positive).
+    pub ascent: f64,
+    /// Distance from the baseline down to the descent line (positive).
+    pub descent: f64,
+}
+
+/// Font-unit metrics used when the embedded font cannot be parsed (never expected in practice).
+const FALLBACK_ASCENT: f64 = 0.932;
+const FALLBACK_DESCENT: f64 = 0.189;
+const FALLBACK_ADVANCE: f64 = 0.5;
+
+/// The parsed embedded face, or `None` if parsing failed.
+fn face() -> Option<&'static Face<'static>> {
+    static FACE: OnceLock<Option<Face<'static>>> = OnceLock::new();
+    FACE.get_or_init(|| Face::parse(epaint_default_fonts::UBUNTU_LIGHT, 0).ok()).as_ref()
+}
+
+/// Units per em of the face (1000 for Ubuntu Light).
+fn units_per_em(face: &Face<'_>) -> f64 {
+    match face.units_per_em() {
+        0 => 1000.0,
+        u => f64::from(u),
+    }
+}
+
+/// Ascent and descent of the face as fractions of the em, both positive.
+fn vertical_em() -> (f64, f64) {
+    match face() {
+        Some(f) => {
+            let upm = units_per_em(f);
+            (f64::from(f.ascender()) / upm, -f64::from(f.descender()) / upm)
+        }
+        None => (FALLBACK_ASCENT, FALLBACK_DESCENT),
+    }
+}
+
+/// Whether `c` is dropped (or turned into a space) by [`sanitize`].
+fn is_unwanted(c: char) -> bool {
+    c.is_control() || c == '\u{FFFE}' || c == '\u{FFFF}'
+}
+
+/// The characters of `content` as drawn: tab, line feed and carriage return become spaces,
+/// other control characters (and the XML-forbidden U+FFFE/U+FFFF) are dropped.
+fn clean_chars(content: &str) -> impl Iterator<Item = char> + '_ {
+    content.chars().filter_map(|c| match c {
+        '\t' | '\n' | '\r' => Some(' '),
+        c if is_unwanted(c) => None,
+        c => Some(c),
+    })
+}
+
+/// `content` with control characters removed, exactly as measured and drawn.
+///
+/// Tab, line feed and carriage return become a single space each (text is one line), all other
+/// control characters and the non-characters U+FFFE/U+FFFF are dropped. Both renderers and
+/// [`measure`] apply this, so they agree on what is drawn.
+pub fn sanitize(content: &str) -> String {
+    clean_chars(content).collect()
+}
+
+/// The glyph for `c`, or `.notdef` when the font has none.
+fn glyph(face: &Face<'_>, c: char) -> GlyphId {
+    face.glyph_index(c).unwrap_or(GlyphId(0))
+}
+
+/// Horizontal kerning between two glyphs, in font units (0 when the font has no `kern` table).
+fn kerning(face: &Face<'_>, left: GlyphId, right: GlyphId) -> i32 {
+    let Some(kern) = face.tables().kern else { return 0 };
+    let mut total = 0i32;
+    for sub in kern.subtables {
+        if sub.horizontal
+            && !sub.variable
+            && !sub.has_cross_stream
+            && let Some(k) = sub.glyphs_kerning(left, right)
+        {
+            total += i32::from(k);
+        }
+    }
+    total
+}
+
+/// Glyphs of the sanitized `content` with their pen positions in font units.
+fn layout(face: &Face<'_>, content: &str) -> (Vec<(GlyphId, f64)>, f64) {
+    let mut out = Vec::with_capacity(content.len());
+    let mut pen = 0.0f64;
+    let mut prev: Option<GlyphId> = None;
+    for c in clean_chars(content) {
+        let g = glyph(face, c);
+        if let Some(p) = prev {
+            pen += f64::from(kerning(face, p, g));
+        }
+        out.push((g, pen));
+        pen += f64::from(face.glyph_hor_advance(g).unwrap_or(0));
+        prev = Some(g);
+    }
+    (out, pen)
+}
+
+/// Width, ascent and descent of `content` (sanitized) at font size `size`.
+///
+/// The width is the sum of advance widths plus kerning; ascent and descent come from the font
+/// (they do not depend on the characters). A non-finite or non-positive size measures as zero.
+pub fn measure(content: &str, size: f64) -> TextMetrics {
+    if !size.is_finite() || size <= 0.0 {
+        return TextMetrics { width: 0.0, ascent: 0.0, descent: 0.0 };
+    }
+    let (asc, desc) = vertical_em();
+    let width = match face() {
+        Some(f) => layout(f, content).1 / units_per_em(f) * size,
+        None => clean_chars(content).count() as f64 * FALLBACK_ADVANCE * size,
+    };
+    TextMetrics { width, ascent: asc * size, descent: desc * size }
+}
+
+/// Vertical offset from the anchor position to the alphabetic baseline (before rotation),
+/// positive downwards, for text of font size `size`.
+///
+/// Top puts the ascent line at the anchor, Middle the centre of ascent..descent, Alphabetic the
+/// baseline itself and Bottom the descent line.
+pub fn baseline_shift(baseline: Baseline, size: f64) -> f64 {
+    if !size.is_finite() || size <= 0.0 {
+        return 0.0;
+    }
+    let (asc, desc) = vertical_em();
+    match baseline {
+        Baseline::Top => asc * size,
+        Baseline::Middle => (asc - desc) / 2.0 * size,
+        Baseline::Alphabetic => 0.0,
+        Baseline::Bottom => -desc * size,
+    }
+}
+
+/// Horizontal offset from the anchor position to the start of the text (before rotation).
+pub fn anchor_shift(anchor: Anchor, width: f64) -> f64 {
+    match anchor {
+        Anchor::Start => 0.0,
+        Anchor::Middle => -width / 2.0,
+        Anchor::End => -width,
+    }
+}
+
+/// Rotates `(dx, dy)` clockwise (y down) by `angle` degrees and adds it to `at`.
+fn rotate_about(at: Point, dx: f64, dy: f64, angle: f64) -> Point {
+    let (s, c) = angle.to_radians().sin_cos();
+    Point::new(at.x + dx * c - dy * s, at.y + dx * s + dy * c)
+}
+
+/// Axis-aligned bounding box of `text` as drawn: its advance width by its ascent..descent band,
+/// with anchor, baseline and rotation applied.
+///
+/// Text with nothing to draw (empty after [`sanitize`], or a non-finite or non-positive size)
+/// gives a zero-size box at its position; a non-finite position or angle gives a zero-size
+/// box at the (possibly non-finite) position, which intersects nothing.
+pub fn bounds(text: &Text) -> Rect {
+    let at = text.at;
+    let empty = Rect::new(at.x, at.y, 0.0, 0.0);
+    if !at.x.is_finite() || !at.y.is_finite() || !text.angle.is_finite() {
+        return empty;
+    }
+    let m = measure(&text.content, text.size);
+    if m.width <= 0.0 && m.ascent <= 0.0 {
+        return empty;
+    }
+    let x0 = anchor_shift(text.anchor, m.width);
+    let base = baseline_shift(text.baseline, text.size);
+    let (top, bottom) = (base - m.ascent, base + m.descent);
+    let corners = [(x0, top), (x0 + m.width, top), (x0, bottom), (x0 + m.width, bottom)];
+    let (mut minx, mut miny, mut maxx, mut maxy) = (f64::INFINITY, f64::INFINITY, f64::NEG_INFINITY, f64::NEG_INFINITY);
+    for (dx, dy) in corners {
+        let p = rotate_about(at, dx, dy, text.angle);
+        minx = minx.min(p.x);
+        miny = miny.min(p.y);
+        maxx = maxx.max(p.x);
+        maxy = maxy.max(p.y);
+    }
+    if !(minx.is_finite() && miny.is_finite() && maxx.is_finite() && maxy.is_finite()) {
+        return empty;
+    }
+    Rect::new(minx, miny, maxx - minx, maxy - miny)
+}
+
+/// Collects a glyph outline into a tiny-skia path, mapping font units to canvas units.
+struct Outline<'a> {
+    builder: &'a mut tiny_skia::PathBuilder,
+    /// Canvas x of the glyph origin.
+    ox: f64,
+    /// Canvas y of the baseline.
+    oy: f64,
+    /// Canvas units per font unit.
+    k: f64,
+}
+
+impl Outline<'_> {
+    fn map(&self, x: f32, y: f32) -> (f32, f32) {
+        ((self.ox + f64::from(x) * self.k) as f32, (self.oy - f64::from(y) * self.k) as f32)
+    }
+}
+
+impl OutlineBuilder for Outline<'_> {
+    fn move_to(&mut self, x: f32, y: f32) {
+        let (x, y) = self.map(x, y);
+        self.builder.move_to(x, y);
+    }
+    fn line_to(&mut self, x: f32, y: f32) {
+        let (x, y) = self.map(x, y);
+        self.builder.line_to(x, y);
+    }
+    fn quad_to(&mut self, x1: f32, y1: f32, x: f32, y: f32) {
+        let (x1, y1) = self.map(x1, y1);
+        let (x, y) = self.map(x, y);
+        self.builder.quad_to(x1, y1, x, y);
+    }
+    fn curve_to(&mut self, x1: f32, y1: f32, x2: f32, y2: f32, x: f32, y: f32) {
+        let (x1, y1) = self.map(x1, y1);
+        let (x2, y2) = self.map(x2, y2);
+        let (x, y) = self.map(x, y);
+        self.builder.cubic_to(x1, y1, x2, y2, x, y);
+    }
+    fn close(&mut self) {
+        self.builder.close();
+    }
+}
+
+/// Glyph outlines of `content` (sanitized) at font size `size`, with the pen starting at
+/// (0, 0) on the alphabetic baseline, y down. Fill with the non-zero rule.
+///
+/// `None` when there is nothing to draw (empty text, only spaces, bad size, or no font).
+pub fn glyph_path(content: &str, size: f64) -> Option<tiny_skia::Path> {
+    glyph_path_at(content, size, 0.0, 0.0)
+}
+
+/// Glyph outlines with the pen starting at `(x, y)` on the baseline.
+fn glyph_path_at(content: &str, size: f64, x: f64, y: f64) -> Option<tiny_skia::Path> {
+    if !size.is_finite() || size <= 0.0 || !x.is_finite() || !y.is_finite() {
+        return None;
+    }
+    let f = face()?;
+    let k = size / units_per_em(f);
+    let (glyphs, _) = layout(f, content);
+    let mut builder = tiny_skia::PathBuilder::new();
+    for (g, pen) in glyphs {
+        let mut outline = Outline { builder: &mut builder, ox: x + pen * k, oy: y, k };
+        // Glyphs without an outline (spaces) draw nothing; that is not an error.
+        let _ = f.outline_glyph(g, &mut outline);
+    }
+    builder.finish()
+}
+
+/// Glyph outlines of `text` in canvas coordinates, placed exactly as [`bounds`] describes
+/// (anchor, baseline and clockwise rotation about `text.at` applied).
+///
+/// `None` when there is nothing to draw or the position, size or angle is not finite.
+pub fn text_path(text: &Text) -> Option<tiny_skia::Path> {
+    let at = text.at;
+    if !at.x.is_finite() || !at.y.is_finite() || !text.angle.is_finite() {
+        return None;
+    }
+    let m = measure(&text.content, text.size);
+    let x = at.x + anchor_shift(text.anchor, m.width);
+    let y = at.y + baseline_shift(text.baseline, text.size);
+    let path = glyph_path_at(&text.content, text.size, x, y)?;
+    let angle = text.angle.rem_euclid(360.0);
+    if angle == 0.0 {
+        return Some(path);
+    }
+    path.transform(tiny_skia::Transform::from_rotate_at(angle as f32, at.x as f32, at.y as f32))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::Color;
+
+    fn t(content: &str, anchor: Anchor, baseline: Baseline, angle: f64) -> Text {
+        Text {
+            at: Point::new(100.0, 50.0),
+            content: content.to_string(),
+            size: 20.0,
+            anchor,
+            baseline,
+            angle,
+            color: Color::BLACK,
+        }
+    }
+
+    #[test]
+    fn font_parses_and_measures() {
+        assert!(face().is_some());
+        assert_eq!(measure("", 12.0).width, 0.0);
+        let a = measure("a", 12.0).width;
+        let ab = measure("ab", 12.0).width;
+        let abc = measure("abc", 12.0).width;
+        assert!(a > 0.0 && ab > a && abc > ab);
+        // Width scales linearly with size.
+        assert!((measure("abc", 24.0).width - 2.0 * abc).abs() < 1e-9);
+        let m = measure("x", 10.0);
+        assert!(m.ascent > 5.0 && m.descent > 0.5 && m.descent < m.ascent);
+        assert_eq!(measure("abc", f64::NAN).width, 0.0);
+        assert_eq!(measure("abc", -3.0).width, 0.0);
+    }
+
+    #[test]
+    fn sanitize_drops_controls() {
+        assert_eq!(sanitize("a\u{7}b\u{0}c\u{1b}d"), "abcd");
+        assert_eq!(sanitize("a\nb\tc"), "a b c");
+        assert_eq!(sanitize("x\u{FFFF}"), "x");
+        assert_eq!(measure("ab\u{7}", 10.0).width, measure("ab", 10.0).width);
+        // Missing glyphs (Hebrew) still advance.
+        assert!(measure("שלום", 10.0).width > 0.0);
+    }
+
+    #[test]
+    fn bounds_follow_anchor_and_baseline() {
+        let m = measure("Hello", 20.0);
+        let b = bounds(&t("Hello", Anchor::Start, Baseline::Alphabetic, 0.0));
+        assert!((b.x - 100.0).abs() < 1e-9 && (b.w - m.width).abs() < 1e-9);
+        assert!((b.y - (50.0 - m.ascent)).abs() < 1e-9 && (b.h - (m.ascent + m.descent)).abs() < 1e-9);
+        let b = bounds(&t("Hello", Anchor::Middle, Baseline::Top, 0.0));
+        assert!((b.x - (100.0 - m.width / 2.0)).abs() < 1e-9 && (b.y - 50.0).abs() < 1e-9);
+        let b = bounds(&t("Hello", Anchor::End, Baseline::Bottom, 0.0));
+        assert!((b.right() - 100.0).abs() < 1e-9 && (b.bottom() - 50.0).abs() < 1e-9);
+        let b = bounds(&t("Hello", Anchor::Start, Baseline::Middle, 0.0));
+        assert!((b.y + b.h / 2.0 - 50.0).abs() < 1e-9);
+    }
+
+    #[test]
+    fn bounds_rotate_clockwise() {
+        let m = measure("Axis title", 20.0);
+        // -90°: reads bottom to top, so the text extends upwards from the anchor.
+        let b = bounds(&t("Axis title", Anchor::Start, Baseline::Alphabetic, -90.0));
+        assert!((b.h - m.width).abs() < 1e-9);
+        assert!((b.bottom() - 50.0).abs() < 1e-9);
+        assert!((b.x - (100.0 - m.ascent)).abs() < 1e-9);
+        // +90°: extends downwards, ascent to the right of the anchor.
+        let b = bounds(&t("Axis title", Anchor::Start, Baseline::Alphabetic, 90.0));
+        assert!((b.y - 50.0).abs() < 1e-9 && (b.right() - (100.0 + m.ascent)).abs() < 1e-9);
+    }
+
+    #[test]
+    fn bounds_survive_bad_input() {
+        let mut x = t("Hi", Anchor::Start, Baseline::Top, f64::NAN);
+        assert_eq!(bounds(&x).w, 0.0);
+        x.angle = 0.0;
+        x.at.x = f64::INFINITY;
+        assert_eq!(bounds(&x).w, 0.0);
+        assert!(text_path(&x).is_none());
+        let e = bounds(&t("", Anchor::Middle, Baseline::Middle, 0.0));
+        assert_eq!(e.w, 0.0);
+    }
+
+    #[test]
+    fn outlines_lie_inside_bounds() {
+        for angle in [0.0, -90.0, 30.0] {
+            let text = t("Typography gjq", Anchor::Middle, Baseline::Middle, angle);
+            let b = bounds(&text);
+            let Some(p) = text_path(&text) else { panic!("no path") };
+            let pb = p.bounds();
+            let eps = 1.5;
+            assert!(f64::from(pb.left()) >= b.x - eps && f64::from(pb.right()) <= b.right() + eps, "{angle}");
+            assert!(f64::from(pb.top()) >= b.y - eps && f64::from(pb.bottom()) <= b.bottom() + eps, "{angle}");
+        }
+        assert!(glyph_path("   ", 12.0).is_none());
+    }
+}
