@@ -201,7 +201,10 @@ pub fn frame_to_table(df: &DataFrame, origin: &str) -> Result<Table, LoadError> 
 
 fn series_values(series: &Series) -> Option<ColumnValues> {
     let dtype = series.dtype();
-    if dtype.is_primitive_numeric() || matches!(dtype, DataType::Null) {
+    // A column with no values at all (e.g. every CSV cell empty) is read as missing numbers, so
+    // the non-finite policy counts it instead of it becoming one "(missing)" category.
+    let all_missing = series.null_count() == series.len();
+    if dtype.is_primitive_numeric() || matches!(dtype, DataType::Null) || all_missing {
         return Some(ColumnValues::Number(to_f64(series)?));
     }
     match dtype {
@@ -230,6 +233,9 @@ fn series_values(series: &Series) -> Option<ColumnValues> {
 }
 
 fn to_f64(series: &Series) -> Option<Vec<f64>> {
+    if series.null_count() == series.len() {
+        return Some(vec![f64::NAN; series.len()]);
+    }
     let cast = series.cast(&DataType::Float64).ok()?;
     let ca = cast.f64().ok()?;
     if ca.null_count() == 0 {

@@ -129,11 +129,11 @@ pub fn build_scale(axis: &PositionAxis, range: (f64, f64), target: usize) -> Res
 }
 
 fn x_target(length: f64, theme: &Theme) -> usize {
-    ((length / (theme.font_size * 6.0)).round() as usize).clamp(2, 10)
+    ((length / (theme.font_size * 7.0)).round() as usize).clamp(2, 10)
 }
 
 fn y_target(length: f64, theme: &Theme) -> usize {
-    ((length / (theme.font_size * 3.5)).round() as usize).clamp(2, 10)
+    ((length / (theme.font_size * 4.5)).round() as usize).clamp(2, 10)
 }
 
 /// Height of a one-line text block at `size` with some breathing room.

@@ -84,6 +84,28 @@ pub fn finite_rows(chart: &str, rows: usize, numeric: &[(&str, &Column)]) -> (Ve
     (kept, Some(warning))
 }
 
+/// The error for a chart left with no rows: an empty table, or every row dropped by the
+/// non-finite policy (`dropped` is that warning, which names the columns).
+pub fn no_rows(chart: &crate::spec::Chart, index: usize, table: &Table, dropped: Option<&str>) -> MarkError {
+    if table.rows == 0 {
+        return MarkError::at(
+            index,
+            &["data"],
+            format!("chart \"{}\": data \"{}\" has no rows", chart.name, chart.data),
+            "the source has a header but no records; check the file",
+        );
+    }
+    let why = dropped
+        .and_then(|w| w.split_once(" rows with ").map(|(_, rest)| format!(": every row has {rest}")))
+        .unwrap_or_default();
+    MarkError::at(
+        index,
+        &[],
+        format!("chart \"{}\": no rows left to plot out of {}{why}", chart.name, table.rows),
+        "rows with missing or non-finite values in the charted columns are dropped; check those columns",
+    )
+}
+
 /// The extent of `values` over `rows` (finite values only).
 pub fn extent(values: &[f64], rows: &[u32]) -> Option<(f64, f64)> {
     let mut lo = f64::INFINITY;

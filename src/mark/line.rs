@@ -92,12 +92,7 @@ pub fn draw(chart: &Chart, options: &LineOptions, index: usize, table: &Table) -
     }
     series.retain(|s| !s.rows.is_empty());
     if series.is_empty() {
-        return Err(MarkError::at(
-            index,
-            &[],
-            format!("chart \"{}\": no rows left to plot ({} rows in data \"{}\")", chart.name, table.rows, chart.data),
-            "check the columns' values: rows with missing or non-finite values are dropped",
-        ));
+        return Err(encode::no_rows(chart, index, table, warnings.first().map(String::as_str)));
     }
     let n_series = series.len();
     for (i, s) in series.iter_mut().enumerate() {

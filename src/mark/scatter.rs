@@ -89,12 +89,7 @@ pub fn draw(chart: &Chart, options: &ScatterOptions, index: usize, table: &Table
         max_size = rows.iter().filter_map(|&r| values.get(r as usize)).fold(0.0, |a, &b| a.max(b));
     }
     if rows.is_empty() {
-        return Err(MarkError::at(
-            index,
-            &[],
-            format!("chart \"{}\": no rows left to plot ({} rows in data \"{}\")", chart.name, table.rows, chart.data),
-            "check the columns' values: rows with missing or non-finite values are dropped",
-        ));
+        return Err(encode::no_rows(chart, index, table, warnings.first().map(String::as_str)));
     }
 
     let n = rows.len();

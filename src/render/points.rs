@@ -595,49 +595,54 @@ fn draw_batch_on(pixmap: &mut Pixmap, batch: &PointBatch, scale: f64, clip: &Cli
     let mut parts: Vec<Vec<Vec<Spot>>> =
         (0..threads).map(|_| (0..nbands).map(|_| Vec::with_capacity(part_len / nbands + 64)).collect()).collect();
     let plan = &plan;
-    let draw_bands = |work: Vec<(usize, &mut [u8])>, parts: &[Vec<Vec<Spot>>]| {
-        for (b, chunk) in work {
-            let row0 = (b * BAND_ROWS) as i64;
-            let t = Target { width, row0, x0, y0: y0.max(row0), x1, y1: y1.min(row0 + BAND_ROWS as i64), mask };
-            for part in parts {
-                for spot in part.get(b).map_or(&[][..], |v| v.as_slice()) {
-                    plan.draw(spot, chunk, &t);
-                }
+    let draw_band = |b: usize, rows: &mut [u8], parts: &[Vec<Vec<Spot>>]| {
+        let row0 = (b * BAND_ROWS) as i64;
+        let t = Target { width, row0, x0, y0: y0.max(row0), x1, y1: y1.min(row0 + BAND_ROWS as i64), mask };
+        for part in parts {
+            for spot in part.get(b).map_or(&[][..], |v| v.as_slice()) {
+                plan.draw(spot, rows, &t);
             }
         }
     };
     for start in (0..n).step_by(POINT_CHUNK) {
         let end = (start + POINT_CHUNK).min(n);
-        let mut work: Vec<Vec<(usize, &mut [u8])>> = (0..threads).map(|_| Vec::new()).collect();
-        for (b, rows) in pixmap.data_mut().chunks_mut(band_bytes).enumerate() {
-            if let Some(w) = work.get_mut(b % threads) {
-                w.push((b, rows));
-            }
-        }
-        if threads == 1 {
-            if let Some(part) = parts.first_mut() {
-                plan.bin(start..end, part);
-            }
-            for w in work {
-                draw_bands(w, &parts);
-            }
-            continue;
-        }
         let step = (end - start).div_ceil(threads);
-        std::thread::scope(|s| {
-            for (t, part) in parts.iter_mut().enumerate() {
+        let jobs: Vec<_> = parts
+            .iter_mut()
+            .enumerate()
+            .map(|(t, part)| {
                 let lo = (start + t * step).min(end);
-                let hi = (lo + step).min(end);
-                s.spawn(move || plan.bin(lo..hi, part));
-            }
-        });
+                (lo..(lo + step).min(end), part)
+            })
+            .collect();
+        in_parallel(threads, jobs, |(range, part)| plan.bin(range, part));
+        let bands: Vec<_> = pixmap.data_mut().chunks_mut(band_bytes).enumerate().collect();
         let parts = &parts;
-        std::thread::scope(|s| {
-            for w in work {
-                s.spawn(move || draw_bands(w, parts));
-            }
-        });
+        in_parallel(threads, bands, |(b, rows)| draw_band(b, rows, parts));
     }
+}
+
+/// Runs `work` on every item, on up to `threads` threads (the caller's included), each taking
+/// the next item from a shared queue. If a thread cannot be started, the others do its share.
+fn in_parallel<T: Send>(threads: usize, items: Vec<T>, work: impl Fn(T) + Sync) {
+    if threads <= 1 || items.len() <= 1 {
+        items.into_iter().for_each(work);
+        return;
+    }
+    let queue = std::sync::Mutex::new(items);
+    let next = || queue.lock().unwrap_or_else(|poisoned| poisoned.into_inner()).pop();
+    let worker = || {
+        while let Some(item) = next() {
+            work(item);
+        }
+    };
+    std::thread::scope(|s| {
+        for _ in 1..threads {
+            // A thread that fails to start leaves its items in the queue for the others.
+            let _ = std::thread::Builder::new().spawn_scoped(s, worker);
+        }
+        worker();
+    });
 }
 
 /// Draws point `i` of `batch` with tiny-skia paths (large points).

@@ -1,0 +1,101 @@
+//! The command-line tool end to end: the README's gallery command, exit codes, help and schema.
+
+mod common;
+
+use std::process::Command;
+
+use common::{assert_svg_parses, root};
+
+fn dataink() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_dataink"))
+}
+
+#[test]
+fn gallery_renders_every_chart_as_svg_png_and_csv() {
+    let out = tempfile::tempdir().expect("temp dir");
+    let status = dataink()
+        .args(["render", "examples/gallery.toml", "--format", "svg,png,csv", "--out"])
+        .arg(out.path())
+        .current_dir(root())
+        .output()
+        .expect("run dataink");
+    let stderr = String::from_utf8_lossy(&status.stderr);
+    assert!(status.status.success(), "{stderr}");
+    let spec = std::fs::read_to_string(root().join("examples/gallery.toml")).expect("gallery");
+    let names: Vec<&str> = spec
+        .lines()
+        .filter_map(|l| l.strip_prefix("name = \"").and_then(|r| r.strip_suffix('"')))
+        .collect();
+    assert!(names.len() >= 6, "{names:?}");
+    for name in names {
+        let svg = std::fs::read_to_string(out.path().join(format!("{name}.svg"))).expect("svg written");
+        assert_svg_parses(&svg);
+        let png = std::fs::read(out.path().join(format!("{name}.png"))).expect("png written");
+        assert_eq!(&png[..8], b"\x89PNG\r\n\x1a\n", "{name}.png is a PNG");
+        let csv = std::fs::read_to_string(out.path().join(format!("{name}.csv"))).expect("csv written");
+        assert!(csv.lines().count() > 5, "{name}.csv has rows");
+    }
+    // The cars data has missing values: the warning says how many rows were dropped.
+    assert!(stderr.contains("warning: chart \"cars-power\": dropped 14 of 406 rows"), "{stderr}");
+}
+
+#[test]
+fn chart_filter_and_scale_set_the_png_size() {
+    let out = tempfile::tempdir().expect("temp dir");
+    let status = dataink()
+        .args(["render", "examples/gallery.toml", "--chart", "decay", "--format", "png", "--scale", "2", "--out"])
+        .arg(out.path())
+        .current_dir(root())
+        .output()
+        .expect("run dataink");
+    assert!(status.status.success(), "{}", String::from_utf8_lossy(&status.stderr));
+    let files: Vec<_> = std::fs::read_dir(out.path()).expect("out dir").collect();
+    assert_eq!(files.len(), 1);
+    let png = std::fs::read(out.path().join("decay.png")).expect("png");
+    // IHDR width and height (big-endian) at bytes 16..24: the decay chart is 480×320 at scale 2.
+    let w = u32::from_be_bytes([png[16], png[17], png[18], png[19]]);
+    let h = u32::from_be_bytes([png[20], png[21], png[22], png[23]]);
+    assert_eq!((w, h), (960, 640));
+}
+
+#[test]
+fn bad_spec_exits_with_code_2_and_unknown_chart_is_named() {
+    let out = tempfile::tempdir().expect("temp dir");
+    let run = dataink()
+        .args(["render", "examples/gallery.toml", "--chart", "iris-scater", "--out"])
+        .arg(out.path())
+        .current_dir(root())
+        .output()
+        .expect("run dataink");
+    assert_eq!(run.status.code(), Some(2));
+    let stderr = String::from_utf8_lossy(&run.stderr);
+    assert!(stderr.contains("error: no chart named `iris-scater` in the spec"), "{stderr}");
+    assert!(stderr.contains("did you mean `iris-scatter`?"), "{stderr}");
+
+    let run = dataink().args(["render", "no/such/spec.toml"]).output().expect("run dataink");
+    assert_eq!(run.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&run.stderr).contains("cannot read spec file `no/such/spec.toml`"));
+}
+
+#[test]
+fn help_shows_examples_and_exit_codes() {
+    for args in [&["--help"][..], &["render", "--help"][..], &["schema", "--help"][..]] {
+        let run = dataink().args(args).output().expect("run dataink");
+        assert!(run.status.success());
+        let text = String::from_utf8_lossy(&run.stdout);
+        assert!(text.contains("Example"), "{args:?}: {text}");
+    }
+    let run = dataink().args(["render", "--help"]).output().expect("run dataink");
+    let text = String::from_utf8_lossy(&run.stdout);
+    assert!(text.contains("2  bad input"), "{text}");
+}
+
+#[test]
+fn schema_is_json_with_closed_chart_tables() {
+    let run = dataink().arg("schema").output().expect("run dataink");
+    assert!(run.status.success());
+    let schema: serde_json::Value = serde_json::from_slice(&run.stdout).expect("schema is JSON");
+    let text = schema.to_string();
+    assert!(text.contains("\"additionalProperties\":false"));
+    assert!(text.contains("scatter") && text.contains("line"));
+}

@@ -1,0 +1,108 @@
+//! Layout invariants of every gallery chart: text stays on the canvas, no two texts overlap, every
+//! chart has a title, axis titles and tick labels, and colour encodings get a legend.
+
+mod common;
+
+use dataink::data::PathPolicy;
+use dataink::pipeline;
+use dataink::scene::{Rect, Role, Scene, Shape};
+use dataink::text::bounds;
+
+fn gallery_scenes() -> Vec<(String, Scene)> {
+    let loaded = pipeline::load(&common::root().join("examples/gallery.toml"), PathPolicy::InsideSpecFolder)
+        .unwrap_or_else(|f| panic!("{}", f.render()));
+    loaded
+        .spec
+        .chart
+        .iter()
+        .enumerate()
+        .map(|(i, c)| {
+            let out = pipeline::draw_chart(&loaded, i, c).unwrap_or_else(|e| panic!("{e}"));
+            (c.name.clone(), out.scene)
+        })
+        .collect()
+}
+
+fn texts(scene: &Scene) -> Vec<(Role, String, Rect)> {
+    let mut out = Vec::new();
+    scene.walk(|item| {
+        if let Shape::Text(t) = &item.shape {
+            out.push((item.role, t.content.clone(), bounds(t)));
+        }
+    });
+    out
+}
+
+#[test]
+fn text_stays_inside_the_canvas() {
+    for (name, scene) in gallery_scenes() {
+        let canvas = Rect::new(0.0, 0.0, scene.width, scene.height);
+        for (role, content, b) in texts(&scene) {
+            assert!(canvas.contains_rect(&b, 0.5), "{name}: {role:?} `{content}` at {b:?} leaves the canvas");
+        }
+    }
+}
+
+#[test]
+fn no_two_texts_overlap() {
+    for (name, scene) in gallery_scenes() {
+        let all = texts(&scene);
+        for (i, (ra, a, ba)) in all.iter().enumerate() {
+            for (rb, b, bb) in &all[i + 1..] {
+                // Shrink by half a pixel: touching boxes are fine, overlapping ink is not.
+                let shrink = |r: &Rect| Rect::new(r.x + 0.5, r.y + 0.5, (r.w - 1.0).max(0.0), (r.h - 1.0).max(0.0));
+                assert!(
+                    !shrink(ba).intersects(&shrink(bb)),
+                    "{name}: {ra:?} `{a}` {ba:?} overlaps {rb:?} `{b}` {bb:?}"
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn every_chart_is_labelled() {
+    for (name, scene) in gallery_scenes() {
+        let all = texts(&scene);
+        let count = |role: Role| all.iter().filter(|(r, _, _)| *r == role).count();
+        assert_eq!(count(Role::Title), 1, "{name} has a title");
+        assert_eq!(count(Role::AxisTitle), 2, "{name} has two axis titles");
+        assert!(count(Role::TickLabel) >= 4, "{name} has tick labels");
+        let mut marks = 0;
+        scene.walk(|item| {
+            if item.role == Role::DataMark && !item.rows.is_empty() {
+                marks += 1;
+            }
+        });
+        assert!(marks >= 1, "{name} has data marks with source rows");
+    }
+}
+
+#[test]
+fn colour_encodings_have_a_legend() {
+    for (name, scene) in gallery_scenes() {
+        let multi_colour = {
+            let mut found = false;
+            scene.walk(|item| {
+                if let Shape::Points(b) = &item.shape {
+                    if matches!(b.fill, dataink::scene::PerPoint::Each(_)) {
+                        found = true;
+                    }
+                }
+            });
+            found
+        };
+        let legend_items = {
+            let mut n = 0;
+            scene.walk(|item| {
+                if item.role == Role::Legend {
+                    n += 1;
+                }
+            });
+            n
+        };
+        if multi_colour {
+            assert!(legend_items > 0, "{name} encodes colour but has no legend");
+        }
+    }
+}
