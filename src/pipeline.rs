@@ -52,16 +52,20 @@ pub fn load(spec_path: &Path, policy: PathPolicy) -> Result<Loaded, Failed> {
             Err(_) => {
                 return Err(Failed {
                     source: SourceFile { path: spec_path.to_path_buf(), text: String::new() },
-                    diagnostics: vec![Diagnostic::error(format!("spec file `{}` is not UTF-8 text", spec_path.display()))
-                        .with_hint("save the spec as UTF-8")],
+                    diagnostics: vec![
+                        Diagnostic::error(format!("spec file `{}` is not UTF-8 text", spec_path.display()))
+                            .with_hint("save the spec as UTF-8"),
+                    ],
                 });
             }
         },
         Err(e) => {
             return Err(Failed {
                 source: SourceFile { path: spec_path.to_path_buf(), text: String::new() },
-                diagnostics: vec![Diagnostic::error(format!("cannot read spec file `{}`: {e}", spec_path.display()))
-                    .with_hint("check the path; specs are TOML files such as examples/gallery.toml")],
+                diagnostics: vec![
+                    Diagnostic::error(format!("cannot read spec file `{}`: {e}", spec_path.display()))
+                        .with_hint("check the path; specs are TOML files such as examples/gallery.toml"),
+                ],
             });
         }
     };
@@ -268,7 +272,12 @@ pub fn render_all(
             if let Err(e) = render::png::check_canvas(w, h, options.scale) {
                 problems.push(mark_diagnostic(
                     loaded,
-                    &MarkError::at(*index, &["size"], format!("chart \"{}\": {e}", chart.name), "reduce `size` or `--scale`"),
+                    &MarkError::at(
+                        *index,
+                        &["size"],
+                        format!("chart \"{}\": {e}", chart.name),
+                        "reduce `size` or `--scale`",
+                    ),
                 ));
             }
         }
@@ -277,7 +286,10 @@ pub fn render_all(
         return Err(problems);
     }
     if let Err(e) = std::fs::create_dir_all(&options.out_dir) {
-        return Err(vec![Diagnostic::error(format!("cannot create output folder `{}`: {e}", options.out_dir.display()))]);
+        return Err(vec![Diagnostic::error(format!(
+            "cannot create output folder `{}`: {e}",
+            options.out_dir.display()
+        ))]);
     }
     let results: Vec<Result<Rendered, Diagnostic>> = selected
         .par_iter()

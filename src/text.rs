@@ -105,9 +105,9 @@ fn kerning(face: &Face<'_>, left: GlyphId, right: GlyphId) -> i32 {
     total
 }
 
-/// Glyphs of the sanitized `content` with their pen positions in font units.
-fn layout(face: &Face<'_>, content: &str) -> (Vec<(GlyphId, f64)>, f64) {
-    let mut out = Vec::with_capacity(content.len());
+/// Calls `f(glyph, pen)` for each glyph of the sanitized `content` with its pen position in
+/// font units, and returns the total advance.
+fn layout(face: &Face<'_>, content: &str, mut f: impl FnMut(GlyphId, f64)) -> f64 {
     let mut pen = 0.0f64;
     let mut prev: Option<GlyphId> = None;
     for c in clean_chars(content) {
@@ -115,11 +115,11 @@ fn layout(face: &Face<'_>, content: &str) -> (Vec<(GlyphId, f64)>, f64) {
         if let Some(p) = prev {
             pen += f64::from(kerning(face, p, g));
         }
-        out.push((g, pen));
+        f(g, pen);
         pen += f64::from(face.glyph_hor_advance(g).unwrap_or(0));
         prev = Some(g);
     }
-    (out, pen)
+    pen
 }
 
 /// Width, ascent and descent of `content` (sanitized) at font size `size`.
@@ -132,7 +132,7 @@ pub fn measure(content: &str, size: f64) -> TextMetrics {
     }
     let (asc, desc) = vertical_em();
     let width = match face() {
-        Some(f) => layout(f, content).1 / units_per_em(f) * size,
+        Some(f) => layout(f, content, |_, _| {}) / units_per_em(f) * size,
         None => clean_chars(content).count() as f64 * FALLBACK_ADVANCE * size,
     };
     TextMetrics { width, ascent: asc * size, descent: desc * size }
@@ -184,7 +184,7 @@ pub fn bounds(text: &Text) -> Rect {
         return empty;
     }
     let m = measure(&text.content, text.size);
-    if m.width <= 0.0 && m.ascent <= 0.0 {
+    if m.ascent <= 0.0 || clean_chars(&text.content).next().is_none() {
         return empty;
     }
     let x0 = anchor_shift(text.anchor, m.width);
@@ -262,13 +262,12 @@ fn glyph_path_at(content: &str, size: f64, x: f64, y: f64) -> Option<tiny_skia::
     }
     let f = face()?;
     let k = size / units_per_em(f);
-    let (glyphs, _) = layout(f, content);
     let mut builder = tiny_skia::PathBuilder::new();
-    for (g, pen) in glyphs {
+    layout(f, content, |g, pen| {
         let mut outline = Outline { builder: &mut builder, ox: x + pen * k, oy: y, k };
         // Glyphs without an outline (spaces) draw nothing; that is not an error.
         let _ = f.outline_glyph(g, &mut outline);
-    }
+    });
     builder.finish()
 }
 
@@ -370,8 +369,8 @@ mod tests {
         x.at.x = f64::INFINITY;
         assert_eq!(bounds(&x).w, 0.0);
         assert!(text_path(&x).is_none());
-        let e = bounds(&t("", Anchor::Middle, Baseline::Middle, 0.0));
-        assert_eq!(e.w, 0.0);
+        let e = bounds(&t("\u{7}", Anchor::Middle, Baseline::Middle, 0.0));
+        assert_eq!((e.w, e.h), (0.0, 0.0));
     }
 
     #[test]

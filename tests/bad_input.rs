@@ -51,7 +51,10 @@ size = "big"
     assert!(out.contains("spec.toml:11:8\n"), "{out}");
     assert!(out.contains("error: chart \"iris\": data \"iris\" has no column `petal_lenght`\n"), "{out}");
     assert!(out.contains("spec.toml:8:5\n"), "{out}");
-    assert!(out.contains("= hint: did you mean `petal_length`? columns: `petal_length`, `petal_width`, `species`"), "{out}");
+    assert!(
+        out.contains("= hint: did you mean `petal_length`? columns: `petal_length`, `petal_width`, `species`"),
+        "{out}"
+    );
     assert_eq!(out.matches("error:").count(), 3, "{out}");
 }
 
@@ -67,7 +70,11 @@ fn canvas_sizes_must_be_positive_finite_and_bounded() {
     for (size, expect, message) in [
         ("[0, 400]", "spec.toml:10:9", "error: `size[0]` must be greater than 0 and at most 16384, found 0\n"),
         ("[-5, 400]", "spec.toml:10:9", "error: `size[0]` must be greater than 0 and at most 16384, found -5\n"),
-        ("[640, 1e9]", "spec.toml:10:14", "error: `size[1]` must be greater than 0 and at most 16384, found 1000000000\n"),
+        (
+            "[640, 1e9]",
+            "spec.toml:10:14",
+            "error: `size[1]` must be greater than 0 and at most 16384, found 1000000000\n",
+        ),
         ("[nan, 400]", "spec.toml:10:9", "error: `size[0]` must be a finite number, found nan\n"),
         ("[640]", "spec.toml:10:8", "error: `size` must be an array of 2 numbers"),
     ] {
@@ -112,7 +119,10 @@ fn header_only_file_has_no_rows() {
 fn ragged_rows_are_a_parse_error() {
     let out = data_error("d.csv", b"x,y\n1,2\n3,4,5\n");
     assert!(out.contains("as CSV: found more fields than defined in 'Schema'\n"), "{out}");
-    assert!(out.contains("= hint: CSV needs a header row, UTF-8 text and the same number of fields on every row"), "{out}");
+    assert!(
+        out.contains("= hint: CSV needs a header row, UTF-8 text and the same number of fields on every row"),
+        "{out}"
+    );
 }
 
 #[test]
@@ -134,7 +144,10 @@ fn non_finite_cells_are_dropped_with_a_counted_warning() {
     assert_eq!(out[0].derived.rows(), 2);
     assert_eq!(
         out[0].warnings,
-        vec!["chart \"c\": dropped 4 of 6 rows with missing or non-finite values (`x`: 1 missing or NaN, 3 infinite)".to_string()]
+        vec![
+            "chart \"c\": dropped 4 of 6 rows with missing or non-finite values (`x`: 1 missing or NaN, 3 infinite)"
+                .to_string()
+        ]
     );
 }
 
@@ -189,15 +202,26 @@ fn corrupt_parquet_is_a_parse_error() {
 
 #[test]
 fn log_scale_with_non_positive_values_names_the_smallest() {
-    let spec = format!("[data.d]\npath = \"d.csv\"\n{}", XY_CHART.replace("x = \"x\"", "x = { field = \"x\", scale = \"log\" }"));
+    let spec = format!(
+        "[data.d]\npath = \"d.csv\"\n{}",
+        XY_CHART.replace("x = \"x\"", "x = { field = \"x\", scale = \"log\" }")
+    );
     let out = Fixture::new(&spec, &[("d.csv", b"x,y\n-1,2\n0,3\n5,4\n")]).draw().expect_err("log");
-    assert!(out.contains("error: chart \"c\": x axis: a log scale needs values greater than 0, but the smallest value is -1"), "{out}");
+    assert!(
+        out.contains(
+            "error: chart \"c\": x axis: a log scale needs values greater than 0, but the smallest value is -1"
+        ),
+        "{out}"
+    );
     assert!(out.contains("spec.toml:8:5"), "{out}");
 }
 
 #[test]
 fn text_column_on_a_linear_scale_is_refused() {
-    let spec = format!("[data.d]\npath = \"d.csv\"\n{}", XY_CHART.replace("x = \"x\"", "x = { field = \"x\", scale = \"linear\" }"));
+    let spec = format!(
+        "[data.d]\npath = \"d.csv\"\n{}",
+        XY_CHART.replace("x = \"x\"", "x = { field = \"x\", scale = \"linear\" }")
+    );
     let out = Fixture::new(&spec, &[("d.csv", b"x,y\na,2\nb,3\n")]).draw().expect_err("text");
     assert!(out.contains("error: chart \"c\": column `x` holds text, which a linear scale cannot place\n"), "{out}");
     assert!(out.contains("= hint: use scale = \"band\" for categories, or a numeric column"), "{out}");
@@ -205,10 +229,7 @@ fn text_column_on_a_linear_scale_is_refused() {
 
 #[test]
 fn unknown_colour_scheme_suggests_the_closest() {
-    let spec = format!(
-        "[data.d]\npath = \"d.csv\"\n{}color = {{ field = \"y\", scheme = \"virdis\" }}\n",
-        XY_CHART
-    );
+    let spec = format!("[data.d]\npath = \"d.csv\"\n{}color = {{ field = \"y\", scheme = \"virdis\" }}\n", XY_CHART);
     let out = Fixture::new(&spec, &[("d.csv", b"x,y\n1,2\n2,3\n")]).draw().expect_err("scheme");
     assert!(out.contains("error: unknown continuous colour scheme `virdis`\n"), "{out}");
     assert!(out.contains("= hint: did you mean `viridis`?"), "{out}");

@@ -22,10 +22,8 @@ fn gallery_renders_every_chart_as_svg_png_and_csv() {
     let stderr = String::from_utf8_lossy(&status.stderr);
     assert!(status.status.success(), "{stderr}");
     let spec = std::fs::read_to_string(root().join("examples/gallery.toml")).expect("gallery");
-    let names: Vec<&str> = spec
-        .lines()
-        .filter_map(|l| l.strip_prefix("name = \"").and_then(|r| r.strip_suffix('"')))
-        .collect();
+    let names: Vec<&str> =
+        spec.lines().filter_map(|l| l.strip_prefix("name = \"").and_then(|r| r.strip_suffix('"'))).collect();
     assert!(names.len() >= 6, "{names:?}");
     for name in names {
         let svg = std::fs::read_to_string(out.path().join(format!("{name}.svg"))).expect("svg written");

@@ -88,7 +88,12 @@ pub fn run() -> ExitCode {
                 Err(failed) => {
                     eprint!("{}", failed.render());
                     let errors = failed.diagnostics.iter().filter(|d| d.is_error()).count();
-                    eprintln!("error: {} problem{} in `{}`", errors, if errors == 1 { "" } else { "s" }, spec.display());
+                    eprintln!(
+                        "error: {} problem{} in `{}`",
+                        errors,
+                        if errors == 1 { "" } else { "s" },
+                        spec.display()
+                    );
                     return ExitCode::from(2);
                 }
             };

@@ -162,9 +162,8 @@ pub fn load_file(path: &Path, format: DataFormat, separator: u8) -> Result<Table
             .finish(),
         DataFormat::Parquet => ParquetReader::new(file).finish(),
         DataFormat::Json => {
-            let lines = path
-                .extension()
-                .is_some_and(|e| e.eq_ignore_ascii_case("jsonl") || e.eq_ignore_ascii_case("ndjson"));
+            let lines =
+                path.extension().is_some_and(|e| e.eq_ignore_ascii_case("jsonl") || e.eq_ignore_ascii_case("ndjson"));
             let json_format = if lines { JsonFormat::JsonLines } else { JsonFormat::Json };
             JsonReader::new(file).with_json_format(json_format).infer_schema_len(None).finish()
         }
@@ -262,7 +261,5 @@ fn detect_time_text(values: ColumnValues) -> ColumnValues {
             None => return values,
         }
     }
-    ColumnValues::Time(
-        cats.codes.iter().map(|&c| parsed.get(c as usize).copied().unwrap_or(f64::NAN)).collect(),
-    )
+    ColumnValues::Time(cats.codes.iter().map(|&c| parsed.get(c as usize).copied().unwrap_or(f64::NAN)).collect())
 }

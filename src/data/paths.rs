@@ -109,10 +109,7 @@ mod tests {
     #[test]
     fn allow_outside_accepts_both() {
         let dir = Path::new("/specs");
-        assert_eq!(
-            resolve_data_path(dir, "../x.csv", PathPolicy::AllowOutside),
-            Ok(PathBuf::from("/specs/../x.csv"))
-        );
+        assert_eq!(resolve_data_path(dir, "../x.csv", PathPolicy::AllowOutside), Ok(PathBuf::from("/specs/../x.csv")));
         assert_eq!(resolve_data_path(dir, "/x.csv", PathPolicy::AllowOutside), Ok(PathBuf::from("/x.csv")));
     }
 }

@@ -116,9 +116,7 @@ pub fn draw(scale: &Scale, side: Side, plot: Rect, title: Option<&str>, theme: &
             }
         }
     }
-    items.push(
-        Item::new(Role::Axis, crate::scene::Shape::Path(marks), Style::stroke(theme.axis, 1.0)).labelled(name),
-    );
+    items.push(Item::new(Role::Axis, crate::scene::Shape::Path(marks), Style::stroke(theme.axis, 1.0)).labelled(name));
     let label_offset = theme.tick_length + gap(theme);
     for t in &ticks {
         let (at, anchor, baseline) = match side {

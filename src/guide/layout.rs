@@ -133,7 +133,7 @@ fn x_target(length: f64, theme: &Theme) -> usize {
 }
 
 fn y_target(length: f64, theme: &Theme) -> usize {
-    ((length / (theme.font_size * 4.5)).round() as usize).clamp(2, 10)
+    ((length / (theme.font_size * 4.0)).round() as usize).clamp(2, 10)
 }
 
 /// Height of a one-line text block at `size` with some breathing room.

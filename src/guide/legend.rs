@@ -65,7 +65,8 @@ impl Legend {
             Legend::Categorical { title, entries, .. } => {
                 let shown = displayed_entries(entries);
                 let label_w = shown.iter().map(|(l, _)| measure(l, theme.font_size).width).fold(0.0, f64::max);
-                let w = (swatch_width(theme) + theme.font_size * 0.5 + label_w).max(measure(title, theme.label_size).width);
+                let w =
+                    (swatch_width(theme) + theme.font_size * 0.5 + label_w).max(measure(title, theme.label_size).width);
                 (w, title_h + row * shown.len() as f64)
             }
             Legend::ColorBar { title, .. } => {
@@ -74,7 +75,8 @@ impl Legend {
                 let label_w = scale
                     .map(|s| s.ticks().iter().map(|t| measure(&t.label, theme.font_size).width).fold(0.0, f64::max))
                     .unwrap_or(0.0);
-                let w = (COLOR_BAR_WIDTH + theme.tick_length + 3.0 + label_w).max(measure(title, theme.label_size).width);
+                let w =
+                    (COLOR_BAR_WIDTH + theme.tick_length + 3.0 + label_w).max(measure(title, theme.label_size).width);
                 (w, h + theme.font_size * 0.5)
             }
             Legend::Size { title, entries, .. } => {
@@ -131,7 +133,11 @@ impl Legend {
                     if *color != Color::TRANSPARENT {
                         items.push(swatch(*symbol, Point::new(at.x, cy), *color, theme));
                     }
-                    items.push(entry_label(Point::new(at.x + swatch_width(theme) + theme.font_size * 0.5, cy), label, theme));
+                    items.push(entry_label(
+                        Point::new(at.x + swatch_width(theme) + theme.font_size * 0.5, cy),
+                        label,
+                        theme,
+                    ));
                 }
             }
             Legend::ColorBar { map, .. } => {
@@ -170,7 +176,10 @@ impl Legend {
                     items.push(Item::new(
                         Role::Legend,
                         Shape::Circle { center: Point::new(at.x + max_r, cy), radius: *r },
-                        Style { fill: Some(color.with_opacity(0.35)), stroke: Some(crate::scene::Stroke::solid(*color, 1.0)) },
+                        Style {
+                            fill: Some(color.with_opacity(0.35)),
+                            stroke: Some(crate::scene::Stroke::solid(*color, 1.0)),
+                        },
                     ));
                     items.push(entry_label(Point::new(at.x + 2.0 * max_r + theme.font_size * 0.5, cy), label, theme));
                     y += h + 4.0;
@@ -195,11 +204,8 @@ fn color_bar_length(available: f64) -> f64 {
 
 /// Entries to show: at most [`MAX_ENTRIES`], labels truncated, and a summary line for the rest.
 fn displayed_entries(entries: &[(String, Color)]) -> Vec<(String, Color)> {
-    let mut shown: Vec<(String, Color)> = entries
-        .iter()
-        .take(MAX_ENTRIES)
-        .map(|(l, c)| (truncate_to_width(l, MAX_LABEL_WIDTH, 12.0), *c))
-        .collect();
+    let mut shown: Vec<(String, Color)> =
+        entries.iter().take(MAX_ENTRIES).map(|(l, c)| (truncate_to_width(l, MAX_LABEL_WIDTH, 12.0), *c)).collect();
     if entries.len() > MAX_ENTRIES {
         shown.push((format!("… and {} more", entries.len() - MAX_ENTRIES), Color::TRANSPARENT));
     }

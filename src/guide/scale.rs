@@ -99,7 +99,10 @@ impl fmt::Display for ScaleError {
                 "the time extent {min:?}..{max:?} ms is beyond ±{MAX_ABS_MS:e} ms (about 253,000 years from 1970); check that the column holds milliseconds since the epoch"
             ),
             ScaleError::EmptyCategories => {
-                write!(f, "a band scale needs at least one category, but there are none; check that the column has values")
+                write!(
+                    f,
+                    "a band scale needs at least one category, but there are none; check that the column has values"
+                )
             }
             ScaleError::InvalidPadding { inner, outer } => write!(
                 f,
@@ -166,7 +169,12 @@ impl LinearScale {
     /// A linear scale from the data extent `domain` onto `range`, with about `tick_target` ticks
     /// (0 for none). With `nice`, the domain is widened to the outermost of the extended-Wilkinson
     /// ticks that cover it. Degenerate domains: see the module docs.
-    pub fn new(domain: (f64, f64), range: (f64, f64), nice: bool, tick_target: usize) -> Result<LinearScale, ScaleError> {
+    pub fn new(
+        domain: (f64, f64),
+        range: (f64, f64),
+        nice: bool,
+        tick_target: usize,
+    ) -> Result<LinearScale, ScaleError> {
         check_range(range)?;
         let (mut lo, mut hi) = check_domain(domain)?;
         let width = hi - lo;
@@ -437,7 +445,12 @@ pub struct BandScale {
 impl BandScale {
     /// A band scale for `categories` (duplicates after the first are dropped) onto `range`.
     /// `padding_inner` must be in 0..=1 and `padding_outer` ≥ 0, both finite.
-    pub fn new(categories: Vec<String>, range: (f64, f64), padding_inner: f64, padding_outer: f64) -> Result<BandScale, ScaleError> {
+    pub fn new(
+        categories: Vec<String>,
+        range: (f64, f64),
+        padding_inner: f64,
+        padding_outer: f64,
+    ) -> Result<BandScale, ScaleError> {
         check_range(range)?;
         let valid = (0.0..=1.0).contains(&padding_inner) && padding_outer >= 0.0 && padding_outer.is_finite();
         if !valid {
@@ -648,7 +661,9 @@ mod tests {
         // Without nice, the domain is the data and ticks stay inside it.
         let s = LinearScale::new((-1.3, 7.9), (0.0, 500.0), false, 5).unwrap();
         assert_eq!(s.domain(), (-1.3, 7.9));
-        assert!(s.ticks().iter().all(|t| t.value >= -1.3 && t.value <= 7.9 && t.position >= 0.0 && t.position <= 500.0));
+        assert!(
+            s.ticks().iter().all(|t| t.value >= -1.3 && t.value <= 7.9 && t.position >= 0.0 && t.position <= 500.0)
+        );
         assert!(s.ticks().len() >= 3);
     }
 

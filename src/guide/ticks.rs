@@ -245,7 +245,12 @@ mod tests {
         for w in t.values.windows(2) {
             assert!(w[1] > w[0], "not ascending: {:?}", t.values);
             let gap = w[1] - w[0];
-            assert!((gap - t.step).abs() <= 1e-9 * t.step.abs().max(w[1].abs()), "uneven: {:?} step {}", t.values, t.step);
+            assert!(
+                (gap - t.step).abs() <= 1e-9 * t.step.abs().max(w[1].abs()),
+                "uneven: {:?} step {}",
+                t.values,
+                t.step
+            );
         }
     }
 

@@ -73,11 +73,7 @@ impl Derived {
 fn csv_field(s: &str) -> String {
     let risky = s.starts_with(['=', '+', '-', '@']) && s.parse::<f64>().is_err();
     let body = if risky { format!("'{s}") } else { s.to_string() };
-    if body.contains([',', '"', '\n', '\r']) {
-        format!("\"{}\"", body.replace('"', "\"\""))
-    } else {
-        body
-    }
+    if body.contains([',', '"', '\n', '\r']) { format!("\"{}\"", body.replace('"', "\"\"")) } else { body }
 }
 
 /// A readable number for messages (re-exported for marks).

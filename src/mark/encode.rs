@@ -206,8 +206,7 @@ pub fn used_levels(cats: &Categories, rows: &[u32]) -> Vec<String> {
             _ => any_missing = true,
         }
     }
-    let mut levels: Vec<String> =
-        cats.levels.iter().zip(&used).filter(|(_, u)| **u).map(|(l, _)| l.clone()).collect();
+    let mut levels: Vec<String> = cats.levels.iter().zip(&used).filter(|(_, u)| **u).map(|(l, _)| l.clone()).collect();
     if any_missing {
         levels.push(MISSING_LABEL.to_string());
     }
@@ -323,7 +322,10 @@ pub fn color_encoding(
             return Err(MarkError::at(
                 index,
                 &["color", "type"],
-                format!("chart \"{}\": column `{}` holds text and cannot be coloured continuously", chart.name, options.field),
+                format!(
+                    "chart \"{}\": column `{}` holds text and cannot be coloured continuously",
+                    chart.name, options.field
+                ),
                 "remove `type = \"continuous\"` or colour by a numeric column",
             ));
         }
@@ -335,8 +337,9 @@ pub fn color_encoding(
             None => number_categories(col.numbers().unwrap_or(&[])),
         };
         let palette = palette(index, &["color", "scheme"], options.scheme.as_deref())?;
-        let colors: Vec<Color> =
-            (0..categories.levels.len()).map(|i| palette.get(i % palette.len().max(1)).copied().unwrap_or(MISSING_COLOR)).collect();
+        let colors: Vec<Color> = (0..categories.levels.len())
+            .map(|i| palette.get(i % palette.len().max(1)).copied().unwrap_or(MISSING_COLOR))
+            .collect();
         let mut entries: Vec<(String, Color)> = Vec::new();
         for level in used_levels(&categories, rows) {
             let color = categories

@@ -25,7 +25,12 @@ pub fn draw(chart: &Chart, options: &LineOptions, index: usize, table: &Table) -
     let x_col = encode::column(chart, index, "x", &x_opts.field, table)?;
     let y_channels = options.y.as_slice();
     if y_channels.is_empty() {
-        return Err(MarkError::at(index, &["y"], format!("chart \"{}\": `y` lists no columns", chart.name), "name at least one column, e.g. y = \"value\""));
+        return Err(MarkError::at(
+            index,
+            &["y"],
+            format!("chart \"{}\": `y` lists no columns", chart.name),
+            "name at least one column, e.g. y = \"value\"",
+        ));
     }
     if options.series.is_some() && y_channels.len() > 1 {
         return Err(MarkError::at(
@@ -96,7 +101,11 @@ pub fn draw(chart: &Chart, options: &LineOptions, index: usize, table: &Table) -
     }
     let n_series = series.len();
     for (i, s) in series.iter_mut().enumerate() {
-        s.color = if n_series == 1 { single_color } else { palette.get(i % palette.len().max(1)).copied().unwrap_or(single_color) };
+        s.color = if n_series == 1 {
+            single_color
+        } else {
+            palette.get(i % palette.len().max(1)).copied().unwrap_or(single_color)
+        };
     }
     let x_numbers = x_col.numbers();
     let band_order = x_col.categories();
@@ -131,7 +140,8 @@ pub fn draw(chart: &Chart, options: &LineOptions, index: usize, table: &Table) -
     if y_cols.len() > 1 {
         // Several y columns: the channel titles name the series (in the legend); the axis gets
         // `y_title` or the joined names, with the first unit any channel gives.
-        let names: Vec<String> = y_cols.iter().map(|(c, _)| c.options().title.unwrap_or_else(|| c.field().to_string())).collect();
+        let names: Vec<String> =
+            y_cols.iter().map(|(c, _)| c.options().title.unwrap_or_else(|| c.field().to_string())).collect();
         let unit = y_cols.iter().find_map(|(c, _)| c.options().unit);
         let title = options.y_title.clone().unwrap_or_else(|| names.join(", "));
         y_axis.title = title_with_unit(&title, unit.as_deref());
@@ -146,7 +156,11 @@ pub fn draw(chart: &Chart, options: &LineOptions, index: usize, table: &Table) -
     x_axis.inset = inset;
     let legends = if n_series > 1 {
         let title = options.series.clone().unwrap_or_default();
-        vec![Legend::Categorical { title, entries: series.iter().map(|s| (s.name.clone(), s.color)).collect(), symbol: Symbol::Line }]
+        vec![Legend::Categorical {
+            title,
+            entries: series.iter().map(|s| (s.name.clone(), s.color)).collect(),
+            symbol: Symbol::Line,
+        }]
     } else {
         Vec::new()
     };
@@ -192,7 +206,9 @@ pub fn draw(chart: &Chart, options: &LineOptions, index: usize, table: &Table) -
         if let Some(stroke) = style.stroke.as_mut() {
             stroke.width = stroke_width;
         }
-        marks.push(Item::new(Role::DataMark, Shape::Path(cmds), style).with_rows(s.rows.clone()).labelled(s.name.clone()));
+        marks.push(
+            Item::new(Role::DataMark, Shape::Path(cmds), style).with_rows(s.rows.clone()).labelled(s.name.clone()),
+        );
         if markers {
             marks.push(
                 Item::new(
@@ -219,9 +235,15 @@ pub fn draw(chart: &Chart, options: &LineOptions, index: usize, table: &Table) -
     derived.push("series", DerivedColumn::Text(derived_series));
     derived.push("row", DerivedColumn::Number(derived_row));
     if let Some(cats) = x_col.categories() {
-        derived.push(&x_opts.field, DerivedColumn::Text(
-            series.iter().flat_map(|s| s.rows.iter().map(|&r| cats.value(r as usize).unwrap_or("").to_string())).collect(),
-        ));
+        derived.push(
+            &x_opts.field,
+            DerivedColumn::Text(
+                series
+                    .iter()
+                    .flat_map(|s| s.rows.iter().map(|&r| cats.value(r as usize).unwrap_or("").to_string()))
+                    .collect(),
+            ),
+        );
     } else {
         derived.push(&x_opts.field, DerivedColumn::Number(derived_x));
     }

@@ -4,11 +4,11 @@ use super::derived::{Derived, DerivedColumn};
 use super::encode::{self, ColorEncoding};
 use super::{ChartOutput, DEFAULT_SIZE, MarkError};
 use crate::data::Table;
+use crate::guide::Theme;
 use crate::guide::format::format_value;
 use crate::guide::layout::{self, FrameSpec};
 use crate::guide::legend::{Legend, Symbol};
 use crate::guide::ticks::extended;
-use crate::guide::Theme;
 use crate::scene::{Color, Item, PerPoint, Point, PointBatch, Role, Scene, Shape, Stroke, Style};
 use crate::spec::{Chart, ScatterOptions};
 
@@ -48,16 +48,15 @@ pub fn draw(chart: &Chart, options: &ScatterOptions, index: usize, table: &Table
             return Err(MarkError::at(
                 index,
                 &["point_size"],
-                format!("chart \"{}\": `point_size` column `{}` holds text; marker area needs numbers", chart.name, o.field),
+                format!(
+                    "chart \"{}\": `point_size` column `{}` holds text; marker area needs numbers",
+                    chart.name, o.field
+                ),
                 "size by a numeric column, or colour by this one instead",
             ));
         }
     }
-    let color_numeric = options
-        .color
-        .as_ref()
-        .and_then(|c| table.column(c.field()))
-        .filter(|c| c.numbers().is_some());
+    let color_numeric = options.color.as_ref().and_then(|c| table.column(c.field())).filter(|c| c.numbers().is_some());
 
     let mut numeric: Vec<(&str, &crate::data::Column)> = Vec::new();
     for (field, col) in [(x_opts.field.as_str(), x_col), (y_opts.field.as_str(), y_col)] {
@@ -94,8 +93,15 @@ pub fn draw(chart: &Chart, options: &ScatterOptions, index: usize, table: &Table
 
     let n = rows.len();
     let opacity = options.opacity.unwrap_or_else(|| default_opacity(n));
-    let (colors, color_legend) =
-        encode::color_encoding(chart, index, options.color.as_ref(), options.mark_color.as_deref(), table, &rows, Symbol::Circle)?;
+    let (colors, color_legend) = encode::color_encoding(
+        chart,
+        index,
+        options.color.as_ref(),
+        options.mark_color.as_deref(),
+        table,
+        &rows,
+        Symbol::Circle,
+    )?;
     let max_radius = size_opts.as_ref().and_then(|o| o.max_radius).unwrap_or(12.0);
     let mut legends: Vec<Legend> = color_legend.into_iter().collect();
     if let (Some(o), true) = (&size_opts, max_size > 0.0) {
@@ -141,9 +147,10 @@ pub fn draw(chart: &Chart, options: &ScatterOptions, index: usize, table: &Table
     // Large markers get a thin outline so overlapping ones stay distinguishable.
     let stroke = (size_col.is_some() || (n <= 2_000 && base_radius >= 3.0))
         .then(|| Stroke::solid(Color::WHITE.with_opacity(0.8), 0.6));
-    let batch = Item::new(Role::DataMark, Shape::Points(PointBatch { centers, radius, fill, stroke }), Style::default())
-        .with_rows(rows.clone())
-        .labelled(chart.name.clone());
+    let batch =
+        Item::new(Role::DataMark, Shape::Points(PointBatch { centers, radius, fill, stroke }), Style::default())
+            .with_rows(rows.clone())
+            .labelled(chart.name.clone());
 
     let mut items = frame.under;
     items.push(Item::group(Role::DataMark, vec![batch], Some(frame.plot)));
@@ -191,9 +198,9 @@ fn size_legend(title: &str, unit: Option<&str>, max_value: f64, max_radius: f64)
 /// A column's values at `rows` for derived output.
 pub fn data_column(column: &crate::data::Column, rows: &[u32]) -> DerivedColumn {
     match column.categories() {
-        Some(cats) => DerivedColumn::Text(
-            rows.iter().map(|&r| cats.value(r as usize).unwrap_or("").to_string()).collect(),
-        ),
+        Some(cats) => {
+            DerivedColumn::Text(rows.iter().map(|&r| cats.value(r as usize).unwrap_or("").to_string()).collect())
+        }
         None => {
             let values = column.numbers().unwrap_or(&[]);
             DerivedColumn::Number(rows.iter().map(|&r| values.get(r as usize).copied().unwrap_or(f64::NAN)).collect())

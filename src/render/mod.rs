@@ -145,7 +145,13 @@ mod tests {
         assert!(clean_path(&[PathCmd::MoveTo(p(0.0, 0.0)), PathCmd::LineTo(p(f64::NAN, 1.0))]).is_none());
         let c = clean_path(&[PathCmd::LineTo(p(1.0, 1.0)), PathCmd::LineTo(p(2.0, 2.0))]);
         assert_eq!(c, Some(vec![PathCmd::MoveTo(p(1.0, 1.0)), PathCmd::LineTo(p(2.0, 2.0))]));
-        let c = clean_path(&[PathCmd::Close, PathCmd::MoveTo(p(0.0, 0.0)), PathCmd::LineTo(p(1.0, 0.0)), PathCmd::Close, PathCmd::LineTo(p(1.0, 1.0))]);
+        let c = clean_path(&[
+            PathCmd::Close,
+            PathCmd::MoveTo(p(0.0, 0.0)),
+            PathCmd::LineTo(p(1.0, 0.0)),
+            PathCmd::Close,
+            PathCmd::LineTo(p(1.0, 1.0)),
+        ]);
         assert_eq!(c.map(|v| v.len()), Some(5));
     }
 

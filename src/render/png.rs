@@ -319,7 +319,14 @@ impl Painter {
         let paint = PixmapPaint { quality, ..PixmapPaint::default() };
         let sx = dest.w / f64::from(raster.width) * self.scale;
         let sy = dest.h / f64::from(raster.height) * self.scale;
-        let ts = Transform::from_row(sx as f32, 0.0, 0.0, sy as f32, (dest.x * self.scale) as f32, (dest.y * self.scale) as f32);
+        let ts = Transform::from_row(
+            sx as f32,
+            0.0,
+            0.0,
+            sy as f32,
+            (dest.x * self.scale) as f32,
+            (dest.y * self.scale) as f32,
+        );
         self.pixmap.draw_pixmap(0, 0, img.as_ref(), &paint, ts, clip.mask.as_ref());
     }
 }
@@ -412,11 +419,19 @@ mod tests {
             Item::new(Role::DataMark, Shape::Rect(Rect::new(10.0, 10.0, 20.0, 20.0)), Style::fill(red)),
             Item::group(
                 Role::DataMark,
-                vec![Item::new(Role::DataMark, Shape::Rect(Rect::new(40.0, 10.0, 50.0, 50.0)), Style::fill(Color::BLACK))],
+                vec![Item::new(
+                    Role::DataMark,
+                    Shape::Rect(Rect::new(40.0, 10.0, 50.0, 50.0)),
+                    Style::fill(Color::BLACK),
+                )],
                 Some(Rect::new(50.0, 20.0, 10.0, 10.0)),
             ),
             Item::new(Role::DataMark, Shape::Rect(Rect::new(f64::NAN, 1.0, 5.0, 5.0)), Style::fill(Color::BLACK)),
-            Item::new(Role::DataMark, Shape::Circle { center: Point::new(f64::INFINITY, 1.0), radius: 3.0 }, Style::fill(Color::BLACK)),
+            Item::new(
+                Role::DataMark,
+                Shape::Circle { center: Point::new(f64::INFINITY, 1.0), radius: 3.0 },
+                Style::fill(Color::BLACK),
+            ),
         ]);
         let p = render(&s, 1.0);
         assert_eq!(px(&p, 15, 15), [200, 10, 30, 255]);
@@ -447,7 +462,11 @@ mod tests {
                 Shape::Path(vec![PathCmd::MoveTo(Point::new(0.0, 40.0)), PathCmd::LineTo(Point::new(100.0, 40.0))]),
                 Style { fill: None, stroke: Some(dashed) },
             ),
-            Item::new(Role::DataMark, Shape::Rect(Rect::new(0.0, 60.0, 10.0, 10.0)), Style::fill(Color::rgb(0, 0, 255).with_opacity(0.5))),
+            Item::new(
+                Role::DataMark,
+                Shape::Rect(Rect::new(0.0, 60.0, 10.0, 10.0)),
+                Style::fill(Color::rgb(0, 0, 255).with_opacity(0.5)),
+            ),
             // A tiny dash on a huge path must not hang: it is drawn solid.
             Item::new(
                 Role::Grid,
@@ -508,7 +527,13 @@ mod tests {
         let img = |smooth| {
             Item::new(
                 Role::DataMark,
-                Shape::Image(Raster { dest: Rect::new(10.0, 10.0, 40.0, 40.0), width: 2, height: 2, rgba: rgba.clone(), smooth }),
+                Shape::Image(Raster {
+                    dest: Rect::new(10.0, 10.0, 40.0, 40.0),
+                    width: 2,
+                    height: 2,
+                    rgba: rgba.clone(),
+                    smooth,
+                }),
                 Style::default(),
             )
         };
@@ -524,7 +549,13 @@ mod tests {
         // A raster whose buffer does not match its size is skipped, not a panic.
         let bad = Item::new(
             Role::DataMark,
-            Shape::Image(Raster { dest: Rect::new(0.0, 0.0, 10.0, 10.0), width: 5, height: 5, rgba: rgba.clone(), smooth: false }),
+            Shape::Image(Raster {
+                dest: Rect::new(0.0, 0.0, 10.0, 10.0),
+                width: 5,
+                height: 5,
+                rgba: rgba.clone(),
+                smooth: false,
+            }),
             Style::default(),
         );
         assert!(to_png(&scene(vec![bad]), 1.0).is_ok());
@@ -567,6 +598,121 @@ mod tests {
         let at = |x: usize, y: usize| buf.get((y * 100 + x) * 4..(y * 100 + x) * 4 + 4).map(|s| s.to_vec());
         assert_eq!(at(50, 40), Some(vec![10, 20, 30, 255]));
         assert_eq!(at(0, 0), Some(vec![0, 0, 0, 0]));
+    }
+
+    #[test]
+    fn hostile_numbers_are_skipped_not_panicked_on() {
+        let (nan, inf) = (f64::NAN, f64::INFINITY);
+        let bad_stroke = |w: f64, dash: Vec<f64>| Some(Stroke { color: Color::BLACK, width: w, dash });
+        let p = |x, y| Point::new(x, y);
+        let text = |at: Point, size: f64, angle: f64| {
+            Item::text(
+                Role::TickLabel,
+                Text {
+                    at,
+                    content: "x\u{0}y".into(),
+                    size,
+                    anchor: Anchor::Middle,
+                    baseline: Baseline::Top,
+                    angle,
+                    color: Color::BLACK,
+                },
+            )
+        };
+        let items = vec![
+            Item::new(Role::DataMark, Shape::Rect(Rect::new(0.0, 0.0, inf, 10.0)), Style::fill(Color::BLACK)),
+            Item::new(Role::DataMark, Shape::Rect(Rect::new(1e30, -1e30, 1e30, 5.0)), Style::fill(Color::BLACK)),
+            Item::new(Role::DataMark, Shape::Rect(Rect::new(10.0, 10.0, -5.0, -5.0)), Style::fill(Color::BLACK)),
+            Item::new(Role::DataMark, Shape::Circle { center: p(10.0, 10.0), radius: nan }, Style::fill(Color::BLACK)),
+            Item::new(
+                Role::DataMark,
+                Shape::Circle { center: p(10.0, 10.0), radius: 1e7 },
+                Style { fill: None, stroke: bad_stroke(1.0, vec![0.01, 0.01]) },
+            ),
+            Item::new(
+                Role::Grid,
+                Shape::Path(vec![PathCmd::MoveTo(p(0.0, 0.0)), PathCmd::LineTo(p(1e300, 1.0))]),
+                Style { fill: None, stroke: bad_stroke(1.0, vec![]) },
+            ),
+            Item::new(
+                Role::Grid,
+                Shape::Path(vec![PathCmd::MoveTo(p(0.0, 0.0)), PathCmd::LineTo(p(5.0, 5.0))]),
+                Style { fill: None, stroke: bad_stroke(nan, vec![nan]) },
+            ),
+            Item::new(
+                Role::Grid,
+                Shape::Path(vec![PathCmd::MoveTo(p(0.0, 0.0)), PathCmd::LineTo(p(5.0, 5.0))]),
+                Style { fill: None, stroke: bad_stroke(1e30, vec![-1.0, 2.0]) },
+            ),
+            Item::new(
+                Role::Grid,
+                Shape::Path(vec![PathCmd::QuadTo(p(inf, 0.0), p(1.0, 1.0))]),
+                Style::stroke(Color::BLACK, 1.0),
+            ),
+            text(p(nan, 5.0), 12.0, 0.0),
+            text(p(5.0, 5.0), inf, 0.0),
+            text(p(5.0, 5.0), 12.0, nan),
+            text(p(5.0, 5.0), -3.0, 0.0),
+            text(p(5.0, 5.0), 1e6, 45.0),
+            Item::new(
+                Role::DataMark,
+                Shape::Image(Raster {
+                    dest: Rect::new(nan, 0.0, 10.0, 10.0),
+                    width: 1,
+                    height: 1,
+                    rgba: std::sync::Arc::new(vec![0; 4]),
+                    smooth: true,
+                }),
+                Style::default(),
+            ),
+            Item::new(
+                Role::DataMark,
+                Shape::Image(Raster {
+                    dest: Rect::new(0.0, 0.0, 1e-30, 1e30),
+                    width: 1,
+                    height: 1,
+                    rgba: std::sync::Arc::new(vec![0; 4]),
+                    smooth: false,
+                }),
+                Style::default(),
+            ),
+            Item::group(
+                Role::DataMark,
+                vec![Item::new(Role::DataMark, Shape::Rect(Rect::new(0.0, 0.0, 5.0, 5.0)), Style::fill(Color::BLACK))],
+                Some(Rect::new(nan, 0.0, 10.0, 10.0)),
+            ),
+            Item::group(
+                Role::DataMark,
+                vec![Item::new(
+                    Role::DataMark,
+                    Shape::Points(PointBatch {
+                        centers: vec![p(nan, 1.0), p(inf, inf), p(1e300, 5.0), p(5.0, 5.0), p(-1e9, -1e9)],
+                        radius: PerPoint::Each(vec![1.0, 1.0, 1.0, nan, 2.0]),
+                        fill: PerPoint::Each(vec![]),
+                        stroke: bad_stroke(inf, vec![]),
+                    }),
+                    Style::default(),
+                )],
+                Some(Rect::new(-inf, -inf, inf, inf)),
+            ),
+            Item::new(
+                Role::DataMark,
+                Shape::Points(PointBatch {
+                    centers: vec![p(5.0, 5.0); 3],
+                    radius: PerPoint::Each(vec![]),
+                    fill: PerPoint::Uniform(Color::BLACK),
+                    stroke: None,
+                }),
+                Style::default(),
+            ),
+        ];
+        let s = scene(items);
+        for scale in [1.0, 0.01, 3.7] {
+            assert!(to_png(&s, scale).is_ok());
+        }
+        let svg = crate::render::to_svg(&s);
+        assert!(usvg::Tree::from_str(&svg, &usvg::Options::default()).is_ok(), "{svg}");
+        assert!(!svg.contains("NaN") && !svg.contains("inf"));
     }
 
     /// Encoder settings compared on a 1000×1000 chart; run with

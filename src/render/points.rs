@@ -225,7 +225,8 @@ fn blit(data: &mut [u8], t: &Target<'_>, stamp: &Stamp, ox: i64, oy: i64, src: S
             if nb == 1 {
                 for (k, block) in blocks.iter().enumerate() {
                     let p = (first + k * t.width) * 4;
-                    let Some(dst) = data.get_mut(p..p + 4 * BLOCK).and_then(|d| <&mut [u8; 4 * BLOCK]>::try_from(d).ok())
+                    let Some(dst) =
+                        data.get_mut(p..p + 4 * BLOCK).and_then(|d| <&mut [u8; 4 * BLOCK]>::try_from(d).ok())
                     else {
                         break;
                     };
@@ -526,7 +527,7 @@ impl Plan<'_> {
 /// band draws its points in batch order, so overlapping points stack exactly as when drawn one
 /// by one.
 pub(crate) fn draw_batch(pixmap: &mut Pixmap, batch: &PointBatch, scale: f64, clip: &Clip) {
-    let threads = std::thread::available_parallelism().map_or(1, |t| t.get()).min(8);
+    let threads = rayon::current_num_threads().min(8);
     draw_batch_on(pixmap, batch, scale, clip, threads);
 }
 
@@ -583,11 +584,12 @@ fn draw_batch_on(pixmap: &mut Pixmap, batch: &PointBatch, scale: f64, clip: &Cli
         return;
     }
 
-    // Chunks of points are binned into horizontal bands (by `threads` threads, each taking a
-    // slice of the chunk), then the bands are drawn (by `threads` threads, each taking every
-    // `threads`-th band). Bands are disjoint rows, so threads never share pixels; within a band
-    // points are drawn in batch order, so overlapping points stack exactly as one by one. The
-    // band buffers are reused from chunk to chunk and stay in cache, as do a band's pixels.
+    // Chunks of points are binned into horizontal bands (by up to `threads` threads, each
+    // taking a slice of the chunk), then the bands are drawn (by up to `threads` threads, each
+    // taking the next band from a queue). Bands are disjoint rows, so threads never share
+    // pixels; within a band the slices are drawn in order, so overlapping points stack exactly
+    // as one by one. Band buffers are reused from chunk to chunk, and a band's pixels stay in
+    // cache while it is drawn.
     let threads = threads.clamp(1, 16);
     let nbands = (ph as usize).div_ceil(BAND_ROWS);
     let band_bytes = BAND_ROWS * width * 4;
@@ -622,27 +624,15 @@ fn draw_batch_on(pixmap: &mut Pixmap, batch: &PointBatch, scale: f64, clip: &Cli
     }
 }
 
-/// Runs `work` on every item, on up to `threads` threads (the caller's included), each taking
-/// the next item from a shared queue. If a thread cannot be started, the others do its share.
-fn in_parallel<T: Send>(threads: usize, items: Vec<T>, work: impl Fn(T) + Sync) {
+/// Runs `work` on every item: on the calling thread when `threads` is 1, otherwise on rayon's
+/// shared pool (so charts rendered in parallel do not oversubscribe the cores).
+fn in_parallel<T: Send>(threads: usize, items: Vec<T>, work: impl Fn(T) + Sync + Send) {
+    use rayon::prelude::*;
     if threads <= 1 || items.len() <= 1 {
         items.into_iter().for_each(work);
         return;
     }
-    let queue = std::sync::Mutex::new(items);
-    let next = || queue.lock().unwrap_or_else(|poisoned| poisoned.into_inner()).pop();
-    let worker = || {
-        while let Some(item) = next() {
-            work(item);
-        }
-    };
-    std::thread::scope(|s| {
-        for _ in 1..threads {
-            // A thread that fails to start leaves its items in the queue for the others.
-            let _ = std::thread::Builder::new().spawn_scoped(s, worker);
-        }
-        worker();
-    });
+    items.into_par_iter().for_each(work);
 }
 
 /// Draws point `i` of `batch` with tiny-skia paths (large points).
@@ -725,7 +715,8 @@ mod tests {
             let centers: Vec<Point> =
                 (0..40).map(|_| Point::new(5.0 + 90.0 * lcg(&mut seed), 5.0 + 70.0 * lcg(&mut seed))).collect();
             let n = centers.len();
-            let colors = (0..n).map(|k| Color::rgb((k * 50 % 256) as u8, 40, 200).with_opacity(if k % 3 == 0 { 0.5 } else { 1.0 }));
+            let colors = (0..n)
+                .map(|k| Color::rgb((k * 50 % 256) as u8, 40, 200).with_opacity(if k % 3 == 0 { 0.5 } else { 1.0 }));
             let batch = PointBatch {
                 centers,
                 radius: PerPoint::Uniform(radius),
@@ -736,7 +727,11 @@ mod tests {
             // Centres on the 1/8-pixel stamp grid: the same coverage up to blending rounding and
             // f32 rounding where a circle edge falls exactly on a pixel boundary.
             let grid = PointBatch {
-                centers: batch.centers.iter().map(|p| Point::new((p.x * 8.0).round() / 8.0, (p.y * 8.0).round() / 8.0)).collect(),
+                centers: batch
+                    .centers
+                    .iter()
+                    .map(|p| Point::new((p.x * 8.0).round() / 8.0, (p.y * 8.0).round() / 8.0))
+                    .collect(),
                 ..batch.clone()
             };
             let (d, _) = diff(&fast(&grid, w, h, scale), &reference(&grid, w, h, scale));
@@ -821,7 +816,8 @@ mod tests {
     fn banded_drawing_matches_one_pass() {
         let mut seed = 11;
         let n = 3 * PARALLEL_MIN_POINTS;
-        let centers: Vec<Point> = (0..n).map(|_| Point::new(-5.0 + 210.0 * lcg(&mut seed), -5.0 + 130.0 * lcg(&mut seed))).collect();
+        let centers: Vec<Point> =
+            (0..n).map(|_| Point::new(-5.0 + 210.0 * lcg(&mut seed), -5.0 + 130.0 * lcg(&mut seed))).collect();
         let fills: Vec<Color> = (0..n).map(|k| Color::rgb((k % 200) as u8, 90, 200).with_opacity(0.5)).collect();
         let radii: Vec<f64> = (0..n).map(|k| 1.0 + (k % 5) as f64 * 0.7).collect();
         let each = PointBatch {
@@ -895,13 +891,15 @@ mod tests {
         let threads = env("POINTS_THREADS", std::thread::available_parallelism().map_or(1, |t| t.get()));
         let runs = env("POINTS_RUNS", 10);
         let mut seed = 1;
-        let configs = [(1.0, None), (1.5, None), (2.0, None), (3.0, None), (2.0, Some(Stroke::solid(Color::BLACK, 0.5)))];
+        let configs =
+            [(1.0, None), (1.5, None), (2.0, None), (3.0, None), (2.0, Some(Stroke::solid(Color::BLACK, 0.5)))];
         let only: Option<usize> = std::env::var("POINTS_CONFIG").ok().and_then(|v| v.parse().ok());
         for (k, (radius, stroke)) in configs.into_iter().enumerate() {
             if only.is_some_and(|o| o != k) {
                 continue;
             }
-            let centers: Vec<Point> = (0..1_000_000).map(|_| Point::new(1000.0 * lcg(&mut seed), 1000.0 * lcg(&mut seed))).collect();
+            let centers: Vec<Point> =
+                (0..1_000_000).map(|_| Point::new(1000.0 * lcg(&mut seed), 1000.0 * lcg(&mut seed))).collect();
             let batch = PointBatch {
                 centers,
                 radius: PerPoint::Uniform(radius),

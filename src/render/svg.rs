@@ -165,11 +165,8 @@ impl Writer {
             return;
         }
         let Ok(png) = super::png::encode_raster(raster) else { return };
-        let rendering = if raster.smooth {
-            ""
-        } else {
-            " image-rendering=\"optimizeSpeed\" style=\"image-rendering:pixelated\""
-        };
+        let rendering =
+            if raster.smooth { "" } else { " image-rendering=\"optimizeSpeed\" style=\"image-rendering:pixelated\"" };
         let _ = writeln!(
             self.out,
             "<image{common} x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" preserveAspectRatio=\"none\"{rendering} \
@@ -374,9 +371,19 @@ pub(crate) mod tests {
             }
         }
         let points = PointBatch {
-            centers: vec![Point::new(250.0, 150.0), Point::new(270.0, 160.0), Point::new(f64::NAN, 1.0), Point::new(290.0, 140.0)],
+            centers: vec![
+                Point::new(250.0, 150.0),
+                Point::new(270.0, 160.0),
+                Point::new(f64::NAN, 1.0),
+                Point::new(290.0, 140.0),
+            ],
             radius: PerPoint::Each(vec![3.0, 4.0, 5.0, 6.0]),
-            fill: PerPoint::Each(vec![Color::rgb(0, 0, 255), Color::rgb(0, 128, 0).with_opacity(0.5), Color::BLACK, Color::rgb(255, 128, 0)]),
+            fill: PerPoint::Each(vec![
+                Color::rgb(0, 0, 255),
+                Color::rgb(0, 128, 0).with_opacity(0.5),
+                Color::BLACK,
+                Color::rgb(255, 128, 0),
+            ]),
             stroke: Some(Stroke::solid(Color::WHITE, 1.0)),
         };
         Scene {
@@ -385,13 +392,18 @@ pub(crate) mod tests {
             background: Color::WHITE,
             title: Some(hostile.to_string()),
             items: vec![
-                Item::new(Role::DataMark, Shape::Rect(Rect::new(10.123456, 20.0, 50.0, 30.0)), Style::fill(Color::rgb(255, 0, 0)))
-                    .with_rows(vec![7])
-                    .labelled(hostile),
-                Item::new(Role::DataMark, Shape::Circle { center: Point::new(100.0, 100.0), radius: 10.0 }, Style {
-                    fill: Some(Color::rgb(0, 0, 255).with_opacity(0.4)),
-                    stroke: Some(dashed.clone()),
-                }),
+                Item::new(
+                    Role::DataMark,
+                    Shape::Rect(Rect::new(10.123456, 20.0, 50.0, 30.0)),
+                    Style::fill(Color::rgb(255, 0, 0)),
+                )
+                .with_rows(vec![7])
+                .labelled(hostile),
+                Item::new(
+                    Role::DataMark,
+                    Shape::Circle { center: Point::new(100.0, 100.0), radius: 10.0 },
+                    Style { fill: Some(Color::rgb(0, 0, 255).with_opacity(0.4)), stroke: Some(dashed.clone()) },
+                ),
                 Item::new(
                     Role::Annotation,
                     Shape::Path(vec![
@@ -423,9 +435,15 @@ pub(crate) mod tests {
                     Some(Rect::new(200.0, 100.0, 190.0, 190.0)),
                 ),
                 Item::text(Role::Title, t(Point::new(200.0, 10.0), hostile, Anchor::Middle, Baseline::Top, 0.0)),
-                Item::text(Role::AxisTitle, t(Point::new(20.0, 150.0), "Value (units)", Anchor::Middle, Baseline::Middle, -90.0)),
+                Item::text(
+                    Role::AxisTitle,
+                    t(Point::new(20.0, 150.0), "Value (units)", Anchor::Middle, Baseline::Middle, -90.0),
+                ),
                 Item::text(Role::TickLabel, t(Point::new(380.0, 290.0), "1,000", Anchor::End, Baseline::Bottom, 0.0)),
-                Item::text(Role::Caption, t(Point::new(10.0, 280.0), "مرحبا بالعالم", Anchor::Start, Baseline::Alphabetic, 0.0)),
+                Item::text(
+                    Role::Caption,
+                    t(Point::new(10.0, 280.0), "مرحبا بالعالم", Anchor::Start, Baseline::Alphabetic, 0.0),
+                ),
             ],
         }
     }

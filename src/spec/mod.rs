@@ -181,7 +181,9 @@ y = "petal_width"
         );
         assert_eq!(
             diags[1].hint.as_deref(),
-            Some("canvas size `[width, height]` in CSS pixels, each at most 16384 (default `[640, 420]`); for example `size = [800, 600]`")
+            Some(
+                "canvas size `[width, height]` in CSS pixels, each at most 16384 (default `[640, 420]`); for example `size = [800, 600]`"
+            )
         );
         assert_eq!(diags[2].hint.as_deref(), Some("expected one of: `scatter`, `line`"));
 
