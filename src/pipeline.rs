@@ -268,18 +268,18 @@ pub fn render_all(
     let mut problems = Vec::new();
     for (index, chart) in &selected {
         let [w, h] = chart.size.unwrap_or(mark::DEFAULT_SIZE);
-        if options.formats.png {
-            if let Err(e) = render::png::check_canvas(w, h, options.scale) {
-                problems.push(mark_diagnostic(
-                    loaded,
-                    &MarkError::at(
-                        *index,
-                        &["size"],
-                        format!("chart \"{}\": {e}", chart.name),
-                        "reduce `size` or `--scale`",
-                    ),
-                ));
-            }
+        if options.formats.png
+            && let Err(e) = render::png::check_canvas(w, h, options.scale)
+        {
+            problems.push(mark_diagnostic(
+                loaded,
+                &MarkError::at(
+                    *index,
+                    &["size"],
+                    format!("chart \"{}\": {e}", chart.name),
+                    "reduce `size` or `--scale`",
+                ),
+            ));
         }
     }
     if !problems.is_empty() {

@@ -97,3 +97,24 @@ fn schema_is_json_with_closed_chart_tables() {
     assert!(text.contains("\"additionalProperties\":false"));
     assert!(text.contains("scatter") && text.contains("line"));
 }
+
+#[test]
+fn three_mistakes_are_reported_in_one_run_with_exit_code_2() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    std::fs::write(dir.path().join("iris.csv"), "petal_length,petal_width,species\n1,2,a\n").expect("data");
+    let spec = "[data.iris]\npath = \"iris.csv\"\n\n[[chart]]\nname = \"iris\"\nkind = \"scatter\"\ndata = \"iris\"\nx = \"petal_lenght\"\ny = \"petal_width\"\ncolour = \"species\"\nsize = \"big\"\n";
+    std::fs::write(dir.path().join("spec.toml"), spec).expect("spec");
+    let run = dataink().args(["render", "spec.toml", "--out", "out"]).current_dir(dir.path()).output().expect("run");
+    assert_eq!(run.status.code(), Some(2));
+    let stderr = String::from_utf8_lossy(&run.stderr);
+    for (position, message) in [
+        ("spec.toml:10:1", "unknown key `colour`"),
+        ("spec.toml:11:8", "`size` must be an array of 2 numbers, found a string"),
+        ("spec.toml:8:5", "has no column `petal_lenght`"),
+    ] {
+        assert!(stderr.contains(position) && stderr.contains(message), "{position} {message}: {stderr}");
+    }
+    assert_eq!(stderr.matches("= hint:").count(), 3, "{stderr}");
+    assert!(stderr.contains("error: 3 problems in `spec.toml`"), "{stderr}");
+    assert!(!dir.path().join("out").exists(), "nothing is written when the spec has errors");
+}

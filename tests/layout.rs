@@ -84,10 +84,10 @@ fn colour_encodings_have_a_legend() {
         let multi_colour = {
             let mut found = false;
             scene.walk(|item| {
-                if let Shape::Points(b) = &item.shape {
-                    if matches!(b.fill, dataink::scene::PerPoint::Each(_)) {
-                        found = true;
-                    }
+                if let Shape::Points(b) = &item.shape
+                    && matches!(b.fill, dataink::scene::PerPoint::Each(_))
+                {
+                    found = true;
                 }
             });
             found

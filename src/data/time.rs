@@ -7,7 +7,7 @@ use chrono::{DateTime, NaiveDate, NaiveDateTime};
 /// Date-times without an offset are read as UTC.
 pub fn parse_iso(text: &str) -> Option<f64> {
     let s = text.trim();
-    if s.len() < 10 || !s.as_bytes().get(4).is_some_and(|&b| b == b'-') {
+    if s.len() < 10 || s.as_bytes().get(4).is_none_or(|&b| b != b'-') {
         return None;
     }
     if let Ok(dt) = DateTime::parse_from_rfc3339(s) {

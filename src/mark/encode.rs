@@ -111,11 +111,11 @@ pub fn extent(values: &[f64], rows: &[u32]) -> Option<(f64, f64)> {
     let mut lo = f64::INFINITY;
     let mut hi = f64::NEG_INFINITY;
     for &r in rows {
-        if let Some(&v) = values.get(r as usize) {
-            if v.is_finite() {
-                lo = lo.min(v);
-                hi = hi.max(v);
-            }
+        if let Some(&v) = values.get(r as usize)
+            && v.is_finite()
+        {
+            lo = lo.min(v);
+            hi = hi.max(v);
         }
     }
     (lo <= hi).then_some((lo, hi))
@@ -176,7 +176,8 @@ pub fn position_axis(
         title,
         kind,
         domain,
-        nice: options.nice.unwrap_or(true) && options.domain.is_none(),
+        // Log axes keep the data extent: rounding out to whole decades can waste most of the plot.
+        nice: options.nice.unwrap_or(kind != ScaleKind::Log) && options.domain.is_none(),
         ticks: options.ticks,
         grid: options.grid.unwrap_or(kind != ScaleKind::Band),
         inset: 0.0,

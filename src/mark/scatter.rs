@@ -43,18 +43,18 @@ pub fn draw(chart: &Chart, options: &ScatterOptions, index: usize, table: &Table
         Some(o) => Some(encode::column(chart, index, "point_size", &o.field, table)?),
         None => None,
     };
-    if let (Some(col), Some(o)) = (size_col, &size_opts) {
-        if col.numbers().is_none() {
-            return Err(MarkError::at(
-                index,
-                &["point_size"],
-                format!(
-                    "chart \"{}\": `point_size` column `{}` holds text; marker area needs numbers",
-                    chart.name, o.field
-                ),
-                "size by a numeric column, or colour by this one instead",
-            ));
-        }
+    if let (Some(col), Some(o)) = (size_col, &size_opts)
+        && col.numbers().is_none()
+    {
+        return Err(MarkError::at(
+            index,
+            &["point_size"],
+            format!(
+                "chart \"{}\": `point_size` column `{}` holds text; marker area needs numbers",
+                chart.name, o.field
+            ),
+            "size by a numeric column, or colour by this one instead",
+        ));
     }
     let color_numeric = options.color.as_ref().and_then(|c| table.column(c.field())).filter(|c| c.numbers().is_some());
 
@@ -161,10 +161,10 @@ pub fn draw(chart: &Chart, options: &ScatterOptions, index: usize, table: &Table
     derived.push("row", DerivedColumn::Number(rows.iter().map(|&r| r as f64).collect()));
     derived.push(&x_opts.field, data_column(x_col, &rows));
     derived.push(&y_opts.field, data_column(y_col, &rows));
-    if let Some(c) = &options.color {
-        if let Some(col) = table.column(c.field()) {
-            derived.push(c.field(), data_column(col, &rows));
-        }
+    if let Some(c) = &options.color
+        && let Some(col) = table.column(c.field())
+    {
+        derived.push(c.field(), data_column(col, &rows));
     }
     if let (Some(col), Some(o)) = (size_col, &size_opts) {
         derived.push(&o.field, data_column(col, &rows));
