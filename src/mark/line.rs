@@ -2,13 +2,12 @@
 
 use super::derived::{Derived, DerivedColumn};
 use super::encode;
-use super::{ChartOutput, DEFAULT_SIZE, MarkError};
+use super::{ChartOutput, MarkError, frame};
 use crate::data::{Categories, Column, Table};
-use crate::guide::Theme;
 use crate::guide::axis::title_with_unit;
-use crate::guide::layout::{self, Domain, FrameSpec};
+use crate::guide::layout::Domain;
 use crate::guide::legend::{Legend, Symbol};
-use crate::scene::{Color, Item, PathCmd, PerPoint, Point, PointBatch, Role, Scene, Shape, Stroke, Style};
+use crate::scene::{Color, Item, PathCmd, PerPoint, Point, PointBatch, Role, Shape, Stroke, Style};
 use crate::spec::{Chart, LineOptions};
 
 /// One series: its name, colour and the rows it draws (sorted by x; `None` marks a break).
@@ -165,19 +164,7 @@ pub fn draw(chart: &Chart, options: &LineOptions, index: usize, table: &Table) -
         Vec::new()
     };
 
-    let [width, height] = chart.size.unwrap_or(DEFAULT_SIZE);
-    let theme = Theme::with_font_size(chart.font_size.unwrap_or(12.0));
-    let frame = layout::cartesian(&FrameSpec {
-        width,
-        height,
-        title: chart.title.clone(),
-        caption: chart.caption.clone(),
-        x: x_axis,
-        y: y_axis,
-        legends,
-        theme: theme.clone(),
-    })
-    .map_err(|e| MarkError::layout(index, &chart.name, e))?;
+    let (frame, theme) = frame::cartesian(chart, index, x_axis, y_axis, legends)?;
 
     let mut marks = Vec::new();
     let mut derived_series = Vec::new();
@@ -226,10 +213,7 @@ pub fn draw(chart: &Chart, options: &LineOptions, index: usize, table: &Table) -
             );
         }
     }
-    let mut items = frame.under;
-    items.push(Item::group(Role::DataMark, marks, Some(frame.plot)));
-    items.extend(frame.over);
-    let scene = Scene { width, height, background: theme.background, title: chart.title.clone(), items };
+    let scene = frame::scene(chart, frame, &theme, marks);
 
     let mut derived = Derived::default();
     derived.push("series", DerivedColumn::Text(derived_series));

@@ -5,6 +5,7 @@
 
 pub mod derived;
 pub mod encode;
+pub mod frame;
 pub mod line;
 pub mod scatter;
 

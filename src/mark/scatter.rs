@@ -2,14 +2,12 @@
 
 use super::derived::{Derived, DerivedColumn};
 use super::encode::{self, ColorEncoding};
-use super::{ChartOutput, DEFAULT_SIZE, MarkError};
+use super::{ChartOutput, MarkError, frame};
 use crate::data::Table;
-use crate::guide::Theme;
 use crate::guide::format::format_value;
-use crate::guide::layout::{self, FrameSpec};
 use crate::guide::legend::{Legend, Symbol};
 use crate::guide::ticks::extended;
-use crate::scene::{Color, Item, PerPoint, Point, PointBatch, Role, Scene, Shape, Stroke, Style};
+use crate::scene::{Color, Item, PerPoint, Point, PointBatch, Role, Shape, Stroke, Style};
 use crate::spec::{Chart, ScatterOptions};
 
 /// Default marker radius for `n` points: smaller as the plot fills up.
@@ -108,25 +106,13 @@ pub fn draw(chart: &Chart, options: &ScatterOptions, index: usize, table: &Table
         legends.push(size_legend(&o.title.clone().unwrap_or(o.field.clone()), o.unit.as_deref(), max_size, max_radius));
     }
 
-    let [width, height] = chart.size.unwrap_or(DEFAULT_SIZE);
-    let theme = Theme::with_font_size(chart.font_size.unwrap_or(12.0));
     let base_radius = options.radius.unwrap_or_else(|| default_radius(n));
     let largest_radius = if size_col.is_some() && max_size > 0.0 { max_radius } else { base_radius };
     let mut x_axis = encode::position_axis(chart, index, "x", &x_opts, x_col, &rows)?;
     let mut y_axis = encode::position_axis(chart, index, "y", &y_opts, y_col, &rows)?;
     x_axis.inset = largest_radius + 1.0;
     y_axis.inset = largest_radius + 1.0;
-    let frame = layout::cartesian(&FrameSpec {
-        width,
-        height,
-        title: chart.title.clone(),
-        caption: chart.caption.clone(),
-        x: x_axis,
-        y: y_axis,
-        legends,
-        theme: theme.clone(),
-    })
-    .map_err(|e| MarkError::layout(index, &chart.name, e))?;
+    let (frame, theme) = frame::cartesian(chart, index, x_axis, y_axis, legends)?;
 
     let mut centers = Vec::with_capacity(n);
     for &r in &rows {
@@ -152,10 +138,7 @@ pub fn draw(chart: &Chart, options: &ScatterOptions, index: usize, table: &Table
             .with_rows(rows.clone())
             .labelled(chart.name.clone());
 
-    let mut items = frame.under;
-    items.push(Item::group(Role::DataMark, vec![batch], Some(frame.plot)));
-    items.extend(frame.over);
-    let scene = Scene { width, height, background: theme.background, title: chart.title.clone(), items };
+    let scene = frame::scene(chart, frame, &theme, vec![batch]);
 
     let mut derived = Derived::default();
     derived.push("row", DerivedColumn::Number(rows.iter().map(|&r| r as f64).collect()));

@@ -161,6 +161,29 @@ pub struct LineOptions {
     pub mark_color: Option<String>,
 }
 
+/// `field()` and `options()` for a channel written either as a bare column name or as a table of
+/// options with a `field` key.
+macro_rules! field_channel {
+    ($channel:ident, $options:ident) => {
+        impl $channel {
+            /// The column name.
+            pub fn field(&self) -> &str {
+                match self {
+                    $channel::Field(f) => f,
+                    $channel::Detailed(o) => &o.field,
+                }
+            }
+            /// The options, with defaults for a bare column name.
+            pub fn options(&self) -> $options {
+                match self {
+                    $channel::Field(f) => $options { field: f.clone(), ..$options::default() },
+                    $channel::Detailed(o) => o.clone(),
+                }
+            }
+        }
+    };
+}
+
 /// A single value or a list of them.
 #[derive(Clone, Debug, Deserialize, Serialize, JsonSchema, PartialEq)]
 #[serde(untagged)]
@@ -225,22 +248,7 @@ pub struct ChannelOptions {
     pub grid: Option<bool>,
 }
 
-impl Channel {
-    /// The column name.
-    pub fn field(&self) -> &str {
-        match self {
-            Channel::Field(f) => f,
-            Channel::Detailed(o) => &o.field,
-        }
-    }
-    /// The options, with defaults for a bare column name.
-    pub fn options(&self) -> ChannelOptions {
-        match self {
-            Channel::Field(f) => ChannelOptions { field: f.clone(), ..ChannelOptions::default() },
-            Channel::Detailed(o) => o.clone(),
-        }
-    }
-}
+field_channel!(Channel, ChannelOptions);
 
 /// Scale types.
 #[derive(Clone, Copy, Debug, Deserialize, Serialize, JsonSchema, PartialEq, Eq)]
@@ -290,22 +298,7 @@ pub struct ColorOptions {
     pub midpoint: Option<f64>,
 }
 
-impl ColorChannel {
-    /// The column name.
-    pub fn field(&self) -> &str {
-        match self {
-            ColorChannel::Field(f) => f,
-            ColorChannel::Detailed(o) => &o.field,
-        }
-    }
-    /// The options, with defaults for a bare column name.
-    pub fn options(&self) -> ColorOptions {
-        match self {
-            ColorChannel::Field(f) => ColorOptions { field: f.clone(), ..ColorOptions::default() },
-            ColorChannel::Detailed(o) => o.clone(),
-        }
-    }
-}
+field_channel!(ColorChannel, ColorOptions);
 
 /// How a colour column is read.
 #[derive(Clone, Copy, Debug, Deserialize, Serialize, JsonSchema, PartialEq, Eq)]
@@ -345,22 +338,7 @@ pub struct SizeOptions {
     pub max_radius: Option<f64>,
 }
 
-impl SizeChannel {
-    /// The column name.
-    pub fn field(&self) -> &str {
-        match self {
-            SizeChannel::Field(f) => f,
-            SizeChannel::Detailed(o) => &o.field,
-        }
-    }
-    /// The options, with defaults for a bare column name.
-    pub fn options(&self) -> SizeOptions {
-        match self {
-            SizeChannel::Field(f) => SizeOptions { field: f.clone(), ..SizeOptions::default() },
-            SizeChannel::Detailed(o) => o.clone(),
-        }
-    }
-}
+field_channel!(SizeChannel, SizeOptions);
 
 /// Schema transform: the items of an array field must be greater than zero.
 fn positive_items(schema: &mut schemars::Schema) {
