@@ -84,6 +84,7 @@ fn line_small(c: &mut Criterion) {
                 &parsed.spec.data["series"],
                 std::path::Path::new("."),
                 dataink::data::PathPolicy::InsideSpecFolder,
+                None,
             )
             .expect("inline data");
             let out = mark::draw(&parsed.spec.chart[0], 0, &table).expect("line draws");

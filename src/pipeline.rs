@@ -83,9 +83,16 @@ pub fn load(spec_path: &Path, policy: PathPolicy) -> Result<Loaded, Failed> {
         Some(s) => s.data.clone(),
         None => valid_sources(&json),
     };
+    let needed = needed_columns(&json);
     let mut tables = BTreeMap::new();
     for (name, source_spec) in &sources {
-        match data::load_source(source_spec, &spec_dir, policy) {
+        let t0 = std::time::Instant::now();
+        let wanted: Option<Vec<String>> = needed.get(name).map(|set| set.iter().cloned().collect());
+        let r = data::load_source(source_spec, &spec_dir, policy, wanted.as_deref());
+        if std::env::var_os("DATAINK_TIMINGS").is_some() {
+            eprintln!("load {name}: {:?}", t0.elapsed());
+        }
+        match r {
             Ok(table) => {
                 tables.insert(name.clone(), table);
             }
@@ -109,6 +116,17 @@ pub fn load(spec_path: &Path, policy: PathPolicy) -> Result<Loaded, Failed> {
     }
 }
 
+/// Run `work`; with the environment variable `DATAINK_TIMINGS` set, print how long it took.
+fn timed<T>(label: &str, work: impl FnOnce() -> T) -> T {
+    if std::env::var_os("DATAINK_TIMINGS").is_none() {
+        return work();
+    }
+    let start = std::time::Instant::now();
+    let out = work();
+    eprintln!("timing: {label}: {:.1} ms", start.elapsed().as_secs_f64() * 1e3);
+    out
+}
+
 /// The data sources of a spec that failed validation elsewhere, where they are valid themselves.
 fn valid_sources(doc: &Value) -> BTreeMap<String, spec::DataSource> {
     let mut out = BTreeMap::new();
@@ -122,28 +140,48 @@ fn valid_sources(doc: &Value) -> BTreeMap<String, spec::DataSource> {
     out
 }
 
+/// The column references of one chart table: `(column, spec path)` for every column-bearing key.
+fn chart_fields(index: usize, chart: &Value) -> Vec<(String, Vec<PathSeg>)> {
+    let Some(kind) = chart.get("kind").and_then(Value::as_str) else { return Vec::new() };
+    let mut out = Vec::new();
+    for key in mark::column_keys(kind) {
+        if let Some(value) = chart.get(*key) {
+            let base = vec![PathSeg::Key("chart".into()), PathSeg::Index(index), PathSeg::Key(key.to_string())];
+            out.extend(field_refs(value, base));
+        }
+    }
+    out
+}
+
+/// The columns each data source must provide: the union of its charts' column references.
+/// Sources with a chart whose kind is unknown are read whole.
+fn needed_columns(doc: &Value) -> BTreeMap<String, std::collections::BTreeSet<String>> {
+    let mut out: BTreeMap<String, std::collections::BTreeSet<String>> = BTreeMap::new();
+    let Some(Value::Array(charts)) = doc.get("chart") else { return out };
+    for (index, chart) in charts.iter().enumerate() {
+        let Some(data_name) = chart.get("data").and_then(Value::as_str) else { continue };
+        out.entry(data_name.to_string()).or_default().extend(chart_fields(index, chart).into_iter().map(|(f, _)| f));
+    }
+    out
+}
+
 /// Check that every column a chart names exists in its data source. Works on the raw spec so it
 /// runs even when other parts of the spec have errors.
 fn check_columns(doc: &Value, spans: &SpecDoc, tables: &BTreeMap<String, Table>) -> Vec<Diagnostic> {
     let mut out = Vec::new();
     let Some(Value::Array(charts)) = doc.get("chart") else { return out };
     for (index, chart) in charts.iter().enumerate() {
-        let Some(kind) = chart.get("kind").and_then(Value::as_str) else { continue };
         let Some(data_name) = chart.get("data").and_then(Value::as_str) else { continue };
         let Some(table) = tables.get(data_name) else { continue };
         let chart_name = chart.get("name").and_then(Value::as_str).unwrap_or("?");
-        for key in mark::column_keys(kind) {
-            let Some(value) = chart.get(*key) else { continue };
-            let base = vec![PathSeg::Key("chart".into()), PathSeg::Index(index), PathSeg::Key(key.to_string())];
-            for (field, path) in field_refs(value, base) {
-                if table.column(&field).is_none() {
-                    let (message, hint) = mark::encode::missing_column(chart_name, data_name, &field, table);
-                    let mut d = Diagnostic::error(message).with_hint(hint).with_label("no such column");
-                    if let Some(span) = spans.span_of(&path) {
-                        d = d.at(span);
-                    }
-                    out.push(d);
+        for (field, path) in chart_fields(index, chart) {
+            if table.column(&field).is_none() {
+                let (message, hint) = mark::encode::missing_column(chart_name, data_name, &field, table);
+                let mut d = Diagnostic::error(message).with_hint(hint).with_label("no such column");
+                if let Some(span) = spans.span_of(&path) {
+                    d = d.at(span);
                 }
+                out.push(d);
             }
         }
     }
@@ -294,8 +332,11 @@ pub fn render_all(
     let results: Vec<Result<Rendered, Diagnostic>> = selected
         .par_iter()
         .map(|(index, chart)| {
-            let out = draw_chart(loaded, *index, chart).map_err(|e| mark_diagnostic(loaded, &e))?;
-            let files = write_chart(&out, &chart.name, options)?;
+            let out = timed(&format!("draw chart \"{}\"", chart.name), || draw_chart(loaded, *index, chart))
+                .map_err(|e| mark_diagnostic(loaded, &e))?;
+            let files = timed(&format!("render and write chart \"{}\"", chart.name), || {
+                write_chart(&out, &chart.name, loaded.tables.get(&chart.data), options)
+            })?;
             progress(&chart.name);
             Ok(Rendered { name: chart.name.clone(), files, warnings: out.warnings })
         })
@@ -311,7 +352,12 @@ pub fn render_all(
     if errors.is_empty() { Ok(rendered) } else { Err(errors) }
 }
 
-fn write_chart(out: &ChartOutput, name: &str, options: &RenderOptions) -> Result<Vec<PathBuf>, Diagnostic> {
+fn write_chart(
+    out: &ChartOutput,
+    name: &str,
+    table: Option<&Table>,
+    options: &RenderOptions,
+) -> Result<Vec<PathBuf>, Diagnostic> {
     let mut files = Vec::new();
     let write = |path: PathBuf, bytes: &[u8], files: &mut Vec<PathBuf>| -> Result<(), Diagnostic> {
         std::fs::write(&path, bytes)
@@ -329,7 +375,9 @@ fn write_chart(out: &ChartOutput, name: &str, options: &RenderOptions) -> Result
         write(options.out_dir.join(format!("{name}.png")), &png, &mut files)?;
     }
     if options.formats.csv {
-        write(options.out_dir.join(format!("{name}.csv")), out.derived.to_csv().as_bytes(), &mut files)?;
+        let empty = Table::default();
+        let csv = out.derived.to_csv(table.unwrap_or(&empty));
+        write(options.out_dir.join(format!("{name}.csv")), csv.as_bytes(), &mut files)?;
     }
     Ok(files)
 }

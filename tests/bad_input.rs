@@ -128,7 +128,7 @@ fn ragged_rows_are_a_parse_error() {
 #[test]
 fn byte_order_mark_is_ignored() {
     let out = Fixture::new(&spec_for("d.csv"), &[("d.csv", b"\xef\xbb\xbfx,y\n1,2\n2,3\n")]).draw().expect("BOM");
-    assert_eq!(out[0].derived.rows(), 2);
+    assert_eq!(out[0].derived.len(), 2);
 }
 
 #[test]
@@ -141,7 +141,7 @@ fn invalid_utf8_is_a_parse_error() {
 fn non_finite_cells_are_dropped_with_a_counted_warning() {
     let fx = Fixture::new(&spec_for("d.csv"), &[("d.csv", b"x,y\n1,2\nNaN,3\ninf,4\n1e999,5\n2,6\n-inf,7\n")]);
     let out = fx.draw().expect("draws");
-    assert_eq!(out[0].derived.rows(), 2);
+    assert_eq!(out[0].derived.len(), 2);
     assert_eq!(
         out[0].warnings,
         vec![

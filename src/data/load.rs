@@ -112,8 +112,15 @@ pub fn infer_format(path: &Path) -> Option<DataFormat> {
     }
 }
 
-/// Load one data source. `spec_dir` is the folder of the spec file.
-pub fn load_source(source: &DataSource, spec_dir: &Path, policy: PathPolicy) -> Result<Table, LoadError> {
+/// Load one data source. `spec_dir` is the folder of the spec file. With `columns`, only those
+/// columns are read from CSV and Parquet files (all of them if any is missing, so that the
+/// missing-column diagnostic can list the real ones).
+pub fn load_source(
+    source: &DataSource,
+    spec_dir: &Path,
+    policy: PathPolicy,
+    columns: Option<&[String]>,
+) -> Result<Table, LoadError> {
     match (&source.path, &source.values) {
         (Some(path), None) => {
             let resolved = resolve_data_path(spec_dir, path, policy).map_err(LoadError::Path)?;
@@ -124,7 +131,13 @@ pub fn load_source(source: &DataSource, spec_dir: &Path, policy: PathPolicy) -> 
             let separator = source.delimiter.as_deref().and_then(|d| d.bytes().next()).unwrap_or_else(|| {
                 if resolved.extension().is_some_and(|e| e.eq_ignore_ascii_case("tsv")) { b'\t' } else { b',' }
             });
-            load_file(&resolved, format, separator)
+            match columns {
+                Some(cols) if !cols.is_empty() && format != DataFormat::Json => {
+                    load_file(&resolved, format, separator, Some(cols))
+                        .or_else(|_| load_file(&resolved, format, separator, None))
+                }
+                _ => load_file(&resolved, format, separator, None),
+            }
         }
         (None, Some(values)) => {
             let bytes = serde_json::to_vec(values).map_err(|e| LoadError::Parse {
@@ -143,8 +156,13 @@ pub fn load_source(source: &DataSource, spec_dir: &Path, policy: PathPolicy) -> 
     }
 }
 
-/// Load a file of a known format.
-pub fn load_file(path: &Path, format: DataFormat, separator: u8) -> Result<Table, LoadError> {
+/// Load a file of a known format, optionally only some of its columns (CSV and Parquet).
+pub fn load_file(
+    path: &Path,
+    format: DataFormat,
+    separator: u8,
+    columns: Option<&[String]>,
+) -> Result<Table, LoadError> {
     let file = File::open(path).map_err(|e| match e.kind() {
         std::io::ErrorKind::NotFound => LoadError::NotFound(path.to_path_buf()),
         _ => LoadError::Io(path.to_path_buf(), e),
@@ -156,11 +174,12 @@ pub fn load_file(path: &Path, format: DataFormat, separator: u8) -> Result<Table
     let df = match format {
         DataFormat::Csv => CsvReadOptions::default()
             .with_has_header(true)
+            .with_columns(columns.map(|c| c.iter().map(|n| PlSmallStr::from(n.as_str())).collect()))
             .with_infer_schema_length(Some(10_000))
-            .map_parse_options(|p| p.with_separator(separator).with_try_parse_dates(true))
+            .map_parse_options(|p| p.with_separator(separator))
             .into_reader_with_file_handle(file)
             .finish(),
-        DataFormat::Parquet => ParquetReader::new(file).finish(),
+        DataFormat::Parquet => ParquetReader::new(file).with_columns(columns.map(<[String]>::to_vec)).finish(),
         DataFormat::Json => {
             let lines =
                 path.extension().is_some_and(|e| e.eq_ignore_ascii_case("jsonl") || e.eq_ignore_ascii_case("ndjson"));

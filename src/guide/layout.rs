@@ -180,7 +180,10 @@ pub fn cartesian(spec: &FrameSpec) -> Result<Frame, LayoutError> {
             .unwrap_or(0.0);
         scales = Some((x, y));
     }
-    let final_plot = Rect::new(left, top, spec.width - left - right - right_overhang, spec.height - top - bottom);
+    // Whole-pixel edges: crisp axis lines, and clipping to the plot is a plain bounds check.
+    let (x0, y0) = (left.ceil(), top.ceil());
+    let (x1, y1) = ((spec.width - right - right_overhang).floor(), (spec.height - bottom).floor());
+    let final_plot = Rect::new(x0, y0, x1 - x0, y1 - y0);
     if final_plot.w < MIN_PLOT_SIDE || final_plot.h < MIN_PLOT_SIDE {
         return Err(LayoutError::TooSmall { plot_width: final_plot.w.max(0.0), plot_height: final_plot.h.max(0.0) });
     }

@@ -2,69 +2,111 @@
 
 use std::fmt::Write as _;
 
+use crate::data::{Column, Table};
 use crate::guide::format::format_value;
+use crate::guide::time::format_timestamp;
 
 /// One column of derived output.
 #[derive(Clone, Debug, PartialEq)]
 pub enum DerivedColumn {
-    /// Numbers (written with full precision).
+    /// Numbers computed by the chart kind (written with full precision).
     Number(Vec<f64>),
-    /// Text (quoted as CSV requires).
+    /// Text computed by the chart kind (quoted as CSV requires).
     Text(Vec<String>),
+    /// A column of the chart's table, read at [`Derived::rows`] only when the CSV is written
+    /// (so charts of millions of rows copy nothing unless `--format csv` asks for it).
+    Source(String),
+    /// The source row index of each output row.
+    RowIndex,
 }
 
-impl DerivedColumn {
-    fn len(&self) -> usize {
-        match self {
-            DerivedColumn::Number(v) => v.len(),
-            DerivedColumn::Text(v) => v.len(),
-        }
-    }
-}
-
-/// A small table of derived geometry: named columns of equal length.
+/// A small table of derived geometry in data coordinates: one output row per entry of `rows`.
 #[derive(Clone, Debug, PartialEq, Default)]
 pub struct Derived {
+    /// The source row of each output row.
+    pub rows: Vec<u32>,
     /// Columns in output order.
     pub columns: Vec<(String, DerivedColumn)>,
 }
 
 impl Derived {
+    /// An empty table whose output rows come from these source rows.
+    pub fn over(rows: Vec<u32>) -> Derived {
+        Derived { rows, columns: Vec::new() }
+    }
+
     /// Add a column.
     pub fn push(&mut self, name: &str, column: DerivedColumn) {
         self.columns.push((name.to_string(), column));
     }
 
-    /// Number of rows (the shortest column).
-    pub fn rows(&self) -> usize {
-        self.columns.iter().map(|(_, c)| c.len()).min().unwrap_or(0)
+    /// Number of output rows.
+    pub fn len(&self) -> usize {
+        self.rows.len()
     }
 
-    /// The table as CSV text with a header row. Numbers use Rust's shortest round-trip form;
-    /// non-finite numbers are written as empty cells.
-    pub fn to_csv(&self) -> String {
+    /// Whether there are no output rows.
+    pub fn is_empty(&self) -> bool {
+        self.rows.is_empty()
+    }
+
+    /// The table as CSV text with a header row, reading [`DerivedColumn::Source`] columns from
+    /// `table`. Numbers use Rust's shortest round-trip form; non-finite numbers and missing
+    /// cells are written as empty cells.
+    pub fn to_csv(&self, table: &Table) -> String {
         let mut out = String::new();
         let header: Vec<String> = self.columns.iter().map(|(n, _)| csv_field(n)).collect();
         out.push_str(&header.join(","));
         out.push('\n');
-        for row in 0..self.rows() {
+        let sources: Vec<Option<&Column>> = self
+            .columns
+            .iter()
+            .map(|(_, c)| match c {
+                DerivedColumn::Source(name) => table.column(name),
+                _ => None,
+            })
+            .collect();
+        for (k, &row) in self.rows.iter().enumerate() {
             for (i, (_, column)) in self.columns.iter().enumerate() {
                 if i > 0 {
                     out.push(',');
                 }
                 match column {
-                    DerivedColumn::Number(v) => {
-                        let x = v.get(row).copied().unwrap_or(f64::NAN);
-                        if x.is_finite() {
-                            let _ = write!(out, "{x}");
-                        }
+                    DerivedColumn::Number(v) => push_number(&mut out, v.get(k).copied()),
+                    DerivedColumn::Text(v) => out.push_str(&csv_field(v.get(k).map(String::as_str).unwrap_or(""))),
+                    DerivedColumn::RowIndex => {
+                        let _ = write!(out, "{row}");
                     }
-                    DerivedColumn::Text(v) => out.push_str(&csv_field(v.get(row).map(String::as_str).unwrap_or(""))),
+                    DerivedColumn::Source(_) => match sources.get(i).copied().flatten() {
+                        Some(col) => match (col.categories(), col.numbers()) {
+                            (Some(cats), _) => out.push_str(&csv_field(cats.value(row as usize).unwrap_or(""))),
+                            (None, Some(nums)) if col.is_time() => {
+                                if let Some(ms) = nums.get(row as usize).filter(|v| v.is_finite()) {
+                                    out.push_str(&format_timestamp(*ms));
+                                }
+                            }
+                            (None, Some(nums)) => push_number(&mut out, nums.get(row as usize).copied()),
+                            _ => {}
+                        },
+                        None => {}
+                    },
                 }
             }
             out.push('\n');
         }
         out
+    }
+}
+
+/// Shortest round-trip form; exponent notation for very small or large magnitudes.
+fn push_number(out: &mut String, v: Option<f64>) {
+    if let Some(x) = v.filter(|x| x.is_finite()) {
+        let a = x.abs();
+        if a == 0.0 || (1e-5..1e16).contains(&a) {
+            let _ = write!(out, "{x}");
+        } else {
+            let _ = write!(out, "{x:e}");
+        }
     }
 }
 
@@ -84,18 +126,32 @@ pub fn readable(v: f64) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::data::{Categories, ColumnValues};
 
     #[test]
-    fn csv_quotes_and_round_trips_numbers() {
-        let mut d = Derived::default();
+    fn csv_quotes_round_trips_numbers_and_reads_source_columns() {
+        let table = Table {
+            columns: vec![
+                Column { name: "v".into(), values: ColumnValues::Number(vec![10.0, 20.0, 30.0]) },
+                Column {
+                    name: "name".into(),
+                    values: ColumnValues::Text(Categories::from_values([Some("a,b"), Some("c"), None])),
+                },
+            ],
+            rows: 3,
+        };
+        let mut d = Derived::over(vec![2, 0, 1]);
+        d.push("row", DerivedColumn::RowIndex);
         d.push("x", DerivedColumn::Number(vec![0.1, f64::NAN, 1e-300]));
-        d.push("label", DerivedColumn::Text(vec!["a,b".into(), "say \"hi\"".into(), "=cmd()".into()]));
-        let csv = d.to_csv();
+        d.push("label", DerivedColumn::Text(vec!["say \"hi\"".into(), "=cmd()".into(), "-3".into()]));
+        d.push("v", DerivedColumn::Source("v".into()));
+        d.push("name", DerivedColumn::Source("name".into()));
+        let csv = d.to_csv(&table);
         let lines: Vec<&str> = csv.lines().collect();
-        assert_eq!(lines[0], "x,label");
-        assert_eq!(lines[1], "0.1,\"a,b\"");
-        assert_eq!(lines[2], ",\"say \"\"hi\"\"\"");
-        assert_eq!(lines[3], "0.000...".replace("0.000...", &format!("{}", 1e-300)) + ",'=cmd()");
-        assert_eq!(lines[3].split(',').next().and_then(|s| s.parse::<f64>().ok()), Some(1e-300));
+        assert_eq!(lines[0], "row,x,label,v,name");
+        assert_eq!(lines[1], "2,0.1,\"say \"\"hi\"\"\",30,");
+        assert_eq!(lines[2], "0,,'=cmd(),10,\"a,b\"");
+        assert_eq!(lines[3], "1,1e-300,-3,20,c");
+        assert_eq!(lines.len(), 4);
     }
 }

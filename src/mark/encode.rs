@@ -50,8 +50,11 @@ pub fn column<'t>(
 /// value in any numeric column the chart uses is dropped, and a warning says how many rows were
 /// dropped and why. Text columns never drop rows (missing text is its own category).
 pub fn finite_rows(chart: &str, rows: usize, numeric: &[(&str, &Column)]) -> (Vec<u32>, Option<String>) {
-    let mut kept = Vec::with_capacity(rows);
     let slices: Vec<&[f64]> = numeric.iter().filter_map(|(_, c)| c.numbers()).collect();
+    if slices.iter().all(|s| s.len() == rows && s.iter().all(|v| v.is_finite())) {
+        return ((0..rows as u32).collect(), None);
+    }
+    let mut kept = Vec::with_capacity(rows);
     for row in 0..rows {
         if slices.iter().all(|s| s.get(row).is_some_and(|v| v.is_finite())) {
             kept.push(row as u32);
@@ -110,6 +113,16 @@ pub fn no_rows(chart: &crate::spec::Chart, index: usize, table: &Table, dropped:
 pub fn extent(values: &[f64], rows: &[u32]) -> Option<(f64, f64)> {
     let mut lo = f64::INFINITY;
     let mut hi = f64::NEG_INFINITY;
+    if rows.len() == values.len() {
+        // Rows are distinct and sorted, so this is every row: scan the values directly.
+        for &v in values {
+            if v.is_finite() {
+                lo = lo.min(v);
+                hi = hi.max(v);
+            }
+        }
+        return (lo <= hi).then_some((lo, hi));
+    }
     for &r in rows {
         if let Some(&v) = values.get(r as usize)
             && v.is_finite()
@@ -217,15 +230,64 @@ pub fn used_levels(cats: &Categories, rows: &[u32]) -> Vec<String> {
 /// Label of the category of missing text cells.
 pub const MISSING_LABEL: &str = "(missing)";
 
-/// Pixel position of `row` of `column` on `scale` (band scales place categories at band centres).
-pub fn position(scale: &Scale, column: &Column, row: u32) -> f64 {
-    match (scale, column.categories()) {
-        (Scale::Band(band), Some(cats)) => {
-            let label = cats.value(row as usize).unwrap_or(MISSING_LABEL);
-            band.band_of(label).map(|i| band.center(i)).unwrap_or(f64::NAN)
+/// Maps rows of one column to pixel positions on a scale, with the per-column work (band
+/// lookups, type dispatch) done once rather than per row.
+pub enum Positioner<'a> {
+    /// A numeric or time column on a continuous scale.
+    Numbers {
+        /// The column's values.
+        values: &'a [f64],
+        /// The scale.
+        scale: &'a Scale,
+    },
+    /// A text column on a band scale: the band centre of each category code.
+    Codes {
+        /// Category code per row.
+        codes: &'a [u32],
+        /// Pixel centre per code (NaN for codes not on the scale).
+        centers: Vec<f64>,
+        /// Centre of the `(missing)` band, if there is one.
+        missing: f64,
+    },
+}
+
+impl<'a> Positioner<'a> {
+    /// A positioner for `column` on `scale`.
+    pub fn new(scale: &'a Scale, column: &'a Column) -> Positioner<'a> {
+        match (scale, column.categories()) {
+            (Scale::Band(band), Some(cats)) => Positioner::Codes {
+                codes: &cats.codes,
+                centers: cats
+                    .levels
+                    .iter()
+                    .map(|l| band.band_of(l).map(|i| band.center(i)).unwrap_or(f64::NAN))
+                    .collect(),
+                missing: band.band_of(MISSING_LABEL).map(|i| band.center(i)).unwrap_or(f64::NAN),
+            },
+            _ => Positioner::Numbers { values: column.numbers().unwrap_or(&[]), scale },
         }
-        _ => column.numbers().and_then(|v| v.get(row as usize)).map(|&v| scale.map(v)).unwrap_or(f64::NAN),
     }
+
+    /// Pixel position of `row` (NaN if it has none).
+    #[inline]
+    pub fn at(&self, row: u32) -> f64 {
+        match self {
+            Positioner::Numbers { values, scale } => {
+                values.get(row as usize).map(|&v| scale.map(v)).unwrap_or(f64::NAN)
+            }
+            Positioner::Codes { codes, centers, missing } => match codes.get(row as usize) {
+                Some(&c) if c != Categories::MISSING => centers.get(c as usize).copied().unwrap_or(f64::NAN),
+                _ => *missing,
+            },
+        }
+    }
+}
+
+/// Pixel centres of `rows` from two positioners (in parallel for large inputs).
+pub fn centers(x: &Positioner, y: &Positioner, rows: &[u32]) -> Vec<crate::scene::Point> {
+    use rayon::prelude::*;
+    let point = |&r: &u32| crate::scene::Point::new(x.at(r), y.at(r));
+    if rows.len() < 50_000 { rows.iter().map(point).collect() } else { rows.par_iter().map(point).collect() }
 }
 
 /// How marks are coloured.

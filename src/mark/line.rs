@@ -168,16 +168,17 @@ pub fn draw(chart: &Chart, options: &LineOptions, index: usize, table: &Table) -
 
     let mut marks = Vec::new();
     let mut derived_series = Vec::new();
-    let mut derived_x = Vec::new();
     let mut derived_y = Vec::new();
-    let mut derived_row = Vec::new();
+    let mut derived_rows = Vec::new();
     for s in &series {
         let dropped = dropped_between(&s.rows, &all_rows, x_numbers, s.y.numbers());
         let mut cmds = Vec::with_capacity(s.rows.len() + 1);
         let mut centers = Vec::new();
         let mut pen_down = false;
+        let x_at = encode::Positioner::new(&frame.x, x_col);
+        let y_at = encode::Positioner::new(&frame.y, s.y);
         for (k, &r) in s.rows.iter().enumerate() {
-            let p = Point::new(encode::position(&frame.x, x_col, r), encode::position(&frame.y, s.y, r));
+            let p = Point::new(x_at.at(r), y_at.at(r));
             if dropped.get(k).copied().unwrap_or(false) {
                 pen_down = false;
             }
@@ -185,8 +186,7 @@ pub fn draw(chart: &Chart, options: &LineOptions, index: usize, table: &Table) -
             pen_down = true;
             centers.push(p);
             derived_series.push(s.name.clone());
-            derived_row.push(r as f64);
-            derived_x.push(x_numbers.and_then(|v| v.get(r as usize)).copied().unwrap_or(f64::NAN));
+            derived_rows.push(r);
             derived_y.push(s.y.numbers().and_then(|v| v.get(r as usize)).copied().unwrap_or(f64::NAN));
         }
         let mut style = Style::stroke(s.color, stroke_width);
@@ -215,22 +215,10 @@ pub fn draw(chart: &Chart, options: &LineOptions, index: usize, table: &Table) -
     }
     let scene = frame::scene(chart, frame, &theme, marks);
 
-    let mut derived = Derived::default();
+    let mut derived = Derived::over(derived_rows);
     derived.push("series", DerivedColumn::Text(derived_series));
-    derived.push("row", DerivedColumn::Number(derived_row));
-    if let Some(cats) = x_col.categories() {
-        derived.push(
-            &x_opts.field,
-            DerivedColumn::Text(
-                series
-                    .iter()
-                    .flat_map(|s| s.rows.iter().map(|&r| cats.value(r as usize).unwrap_or("").to_string()))
-                    .collect(),
-            ),
-        );
-    } else {
-        derived.push(&x_opts.field, DerivedColumn::Number(derived_x));
-    }
+    derived.push("row", DerivedColumn::RowIndex);
+    derived.push(&x_opts.field, DerivedColumn::Source(x_opts.field.clone()));
     derived.push("y", DerivedColumn::Number(derived_y));
     Ok(ChartOutput { scene, derived, warnings })
 }

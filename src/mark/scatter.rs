@@ -7,7 +7,7 @@ use crate::data::Table;
 use crate::guide::format::format_value;
 use crate::guide::legend::{Legend, Symbol};
 use crate::guide::ticks::extended;
-use crate::scene::{Color, Item, PerPoint, Point, PointBatch, Role, Shape, Stroke, Style};
+use crate::scene::{Color, Item, PerPoint, PointBatch, Role, Shape, Stroke, Style};
 use crate::spec::{Chart, ScatterOptions};
 
 /// Default marker radius for `n` points: smaller as the plot fills up.
@@ -114,10 +114,8 @@ pub fn draw(chart: &Chart, options: &ScatterOptions, index: usize, table: &Table
     y_axis.inset = largest_radius + 1.0;
     let (frame, theme) = frame::cartesian(chart, index, x_axis, y_axis, legends)?;
 
-    let mut centers = Vec::with_capacity(n);
-    for &r in &rows {
-        centers.push(Point::new(encode::position(&frame.x, x_col, r), encode::position(&frame.y, y_col, r)));
-    }
+    let centers =
+        encode::centers(&encode::Positioner::new(&frame.x, x_col), &encode::Positioner::new(&frame.y, y_col), &rows);
     let fill = match &colors {
         ColorEncoding::Fixed(c) => PerPoint::Uniform(c.with_opacity(opacity)),
         other => PerPoint::Each(rows.iter().map(|&r| other.color_of(r).with_opacity(opacity)).collect()),
@@ -140,17 +138,15 @@ pub fn draw(chart: &Chart, options: &ScatterOptions, index: usize, table: &Table
 
     let scene = frame::scene(chart, frame, &theme, vec![batch]);
 
-    let mut derived = Derived::default();
-    derived.push("row", DerivedColumn::Number(rows.iter().map(|&r| r as f64).collect()));
-    derived.push(&x_opts.field, data_column(x_col, &rows));
-    derived.push(&y_opts.field, data_column(y_col, &rows));
-    if let Some(c) = &options.color
-        && let Some(col) = table.column(c.field())
-    {
-        derived.push(c.field(), data_column(col, &rows));
+    let mut derived = Derived::over(rows);
+    derived.push("row", DerivedColumn::RowIndex);
+    derived.push(&x_opts.field, DerivedColumn::Source(x_opts.field.clone()));
+    derived.push(&y_opts.field, DerivedColumn::Source(y_opts.field.clone()));
+    if let Some(c) = &options.color {
+        derived.push(c.field(), DerivedColumn::Source(c.field().to_string()));
     }
-    if let (Some(col), Some(o)) = (size_col, &size_opts) {
-        derived.push(&o.field, data_column(col, &rows));
+    if let Some(o) = &size_opts {
+        derived.push(&o.field, DerivedColumn::Source(o.field.clone()));
     }
     Ok(ChartOutput { scene, derived, warnings })
 }
@@ -175,19 +171,6 @@ fn size_legend(title: &str, unit: Option<&str>, max_value: f64, max_radius: f64)
         title: crate::guide::axis::title_with_unit(title, unit),
         entries,
         color: Color::rgb(0x55, 0x55, 0x55),
-    }
-}
-
-/// A column's values at `rows` for derived output.
-pub fn data_column(column: &crate::data::Column, rows: &[u32]) -> DerivedColumn {
-    match column.categories() {
-        Some(cats) => {
-            DerivedColumn::Text(rows.iter().map(|&r| cats.value(r as usize).unwrap_or("").to_string()).collect())
-        }
-        None => {
-            let values = column.numbers().unwrap_or(&[]);
-            DerivedColumn::Number(rows.iter().map(|&r| values.get(r as usize).copied().unwrap_or(f64::NAN)).collect())
-        }
     }
 }
 

@@ -566,7 +566,11 @@ fn draw_batch_on(pixmap: &mut Pixmap, batch: &PointBatch, scale: f64, clip: &Cli
         x1: x1 as f64,
         y1: y1 as f64,
     };
-    let mask = clip.mask.as_ref().map(|m| m.data());
+    // A clip rectangle on whole device pixels is exactly the target bounds: skip its mask so
+    // stamps can take the fast unmasked path (chart layouts snap the plot area to pixels).
+    let on_pixels = |v: f64| (v * scale - (v * scale).round()).abs() < 1e-9;
+    let aligned = [r.x, r.y, r.right(), r.bottom()].into_iter().all(on_pixels);
+    let mask = if aligned { None } else { clip.mask.as_ref().map(|m| m.data()) };
     let n = batch.centers.len();
     let (keys, large) = plan.keys(0..n);
     plan.prepare(&keys);
