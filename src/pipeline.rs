@@ -86,13 +86,10 @@ pub fn load(spec_path: &Path, policy: PathPolicy) -> Result<Loaded, Failed> {
     let needed = needed_columns(&json);
     let mut tables = BTreeMap::new();
     for (name, source_spec) in &sources {
-        let t0 = std::time::Instant::now();
         let wanted: Option<Vec<String>> = needed.get(name).map(|set| set.iter().cloned().collect());
-        let r = data::load_source(source_spec, &spec_dir, policy, wanted.as_deref());
-        if std::env::var_os("DATAINK_TIMINGS").is_some() {
-            eprintln!("load {name}: {:?}", t0.elapsed());
-        }
-        match r {
+        match timed(&format!("load data \"{name}\""), || {
+            data::load_source(source_spec, &spec_dir, policy, wanted.as_deref())
+        }) {
             Ok(table) => {
                 tables.insert(name.clone(), table);
             }
