@@ -10,9 +10,12 @@ How to run (from the repository root):
     python3 scripts/pchip_fixture.py            # writes tests/fixtures/pchip.json
     python3 scripts/pchip_fixture.py OUT.json   # or somewhere else
 
-The output is deterministic: a fixed seed, fixed cases, and floats written by json.dumps,
-which uses Python's shortest round-trip repr (so every float reads back bit-exactly).
-The SciPy and NumPy versions used are recorded in the file.
+The output is deterministic: a fixed seed and fixed cases. Every float is written as a JSON
+string holding Python's shortest round-trip repr (e.g. "0.1", "1e-09"), which reads back
+bit-exactly with Rust's `str::parse::<f64>` (or Python's `float`). Plain JSON numbers would
+not do: serde_json's default number parser may be one ulp off (exact parsing needs its
+`float_roundtrip` feature), and a one-ulp shift in a query point moves a steep curve's value
+by more than the 1e-12 tolerance. The SciPy and NumPy versions used are recorded in the file.
 """
 
 import json
@@ -42,6 +45,14 @@ def queries(rng, x, n_random=40):
     t = np.array(pts, dtype=float)
     t = t[(t >= x0) & (t <= xn)]  # midpoints and nextafter stay inside, but be sure
     return t
+
+
+def reprs(a):
+    """Floats as their shortest round-trip repr strings (see the module docstring)."""
+    a = np.asarray(a, dtype=float)
+    if not np.all(np.isfinite(a)):
+        raise ValueError("non-finite value in fixture data")
+    return [repr(float(v)) for v in a]
 
 
 def cases(rng):
@@ -105,15 +116,14 @@ def main():
         p = PchipInterpolator(x, y)
         doc["cases"].append({
             "name": name,
-            "x": x.tolist(),
-            "y": y.tolist(),
-            "t": t.tolist(),
-            "values": p(t).tolist(),
-            "knot_slopes": p.derivative()(x).tolist(),
+            "x": reprs(x),
+            "y": reprs(y),
+            "t": reprs(t),
+            "values": reprs(p(t)),
+            "knot_slopes": reprs(p.derivative()(x)),
         })
     target.parent.mkdir(parents=True, exist_ok=True)
-    # allow_nan=False: the file must be strict JSON (no NaN/Infinity tokens).
-    text = json.dumps(doc, indent=1, allow_nan=False) + "\n"
+    text = json.dumps(doc, indent=1) + "\n"
     target.write_text(text)
     print(f"wrote {target} ({len(doc['cases'])} cases)")
 

@@ -18,6 +18,7 @@
 //! [`pipeline`] strings the stages together for the command-line tool.
 
 pub mod data;
+pub mod enrich;
 pub mod guide;
 pub mod mark;
 pub mod pipeline;

@@ -11,7 +11,7 @@ use crate::text::measure;
 /// Entries beyond this many are summarised as "… and N more".
 pub const MAX_ENTRIES: usize = 24;
 /// Entry labels wider than this many pixels (at the legend font size) are truncated with "…".
-const MAX_LABEL_WIDTH: f64 = 160.0;
+const MAX_LABEL_WIDTH: f64 = 200.0;
 
 /// How a categorical legend draws its swatch.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -40,14 +40,26 @@ impl Derived {
         self.columns.push((name.to_string(), column));
     }
 
-    /// Number of output rows.
+    /// Number of output rows: one per source row, or for purely computed tables (no source
+    /// rows) the length of the longest computed column.
     pub fn len(&self) -> usize {
-        self.rows.len()
+        if !self.rows.is_empty() {
+            return self.rows.len();
+        }
+        self.columns
+            .iter()
+            .map(|(_, c)| match c {
+                DerivedColumn::Number(v) => v.len(),
+                DerivedColumn::Text(v) => v.len(),
+                _ => 0,
+            })
+            .max()
+            .unwrap_or(0)
     }
 
     /// Whether there are no output rows.
     pub fn is_empty(&self) -> bool {
-        self.rows.is_empty()
+        self.len() == 0
     }
 
     /// The table as CSV text with a header row, reading [`DerivedColumn::Source`] columns from
@@ -66,7 +78,8 @@ impl Derived {
                 _ => None,
             })
             .collect();
-        for (k, &row) in self.rows.iter().enumerate() {
+        for k in 0..self.len() {
+            let row = self.rows.get(k).copied().unwrap_or(u32::MAX);
             for (i, (_, column)) in self.columns.iter().enumerate() {
                 if i > 0 {
                     out.push(',');

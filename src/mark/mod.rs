@@ -6,6 +6,7 @@
 pub mod derived;
 pub mod encode;
 pub mod frame;
+pub mod interp1d;
 pub mod line;
 pub mod scatter;
 
@@ -73,6 +74,7 @@ pub fn draw(chart: &Chart, index: usize, table: &Table) -> Result<ChartOutput, M
     match &chart.kind {
         ChartKind::Scatter(options) => scatter::draw(chart, options, index, table),
         ChartKind::Line(options) => line::draw(chart, options, index, table),
+        ChartKind::Interp1d(options) => interp1d::draw(chart, options, index, table),
     }
 }
 
@@ -82,6 +84,7 @@ pub fn column_keys(kind: &str) -> &'static [&'static str] {
     match kind {
         "scatter" => &["x", "y", "color", "point_size"],
         "line" => &["x", "y", "series"],
+        "interp1d" => &["x", "y", "slopes"],
         _ => &[],
     }
 }

@@ -1,0 +1,4 @@
+//! Enrichment: pure numeric functions that make new data from the loaded data before mapping —
+//! interpolation and resampling, grids, contours.
+
+pub mod interp1d;
