@@ -185,10 +185,12 @@ y = "petal_width"
                 "canvas size `[width, height]` in CSS pixels, each at most 16384 (default `[640, 420]`); for example `size = [800, 600]`"
             )
         );
-        assert_eq!(diags[2].hint.as_deref(), Some("expected one of: `scatter`, `line`"));
+        let kinds: Vec<String> = ChartKind::NAMES.iter().map(|k| format!("`{k}`")).collect();
+        assert_eq!(diags[2].hint.as_deref(), Some(format!("expected one of: {}", kinds.join(", ")).as_str()));
 
         let rendered = render_all(&source(THREE_MISTAKES), &diags);
-        let expected = r#"error: unknown key `colour` in chart "iris-scatter"
+        let expected = format!(
+            r#"error: unknown key `colour` in chart "iris-scatter"
   --> spec.toml:12:1
    |
 12 | colour = "species"
@@ -207,8 +209,10 @@ error: unknown chart kind `scater`; did you mean `scatter`?
    |
 18 | kind = "scater"
    |        ^^^^^^^^
-   = hint: expected one of: `scatter`, `line`
-"#;
+   = hint: expected one of: {}
+"#,
+            kinds.join(", ")
+        );
         assert_eq!(rendered, expected);
     }
 

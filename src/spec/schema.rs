@@ -224,11 +224,11 @@ mod tests {
         let chart = def(&schema, "Chart");
         assert!(chart.get("properties").is_none(), "common keys are merged into the branches");
         let branches = chart["oneOf"].as_array().cloned().unwrap_or_default();
-        assert_eq!(branches.len(), 2);
-        for (branch, kind) in branches.iter().zip(["scatter", "line"]) {
+        assert_eq!(branches.len(), crate::spec::ChartKind::NAMES.len());
+        for (branch, kind) in branches.iter().zip(crate::spec::ChartKind::NAMES) {
             assert_eq!(branch["additionalProperties"], false);
             assert_eq!(branch["type"], "object");
-            assert_eq!(branch["properties"]["kind"]["const"], kind);
+            assert_eq!(branch["properties"]["kind"]["const"], *kind);
             for key in ["name", "data", "title", "caption", "size", "font_size", "kind", "x", "y"] {
                 assert!(branch["properties"].get(key).is_some(), "{kind} lacks {key}");
             }
@@ -267,8 +267,8 @@ mod tests {
         let schema = spec_schema();
         let mut count = 0;
         walk(&schema, &mut count);
-        // Spec, DataSource, ChannelOptions, ColorOptions, SizeOptions and the two chart branches.
-        assert_eq!(count, 7);
+        // Spec, DataSource, ChannelOptions, ColorOptions, SizeOptions and one branch per kind.
+        assert_eq!(count, 5 + crate::spec::ChartKind::NAMES.len());
         // Maps stay open: any data source name, any column in inline rows.
         assert_eq!(schema["properties"]["data"]["additionalProperties"]["$ref"], "#/$defs/DataSource");
         assert_eq!(def(&schema, "DataSource")["properties"]["values"]["items"]["additionalProperties"], true);

@@ -94,6 +94,9 @@ pub enum ChartKind {
 }
 
 impl ChartKind {
+    /// Every kind's name as written in the spec, in declaration order.
+    pub const NAMES: &'static [&'static str] = &["scatter", "line", "interp1d"];
+
     /// The kind's name as written in the spec.
     pub fn name(&self) -> &'static str {
         match self {
