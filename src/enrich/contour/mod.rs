@@ -150,12 +150,14 @@ pub fn clean_levels(levels: &[f64]) -> Result<Vec<f64>, ContourError> {
 }
 
 /// About `count` nice round levels strictly inside `(min, max)`: the multiples of a step
-/// `m × 10^k` with `m` in {1, 2, 2.5, 5}, the smallest such step that is at least
-/// `(max − min) / count`, so at most `count` levels come back.
+/// `m × 10^k` with `m` in {1, 2, 2.5, 5}. Of the steps near `(max − min) / count`, the one giving
+/// the most levels without exceeding `count` wins (the larger step on a tie), so at most `count`
+/// levels come back, e.g. `(0, 1, 10)` gives 0.1, 0.2, …, 0.9 and `(0, 100, 4)` gives 20, 40, 60,
+/// 80.
 ///
 /// Empty when `min` or `max` is not finite, `min >= max`, or `count == 0`; `count` is capped at
 /// [`MAX_LEVELS`]. Levels are computed as integer multiples divided by a power of ten, so they
-/// print as short decimals (0.3, not 0.30000000000000004).
+/// are the doubles nearest the short decimals (0.3, not 0.30000000000000004).
 pub fn nice_levels(min: f64, max: f64, count: usize) -> Vec<f64> {
     let count = count.min(MAX_LEVELS);
     if !(min.is_finite() && max.is_finite()) || min >= max || count == 0 {
@@ -163,36 +165,64 @@ pub fn nice_levels(min: f64, max: f64, count: usize) -> Vec<f64> {
     }
     // Halves first, so the span of ±f64::MAX does not overflow.
     let raw = (0.5 * max - 0.5 * min) / count as f64 * 2.0;
-    let Some((mantissa, exp)) = nice_step(raw) else {
+    let Some(mut step) = nice_step(raw) else {
         return Vec::new();
     };
-    // step = mantissa × 10^exp; a level is n × step.
-    let step = if exp >= 0 {
-        mantissa * 10f64.powi(exp)
-    } else {
-        mantissa / 10f64.powi(-exp)
-    };
-    if !(step.is_finite() && step > 0.0) {
-        return Vec::new();
+    let mut best: Vec<f64> = Vec::new();
+    // The step at or above `raw` and the next three smaller nice steps.
+    for _ in 0..4 {
+        if let Some(levels) = multiples(min, max, step, count)
+            && levels.len() > best.len()
+        {
+            best = levels;
+        }
+        step = smaller_step(step);
     }
-    let first = (min / step).floor() + 1.0;
-    let mut out = Vec::new();
-    // At most span / step <= count multiples fit; two extra rounds absorb rounding.
-    for n in 0..count + 2 {
-        let k = first + n as f64;
-        let level = if exp >= 0 {
-            k * mantissa * 10f64.powi(exp)
+    best
+}
+
+/// The multiples of `m × 10^e` strictly inside `(min, max)`, or `None` if more than `cap`.
+fn multiples(min: f64, max: f64, (m, e): (f64, i32), cap: usize) -> Option<Vec<f64>> {
+    let at = |k: f64| {
+        if e >= 0 {
+            k * m * 10f64.powi(e)
         } else {
-            k * mantissa / 10f64.powi(-exp)
-        };
-        if level >= max || out.len() == count {
-            break;
+            k * m / 10f64.powi(-e)
+        }
+    };
+    let step = at(1.0);
+    if !(step.is_finite() && step > 0.0) {
+        return Some(Vec::new());
+    }
+    let first = (min / step).floor();
+    let mut out: Vec<f64> = Vec::new();
+    // About span / step <= count + 1 multiples fit; a few extra rounds absorb rounding.
+    for n in 0..cap + 4 {
+        let level = at(first + n as f64);
+        if level >= max {
+            return Some(out);
         }
         if level > min && out.last().is_none_or(|&last| level > last) {
+            if out.len() == cap {
+                return None;
+            }
             out.push(level);
         }
     }
-    out
+    Some(out)
+}
+
+/// The next smaller nice step: 5 → 2.5 → 2 → 1 → 0.5 (each times the same power of ten).
+fn smaller_step((m, e): (f64, i32)) -> (f64, i32) {
+    if m == 5.0 {
+        (25.0, e - 1)
+    } else if m == 25.0 {
+        (2.0, e + 1)
+    } else if m == 2.0 {
+        (1.0, e)
+    } else {
+        (5.0, e - 1)
+    }
 }
 
 /// The smallest step `m × 10^e >= raw` with `m` in {1, 2, 2.5, 5}, returned as `(m', e')` with
@@ -210,13 +240,9 @@ fn nice_step(raw: f64) -> Option<(f64, i32)> {
     if pow10(exp + 1) <= raw {
         exp += 1;
     }
-    for (m, shift) in [(1.0, 0), (2.0, 0), (25.0, -1), (5.0, 0), (10.0, 0)] {
+    for (m, shift) in [(1.0, 0), (2.0, 0), (25.0, -1), (5.0, 0)] {
         if m * pow10(exp + shift) >= raw {
-            return Some(if m == 10.0 {
-                (1.0, exp + 1)
-            } else {
-                (m, exp + shift)
-            });
+            return Some((m, exp + shift));
         }
     }
     Some((1.0, exp + 1))
