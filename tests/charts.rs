@@ -105,3 +105,118 @@ methods = ["pchip", "hermite-mean"]
     let pchip: Vec<f64> = rows.iter().filter(|r| r.0 == "pchip").map(|r| r.2).collect();
     assert!(pchip.windows(2).all(|w| w[1] >= w[0]), "PCHIP is monotone");
 }
+
+/// A long-form grid spec: `rows` are (x, y, z) triples.
+fn grid_spec(rows: &[(f64, f64, f64)], extra: &str) -> String {
+    let values: Vec<String> = rows.iter().map(|(x, y, z)| format!("{{ x = {x:?}, y = {y:?}, z = {z:?} }}")).collect();
+    format!(
+        "[data.g]\nvalues = [\n{}\n]\n\n[[chart]]\nname = \"g\"\nkind = \"contour\"\ndata = \"g\"\nx = \"x\"\ny = \"y\"\nz = \"z\"\n{extra}",
+        values.join(",\n")
+    )
+}
+
+/// (level, line, x, y) rows of a contour chart's derived CSV.
+fn contour_rows(spec: &str) -> Vec<(f64, usize, f64, f64)> {
+    let fx = Fixture::new(spec, &[]);
+    let loaded = fx.load().unwrap_or_else(|e| panic!("{e}"));
+    let out = fx.draw().unwrap_or_else(|e| panic!("{e}"));
+    let table = loaded.tables.values().next().expect("one table");
+    out[0]
+        .derived
+        .to_csv(table)
+        .lines()
+        .skip(1)
+        .map(|l| {
+            let f: Vec<f64> = l.split(',').map(|v| v.parse().expect("number")).collect();
+            (f[0], f[1] as usize, f[2], f[3])
+        })
+        .collect()
+}
+
+#[test]
+fn contours_of_a_plane_are_straight_lines_at_the_level() {
+    // f = x on a 5 × 4 grid: the level-L contour is the vertical line x = L.
+    let mut rows = Vec::new();
+    for j in 0..4 {
+        for i in 0..5 {
+            rows.push((i as f64, j as f64 * 0.5, i as f64));
+        }
+    }
+    let out = contour_rows(&grid_spec(&rows, "levels = [0.5, 1.25, 3.0]\n"));
+    assert!(!out.is_empty());
+    for (level, _, x, y) in &out {
+        assert!((x - level).abs() < 1e-12, "point ({x}, {y}) of level {level}");
+        assert!((0.0..=1.5).contains(y));
+    }
+    for level in [0.5, 1.25, 3.0] {
+        let ys: Vec<f64> = out.iter().filter(|r| r.0 == level).map(|r| r.3).collect();
+        assert!(ys.contains(&0.0) && ys.contains(&1.5), "level {level} spans the grid: {ys:?}");
+    }
+}
+
+#[test]
+fn saddle_rule_decides_the_connectivity_of_the_issue_example() {
+    // One cell: f00 = −3 at (0, 0), f10 = 1 at (1, 0), f01 = 10 at (0, 1), f11 = −5 at (1, 1).
+    // Saddle value (f00·f11 − f01·f10)/(f00 + f11 − f01 − f10) = (15 − 10)/(−19) = −5/19 ≈ −0.263;
+    // centre average 0.75. At level 0.25 the asymptotic decider puts the centre below the level
+    // (−0.263 < 0.25) and the centre rule above it (0.75 ≥ 0.25): they pair the crossings
+    // differently.
+    let rows = [(0.0, 0.0, -3.0), (1.0, 0.0, 1.0), (0.0, 1.0, 10.0), (1.0, 1.0, -5.0)];
+    let lines = |rule: &str| {
+        let out = contour_rows(&grid_spec(&rows, &format!("levels = [0.25]\nsaddle = \"{rule}\"\n")));
+        let mut by_line: Vec<Vec<(f64, f64)>> = Vec::new();
+        for (_, line, x, y) in out {
+            if by_line.len() <= line {
+                by_line.resize(line + 1, Vec::new());
+            }
+            by_line[line].push((x, y));
+        }
+        let mut ends: Vec<[(i64, i64); 2]> = by_line
+            .iter()
+            .map(|l| {
+                let key = |p: &(f64, f64)| ((p.0 * 1e6).round() as i64, (p.1 * 1e6).round() as i64);
+                let mut e = [key(&l[0]), key(&l[l.len() - 1])];
+                e.sort();
+                e
+            })
+            .collect();
+        ends.sort();
+        ends
+    };
+    let asymptotic = lines("asymptotic");
+    let center = lines("center");
+    assert_eq!(asymptotic.len(), 2, "two segments: {asymptotic:?}");
+    assert_eq!(center.len(), 2, "two segments: {center:?}");
+    assert_ne!(asymptotic, center, "the two rules pair the four crossings differently");
+    // Crossings on the edges at level 0.25: bottom x = 3.25/4, left y = 3.25/13,
+    // right y = 0.75/6, top x = 9.75/15.
+    let all: Vec<(i64, i64)> = asymptotic.iter().flatten().copied().collect();
+    for p in [(0.8125, 0.0), (0.0, 0.25), (1.0, 0.125), (0.65, 1.0)] {
+        let key = ((p.0 * 1e6_f64).round() as i64, (p.1 * 1e6_f64).round() as i64);
+        assert!(all.contains(&key), "crossing {p:?} in {all:?}");
+    }
+}
+
+#[test]
+fn scattered_points_are_not_a_grid() {
+    let rows = [(0.0, 0.0, 1.0), (1.0, 0.3, 2.0), (2.0, 0.7, 3.0), (3.0, 1.1, 4.0)];
+    let out = Fixture::new(&grid_spec(&rows, ""), &[]).draw().expect_err("not a grid");
+    assert!(out.contains("x and y do not form a regular grid: 4 rows for 4 distinct x × 4 distinct y values"), "{out}");
+}
+
+#[test]
+fn duplicate_grid_nodes_are_refused() {
+    let rows = [(0.0, 0.0, 1.0), (1.0, 0.0, 2.0), (0.0, 1.0, 3.0), (1.0, 1.0, 4.0), (1.0, 1.0, 5.0)];
+    let out = Fixture::new(&grid_spec(&rows, ""), &[]).draw().expect_err("duplicate");
+    assert!(out.contains("the grid node (1, 1) appears in more than one row (row 4)"), "{out}");
+}
+
+#[test]
+fn constant_and_all_nan_fields() {
+    let constant: Vec<(f64, f64, f64)> = (0..9).map(|k| ((k % 3) as f64, (k / 3) as f64, 2.0)).collect();
+    let out = contour_rows(&grid_spec(&constant, ""));
+    assert!(out.is_empty(), "a constant field has no contour lines");
+    let nan_rows = "[data.g]\nvalues = [{ x = 0, y = 0, z = nan }, { x = 1, y = 0, z = nan }, { x = 0, y = 1, z = nan }, { x = 1, y = 1, z = nan }]\n[[chart]]\nname = \"g\"\nkind = \"contour\"\ndata = \"g\"\nx = \"x\"\ny = \"y\"\nz = \"z\"\n";
+    let out = Fixture::new(nan_rows, &[]).draw().expect_err("all NaN");
+    assert!(out.contains("every value of `z` is missing or non-finite"), "{out}");
+}

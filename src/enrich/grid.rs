@@ -84,16 +84,10 @@ impl fmt::Display for GridError {
             GridError::EmptyAxis { axis } => {
                 write!(f, "the grid's {axis} axis has no coordinates; give at least one")
             }
-            GridError::NonFiniteCoordinate { axis, index, value } => write!(
-                f,
-                "grid coordinate {axis}[{index}] is {value}; coordinates must be finite numbers"
-            ),
-            GridError::NotIncreasing {
-                axis,
-                index,
-                previous,
-                value,
-            } => write!(
+            GridError::NonFiniteCoordinate { axis, index, value } => {
+                write!(f, "grid coordinate {axis}[{index}] is {value}; coordinates must be finite numbers")
+            }
+            GridError::NotIncreasing { axis, index, previous, value } => write!(
                 f,
                 "grid coordinate {axis}[{index}] = {value} is not greater than {axis}[{}] = \
                  {previous}; coordinates must be strictly increasing (sort them and drop \
@@ -143,48 +137,27 @@ impl Grid {
             _ => return Err(GridError::TooLarge { nx, ny }),
         };
         if values.len() != nodes {
-            return Err(GridError::ValueCount {
-                nx,
-                ny,
-                got: values.len(),
-            });
+            return Err(GridError::ValueCount { nx, ny, got: values.len() });
         }
         for v in &mut values {
             if !v.is_finite() {
                 *v = f64::NAN;
             }
         }
-        Ok(Grid {
-            nx,
-            ny,
-            xs,
-            ys,
-            values,
-        })
+        Ok(Grid { nx, ny, xs, ys, values })
     }
 
     /// Builds a grid by evaluating `f(x, y)` at every node.
-    pub fn from_fn(
-        xs: Vec<f64>,
-        ys: Vec<f64>,
-        mut f: impl FnMut(f64, f64) -> f64,
-    ) -> Result<Grid, GridError> {
+    pub fn from_fn(xs: Vec<f64>, ys: Vec<f64>, mut f: impl FnMut(f64, f64) -> f64) -> Result<Grid, GridError> {
         check_axis(Axis::X, &xs)?;
         check_axis(Axis::Y, &ys)?;
         match xs.len().checked_mul(ys.len()) {
             Some(n) if n <= MAX_NODES => {}
             _ => {
-                return Err(GridError::TooLarge {
-                    nx: xs.len(),
-                    ny: ys.len(),
-                });
+                return Err(GridError::TooLarge { nx: xs.len(), ny: ys.len() });
             }
         }
-        let values = ys
-            .iter()
-            .flat_map(|&y| xs.iter().map(move |&x| (x, y)))
-            .map(|(x, y)| f(x, y))
-            .collect();
+        let values = ys.iter().flat_map(|&y| xs.iter().map(move |&x| (x, y))).map(|(x, y)| f(x, y)).collect();
         Grid::new(xs, ys, values)
     }
 
@@ -219,10 +192,7 @@ impl Grid {
         if i >= self.nx || j >= self.ny {
             return f64::NAN;
         }
-        self.values
-            .get(j * self.nx + i)
-            .copied()
-            .unwrap_or(f64::NAN)
+        self.values.get(j * self.nx + i).copied().unwrap_or(f64::NAN)
     }
 
     /// Smallest and largest non-missing value, or `None` when every value is missing.
@@ -240,8 +210,7 @@ impl Grid {
     /// NaN outside the grid, for a NaN coordinate, and in a cell with a missing corner. Along an
     /// axis with a single coordinate, only that coordinate is inside (linear along the other).
     pub fn bilinear(&self, x: f64, y: f64) -> f64 {
-        let (Some((i0, i1, s)), Some((j0, j1, t))) = (locate(&self.xs, x), locate(&self.ys, y))
-        else {
+        let (Some((i0, i1, s)), Some((j0, j1, t))) = (locate(&self.xs, x), locate(&self.ys, y)) else {
             return f64::NAN;
         };
         let f00 = self.value(i0, j0);
@@ -272,12 +241,7 @@ fn check_axis(axis: Axis, coords: &[f64]) -> Result<(), GridError> {
             return Err(GridError::NonFiniteCoordinate { axis, index, value });
         }
         if index > 0 && value <= previous {
-            return Err(GridError::NotIncreasing {
-                axis,
-                index,
-                previous,
-                value,
-            });
+            return Err(GridError::NotIncreasing { axis, index, previous, value });
         }
         previous = value;
     }
@@ -294,20 +258,15 @@ fn locate(axis: &[f64], x: f64) -> Option<(usize, usize, f64)> {
     if axis.len() == 1 {
         return Some((0, 0, 0.0));
     }
-    let i0 = axis
-        .partition_point(|&a| a <= x)
-        .saturating_sub(1)
-        .min(axis.len() - 2);
+    let i0 = axis.partition_point(|&a| a <= x).saturating_sub(1).min(axis.len() - 2);
     let (a, b) = (*axis.get(i0)?, *axis.get(i0 + 1)?);
     Some((i0, i0 + 1, fraction(a, b, x)))
 }
 
 /// `(x − a) / (b − a)` clamped to `[0, 1]`, without overflow when `b − a` exceeds `f64::MAX`.
 pub(crate) fn fraction(a: f64, b: f64, x: f64) -> f64 {
-    let mut s = (x - a) / (b - a);
-    if !s.is_finite() {
-        s = (0.5 * x - 0.5 * a) / (0.5 * b - 0.5 * a);
-    }
+    let (num, den) = (x - a, b - a);
+    let s = if num.is_finite() && den.is_finite() { num / den } else { (0.5 * x - 0.5 * a) / (0.5 * b - 0.5 * a) };
     if s.is_nan() { 0.5 } else { s.clamp(0.0, 1.0) }
 }
 
@@ -321,8 +280,7 @@ mod tests {
 
     #[test]
     fn layout_is_row_major() {
-        let g = Grid::new(vec![0.0, 1.0, 2.0], vec![10.0, 20.0], vec![1., 2., 3., 4., 5., 6.])
-            .unwrap();
+        let g = Grid::new(vec![0.0, 1.0, 2.0], vec![10.0, 20.0], vec![1., 2., 3., 4., 5., 6.]).unwrap();
         assert_eq!((g.nx(), g.ny()), (3, 2));
         assert_eq!(g.value(0, 0), 1.0);
         assert_eq!(g.value(2, 0), 3.0);
@@ -334,12 +292,8 @@ mod tests {
 
     #[test]
     fn non_finite_values_are_missing() {
-        let g = Grid::new(
-            vec![0.0, 1.0],
-            vec![0.0, 1.0],
-            vec![f64::INFINITY, 1.0, f64::NEG_INFINITY, f64::NAN],
-        )
-        .unwrap();
+        let g =
+            Grid::new(vec![0.0, 1.0], vec![0.0, 1.0], vec![f64::INFINITY, 1.0, f64::NEG_INFINITY, f64::NAN]).unwrap();
         assert!(g.value(0, 0).is_nan());
         assert!(g.value(0, 1).is_nan());
         assert_eq!(g.range(), Some((1.0, 1.0)));
@@ -355,22 +309,11 @@ mod tests {
         assert!(e.to_string().contains("at least one"));
 
         let e = Grid::new(vec![0.0, f64::NAN], vec![0.0], vec![0.0; 2]).unwrap_err();
-        assert!(matches!(
-            e,
-            GridError::NonFiniteCoordinate { axis: Axis::X, index: 1, .. }
-        ));
+        assert!(matches!(e, GridError::NonFiniteCoordinate { axis: Axis::X, index: 1, .. }));
         assert!(e.to_string().contains("x[1] is NaN"), "{e}");
 
         let e = Grid::new(vec![0.0], vec![0.0, 2.0, 2.0], vec![0.0; 3]).unwrap_err();
-        assert_eq!(
-            e,
-            GridError::NotIncreasing {
-                axis: Axis::Y,
-                index: 2,
-                previous: 2.0,
-                value: 2.0
-            }
-        );
+        assert_eq!(e, GridError::NotIncreasing { axis: Axis::Y, index: 2, previous: 2.0, value: 2.0 });
         let msg = e.to_string();
         assert!(msg.contains("y[2] = 2") && msg.contains("strictly increasing"), "{msg}");
 

@@ -1,4 +1,6 @@
 //! Enrichment: pure numeric functions that make new data from the loaded data before mapping —
 //! interpolation and resampling, grids, contours.
 
+pub mod contour;
+pub mod grid;
 pub mod interp1d;

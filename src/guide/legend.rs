@@ -43,6 +43,15 @@ pub enum Legend {
         /// Data values at the bottom and top of the ramp.
         domain: (f64, f64),
     },
+    /// Discrete colour steps (filled contour bands): one block per interval, edges labelled.
+    Steps {
+        /// Legend title.
+        title: String,
+        /// Interval edges, ascending; `colors.len() + 1` of them.
+        edges: Vec<f64>,
+        /// Colour of each interval, bottom to top.
+        colors: Vec<Color>,
+    },
     /// Reference circles for a size (area) encoding.
     Size {
         /// Legend title.
@@ -79,6 +88,14 @@ impl Legend {
                     (COLOR_BAR_WIDTH + theme.tick_length + 3.0 + label_w).max(measure(title, theme.label_size).width);
                 (w, h + theme.font_size * 0.5)
             }
+            Legend::Steps { title, edges, .. } => {
+                let h = color_bar_length(available_height - title_h) + title_h;
+                let labels = step_labels(edges);
+                let label_w = labels.iter().map(|l| measure(l, theme.font_size).width).fold(0.0, f64::max);
+                let w =
+                    (COLOR_BAR_WIDTH + theme.tick_length + 3.0 + label_w).max(measure(title, theme.label_size).width);
+                (w, h + theme.font_size * 0.5)
+            }
             Legend::Size { title, entries, .. } => {
                 let max_r = entries.iter().map(|e| e.1).fold(0.0, f64::max);
                 let label_w = entries.iter().map(|(l, _)| measure(l, theme.font_size).width).fold(0.0, f64::max);
@@ -91,7 +108,10 @@ impl Legend {
 
     fn title(&self) -> &str {
         match self {
-            Legend::Categorical { title, .. } | Legend::ColorBar { title, .. } | Legend::Size { title, .. } => title,
+            Legend::Categorical { title, .. }
+            | Legend::ColorBar { title, .. }
+            | Legend::Steps { title, .. }
+            | Legend::Size { title, .. } => title,
         }
     }
 
@@ -167,6 +187,41 @@ impl Legend {
                     items.push(Item::new(Role::Legend, Shape::Path(ticks), Style::stroke(theme.axis, 1.0)));
                 }
             }
+            Legend::Steps { edges, colors, .. } => {
+                let length = color_bar_length(available_height - title_h);
+                let bar = Rect::new(at.x, top + theme.font_size * 0.5, COLOR_BAR_WIDTH, length);
+                let n = colors.len().max(1) as f64;
+                let step = length / n;
+                for (i, c) in colors.iter().enumerate() {
+                    let y = bar.bottom() - step * (i as f64 + 1.0);
+                    items.push(Item::new(Role::Legend, Shape::Rect(Rect::new(bar.x, y, bar.w, step)), Style::fill(*c)));
+                }
+                items.push(Item::new(Role::Legend, Shape::Rect(bar), Style::stroke(theme.axis, 0.5)));
+                // Label every edge if they fit, else every k-th.
+                let labels = step_labels(edges);
+                let every = ((theme.font_size * 1.2) / step.max(1e-9)).ceil().max(1.0) as usize;
+                let mut ticks = Vec::new();
+                // The outer edges are the data's extremes, not levels: they stay unlabelled.
+                let last = labels.len().saturating_sub(1);
+                for (i, label) in labels.iter().enumerate().step_by(every).filter(|(i, _)| *i != 0 && *i != last) {
+                    let y = bar.bottom() - step * i as f64;
+                    ticks.push(PathCmd::MoveTo(Point::new(bar.right(), y)));
+                    ticks.push(PathCmd::LineTo(Point::new(bar.right() + theme.tick_length, y)));
+                    items.push(Item::text(
+                        Role::Legend,
+                        Text {
+                            at: Point::new(bar.right() + theme.tick_length + 3.0, y),
+                            content: label.clone(),
+                            size: theme.font_size,
+                            anchor: Anchor::Start,
+                            baseline: Baseline::Middle,
+                            angle: 0.0,
+                            color: theme.muted_text,
+                        },
+                    ));
+                }
+                items.push(Item::new(Role::Legend, Shape::Path(ticks), Style::stroke(theme.axis, 1.0)));
+            }
             Legend::Size { entries, color, .. } => {
                 let max_r = entries.iter().map(|e| e.1).fold(0.0, f64::max);
                 let mut y = top;
@@ -188,6 +243,19 @@ impl Legend {
         }
         items
     }
+}
+
+/// Labels of the step edges: the interior edges formatted consistently (as tick labels of their
+/// smallest step); the outer edges, the data's extremes, are left empty.
+fn step_labels(edges: &[f64]) -> Vec<String> {
+    let inner = edges.get(1..edges.len().saturating_sub(1)).unwrap_or(&[]);
+    let step = inner.windows(2).map(|w| (w[1] - w[0]).abs()).filter(|d| *d > 0.0).fold(f64::INFINITY, f64::min);
+    let mut labels = vec![String::new()];
+    labels.extend(crate::guide::format::format_ticks(inner, if step.is_finite() { step } else { 1.0 }));
+    if edges.len() > 1 {
+        labels.push(String::new());
+    }
+    labels
 }
 
 fn row_height(theme: &Theme) -> f64 {

@@ -3,6 +3,7 @@
 //! Shared pieces — reading channels from the table, the non-finite policy, colour and size
 //! encodings — live in [`encode`] so that kinds only describe their own geometry.
 
+pub mod contour;
 pub mod derived;
 pub mod encode;
 pub mod frame;
@@ -75,6 +76,7 @@ pub fn draw(chart: &Chart, index: usize, table: &Table) -> Result<ChartOutput, M
         ChartKind::Scatter(options) => scatter::draw(chart, options, index, table),
         ChartKind::Line(options) => line::draw(chart, options, index, table),
         ChartKind::Interp1d(options) => interp1d::draw(chart, options, index, table),
+        ChartKind::Contour(options) => contour::draw(chart, options, index, table),
     }
 }
 
@@ -85,6 +87,7 @@ pub fn column_keys(kind: &str) -> &'static [&'static str] {
         "scatter" => &["x", "y", "color", "point_size"],
         "line" => &["x", "y", "series"],
         "interp1d" => &["x", "y", "slopes"],
+        "contour" => &["x", "y", "z"],
         _ => &[],
     }
 }

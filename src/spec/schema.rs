@@ -234,7 +234,10 @@ mod tests {
             }
             let required: Vec<&str> =
                 branch["required"].as_array().into_iter().flatten().filter_map(Value::as_str).collect();
-            assert_eq!(required, ["name", "data", "kind", "x", "y"]);
+            assert_eq!(required[..5], ["name", "data", "kind", "x", "y"], "{kind}");
+            if *kind == "contour" {
+                assert_eq!(required[5..], ["z"]);
+            }
         }
         assert!(branches[0]["properties"].get("opacity").is_some());
         assert!(branches[0]["properties"].get("series").is_none());

@@ -91,11 +91,13 @@ pub enum ChartKind {
     Line(LineOptions),
     /// Sample points and the curves of one or more 1D interpolation methods through them.
     Interp1d(Interp1dOptions),
+    /// Contour lines and filled bands of a scalar field on a regular grid.
+    Contour(ContourOptions),
 }
 
 impl ChartKind {
     /// Every kind's name as written in the spec, in declaration order.
-    pub const NAMES: &'static [&'static str] = &["scatter", "line", "interp1d"];
+    pub const NAMES: &'static [&'static str] = &["scatter", "line", "interp1d", "contour"];
 
     /// The kind's name as written in the spec.
     pub fn name(&self) -> &'static str {
@@ -103,6 +105,7 @@ impl ChartKind {
             ChartKind::Scatter(_) => "scatter",
             ChartKind::Line(_) => "line",
             ChartKind::Interp1d(_) => "interp1d",
+            ChartKind::Contour(_) => "contour",
         }
     }
 }
@@ -213,6 +216,54 @@ pub enum InterpMethod {
     HermiteMean,
     /// Cubic Hermite with harmonic-mean slopes (monotone; matches SciPy's PchipInterpolator).
     Pchip,
+}
+
+/// Options of `kind = "contour"`.
+#[derive(Clone, Debug, Deserialize, Serialize, JsonSchema, PartialEq)]
+pub struct ContourOptions {
+    /// Grid x coordinate: a numeric column of a long-form table (one row per grid node).
+    pub x: Channel,
+    /// Grid y coordinate: a numeric column of a long-form table (one row per grid node).
+    pub y: Channel,
+    /// The field's value at each node: a column name, or `{ field, title, unit, scheme, midpoint }`
+    /// (the colour map of the filled bands, default `viridis`).
+    pub z: ColorChannel,
+    /// A number of levels (nice round values are chosen; default 10) or the levels themselves.
+    #[serde(default)]
+    pub levels: Option<Levels>,
+    /// How saddle cells are resolved: `asymptotic` (default, the bilinear patch's true topology)
+    /// or `center` (the mean of the four corners).
+    #[serde(default)]
+    pub saddle: Option<SaddleRule>,
+    /// Fill the bands between levels (default true).
+    #[serde(default)]
+    pub fill: Option<bool>,
+    /// Draw the contour lines (default true).
+    #[serde(default)]
+    pub lines: Option<bool>,
+    /// Write each level's value on its longest line (default true).
+    #[serde(default)]
+    pub labels: Option<bool>,
+}
+
+/// Contour levels: how many, or which.
+#[derive(Clone, Debug, Deserialize, Serialize, JsonSchema, PartialEq)]
+#[serde(untagged)]
+pub enum Levels {
+    /// About this many nice round levels between the field's minimum and maximum.
+    Count(u32),
+    /// Exactly these levels.
+    Values(Vec<f64>),
+}
+
+/// Saddle-cell rules for contouring.
+#[derive(Clone, Copy, Debug, Deserialize, Serialize, JsonSchema, PartialEq, Eq)]
+#[serde(rename_all = "lowercase")]
+pub enum SaddleRule {
+    /// Compare the level with the bilinear saddle value (f00·f11 − f01·f10)/(f00 + f11 − f01 − f10).
+    Asymptotic,
+    /// Compare the level with the mean of the cell's four corners.
+    Center,
 }
 
 /// `field()` and `options()` for a channel written either as a bare column name or as a table of

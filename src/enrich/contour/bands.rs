@@ -18,29 +18,25 @@
 //! tile the non-hole domain exactly.
 
 use super::lines::{Field, RawLine, dedup_points, trace_levels};
-use super::{Band, Saddle};
+use super::{Band, ContourError, Saddle};
 use crate::enrich::grid::Grid;
 
 type Ring = Vec<(f64, f64)>;
 
 /// Bands for cleaned levels (sorted, distinct, finite, at most `MAX_LEVELS`).
-pub(super) fn contour_bands(grid: &Grid, levels: &[f64], saddle: Saddle) -> Vec<Band> {
+pub(super) fn contour_bands(grid: &Grid, levels: &[f64], saddle: Saddle) -> Result<Vec<Band>, ContourError> {
     let mut bands: Vec<Band> = levels
         .windows(2)
         .filter_map(|w| match *w {
-            [lower, upper] => Some(Band {
-                lower,
-                upper,
-                polygons: Vec::new(),
-            }),
+            [lower, upper] => Some(Band { lower, upper, polygons: Vec::new() }),
             _ => None,
         })
         .collect();
     if bands.is_empty() || grid.nx() < 2 || grid.ny() < 2 {
-        return bands;
+        return Ok(bands);
     }
     let field = Field::new(grid, levels, true);
-    let traced = trace_levels(&field, levels, true, saddle);
+    let traced = trace_levels(&field, levels, true, saddle)?;
     let loops = BoundaryLoops::new(&field);
     for (b, band) in bands.iter_mut().enumerate() {
         let (Some(lower), Some(upper)) = (traced.get(b), traced.get(b + 1)) else {
@@ -49,7 +45,7 @@ pub(super) fn contour_bands(grid: &Grid, levels: &[f64], saddle: Saddle) -> Vec<
         let rings = band_rings(&field, &loops, lower, upper, b);
         band.polygons = nest(grid.xs(), rings);
     }
-    bands
+    Ok(bands)
 }
 
 /// A position on a boundary loop: loop, edge position along it, and order within the edge.
@@ -119,10 +115,7 @@ impl BoundaryLoops {
     /// Loop and position of the boundary edge `id`.
     fn locate(&self, id: u32) -> Option<(u32, u32)> {
         let k = self.index.partition_point(|e| e.0 < id);
-        self.index
-            .get(k)
-            .filter(|e| e.0 == id)
-            .map(|e| (e.1, e.2))
+        self.index.get(k).filter(|e| e.0 == id).map(|e| (e.1, e.2))
     }
 }
 
@@ -220,20 +213,14 @@ impl Loop {
     }
 }
 
-/// A line used as a piece of a band ring, with where it meets the boundary.
+/// An open line used as a piece of a band ring (upper-level lines are walked backwards).
 struct Piece<'r> {
     line: &'r RawLine,
     reversed: bool,
 }
 
 /// Rings of band `b` (between levels `b` and `b + 1`), all with the band on their left.
-fn band_rings(
-    field: &Field<'_>,
-    loops: &BoundaryLoops,
-    lower: &[RawLine],
-    upper: &[RawLine],
-    b: usize,
-) -> Vec<Ring> {
+fn band_rings(field: &Field<'_>, loops: &BoundaryLoops, lower: &[RawLine], upper: &[RawLine], b: usize) -> Vec<Ring> {
     let mut rings: Vec<Ring> = Vec::new();
     let mut pieces: Vec<Piece<'_>> = Vec::new();
     // (spot, piece, is_start)
@@ -248,10 +235,8 @@ fn band_rings(
                 rings.push(ring);
                 continue;
             }
-            let (first, last) = (
-                spot(field, loops, line.first_edge, is_lower),
-                spot(field, loops, line.last_edge, is_lower),
-            );
+            let (first, last) =
+                (spot(field, loops, line.first_edge, is_lower), spot(field, loops, line.last_edge, is_lower));
             let (Some(first), Some(last)) = (first, last) else {
                 // Not on the boundary: cannot happen for an open line; keep its area anyway.
                 rings.push(line.points.clone());
@@ -261,10 +246,7 @@ fn band_rings(
             let (start, end) = if is_lower { (first, last) } else { (last, first) };
             ends.push((start, p, true));
             ends.push((end, p, false));
-            pieces.push(Piece {
-                line,
-                reversed: !is_lower,
-            });
+            pieces.push(Piece { line, reversed: !is_lower });
         }
     }
 
@@ -319,10 +301,8 @@ fn band_rings(
     let class = (b + 1) as u16;
     for lp in &loops.loops {
         if lp.lo == class && lp.hi == class {
-            let ring: Ring = (0..lp.edges.len())
-                .filter(|&q| lp.turns_after(q))
-                .map(|q| lp.end_point(field, q))
-                .collect();
+            let ring: Ring =
+                (0..lp.edges.len()).filter(|&q| lp.turns_after(q)).map(|q| lp.end_point(field, q)).collect();
             rings.push(ring);
         }
     }
@@ -341,11 +321,7 @@ fn spot(field: &Field<'_>, loops: &BoundaryLoops, id: u32, is_lower: bool) -> Op
     let (a, b) = field.edge_nodes(c as usize, l);
     // Along the loop direction, the lower crossing comes first where the value increases.
     let increasing = field.cls(a) < field.cls(b);
-    Some(Spot {
-        lp,
-        pos,
-        sub: u8::from(is_lower != increasing),
-    })
+    Some(Spot { lp, pos, sub: u8::from(is_lower != increasing) })
 }
 
 /// Twice the signed area of a ring (positive when counter-clockwise), relative to its first
@@ -462,14 +438,8 @@ fn nest(xs: &[f64], rings: Vec<Ring>) -> Vec<Vec<Ring>> {
             while hits.get(q).is_some_and(|e| e.0 == m && e.1 == y && e.2 != h) {
                 q += 1;
             }
-            let found = hits
-                .get(..q)
-                .unwrap_or(&[])
-                .iter()
-                .rev()
-                .take_while(|e| e.0 == m)
-                .find(|e| e.2 != h)
-                .map(|e| e.2);
+            let found =
+                hits.get(..q).unwrap_or(&[]).iter().rev().take_while(|e| e.0 == m).find(|e| e.2 != h).map(|e| e.2);
             if let Some(slot) = below.get_mut(h) {
                 *slot = found;
             }
@@ -491,7 +461,10 @@ fn nest(xs: &[f64], rings: Vec<Ring>) -> Vec<Vec<Ring>> {
                     (0..rings.len())
                         .filter(|&o| areas.get(o).is_some_and(|&a| a > 0.0))
                         .filter(|&o| rings.get(o).is_some_and(|ring| contains(ring, p)))
-                        .min_by(|&a, &b| areas[a].total_cmp(&areas[b]))
+                        .min_by(|&a, &b| {
+                            let area = |r: usize| areas.get(r).copied().unwrap_or(f64::INFINITY);
+                            area(a).total_cmp(&area(b))
+                        })
                 })
             } else {
                 Some(r)
@@ -516,11 +489,7 @@ fn nest(xs: &[f64], rings: Vec<Ring>) -> Vec<Vec<Ring>> {
         }
     }
     for h in holes {
-        let target = parent
-            .get(h)
-            .copied()
-            .flatten()
-            .and_then(|o| slot_of.get(o).copied().flatten());
+        let target = parent.get(h).copied().flatten().and_then(|o| slot_of.get(o).copied().flatten());
         if let (Some(t), Some(ring)) = (target, rings.get_mut(h).and_then(Option::take))
             && let Some(poly) = polygons.get_mut(t)
         {

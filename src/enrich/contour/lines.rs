@@ -14,7 +14,7 @@
 //! same edge is walked the other way, so a line leaving one cell through an edge enters the next
 //! cell at a segment start. That makes tracking a table lookup per cell.
 
-use super::{ContourLine, Saddle};
+use super::{ContourError, ContourLine, MAX_CROSSED_CELLS, Saddle};
 use crate::enrich::grid::{Grid, fraction};
 
 /// Class of a missing node (NaN): any cell touching it is a hole.
@@ -90,11 +90,7 @@ fn lerp(a: f64, b: f64, t: f64) -> f64 {
         b
     } else {
         let d = b - a;
-        if d.is_finite() {
-            a + t * d
-        } else {
-            (1.0 - t) * a + t * b
-        }
+        if d.is_finite() { a + t * d } else { (1.0 - t) * a + t * b }
     }
 }
 
@@ -121,33 +117,24 @@ impl<'a> Field<'a> {
     /// `n − 1`): that level then uses `value > level` as "above", which puts such nodes in the
     /// topmost band.
     pub fn new(grid: &'a Grid, levels: &[f64], top_inclusive: bool) -> Field<'a> {
-        let n = levels.len();
-        let last = levels.last().copied().unwrap_or(f64::NAN);
-        let classify = |v: f64| -> u16 {
-            if v.is_nan() {
-                return HOLE;
-            }
-            let mut c = if n <= 16 {
-                levels.iter().map(|&l| u16::from(l <= v)).sum()
-            } else {
-                levels.partition_point(|&l| l <= v) as u16
-            };
-            if top_inclusive && v == last {
-                c = c.saturating_sub(1);
-            }
-            c
-        };
-        let cls: Vec<u16> = grid.values().iter().map(|&v| classify(v)).collect();
-        let has_holes = cls.contains(&HOLE);
-        Field {
-            nx: grid.nx(),
-            ny: grid.ny(),
-            xs: grid.xs(),
-            ys: grid.ys(),
-            f: grid.values(),
-            cls,
-            has_holes,
+        let values = grid.values();
+        let mut cls = vec![0u16; values.len()];
+        if levels.len() <= 16 {
+            classify_few(values, levels, &mut cls);
+        } else {
+            classify_many(values, levels, &mut cls);
         }
+        let mut has_holes = false;
+        let last = levels.last().copied().unwrap_or(f64::NAN);
+        for (c, &v) in cls.iter_mut().zip(values) {
+            if v.is_nan() {
+                *c = HOLE;
+                has_holes = true;
+            } else if top_inclusive && v == last {
+                *c = c.saturating_sub(1);
+            }
+        }
+        Field { nx: grid.nx(), ny: grid.ny(), xs: grid.xs(), ys: grid.ys(), f: values, cls, has_holes }
     }
 
     /// Class of node `v` ([`HOLE`] outside the grid).
@@ -165,10 +152,7 @@ impl<'a> Field<'a> {
     /// Coordinates of node `(i, j)`.
     #[inline]
     pub fn node(&self, i: usize, j: usize) -> (f64, f64) {
-        (
-            self.xs.get(i).copied().unwrap_or(f64::NAN),
-            self.ys.get(j).copied().unwrap_or(f64::NAN),
-        )
+        (self.xs.get(i).copied().unwrap_or(f64::NAN), self.ys.get(j).copied().unwrap_or(f64::NAN))
     }
 
     /// Number of horizontal edges.
@@ -190,11 +174,7 @@ impl<'a> Field<'a> {
     #[inline]
     pub fn cell_valid(&self, c: usize) -> bool {
         let nx = self.nx;
-        self.cls(c)
-            .max(self.cls(c + 1))
-            .max(self.cls(c + nx))
-            .max(self.cls(c + nx + 1))
-            != HOLE
+        self.cls(c).max(self.cls(c + 1)).max(self.cls(c + nx)).max(self.cls(c + nx + 1)) != HOLE
     }
 
     /// Global id of local edge `l` of cell `c` in row `j`.
@@ -257,20 +237,17 @@ impl<'a> Field<'a> {
 
     /// Cells crossed by at least one level, grouped by level (a cell appears once per level
     /// that crosses it). Hole cells are left out.
-    fn candidates(&self, n_levels: usize) -> Candidates {
+    /// Errors when more than [`MAX_CROSSED_CELLS`] (cell, level) pairs would be traced.
+    fn candidates(&self, n_levels: usize) -> Result<Candidates, ContourError> {
         let (nx, ny) = (self.nx, self.ny);
         let mut found: Vec<(u32, u16, u16)> = Vec::new();
         for j in 0..ny - 1 {
-            let (Some(row0), Some(row1)) = (
-                self.cls.get(j * nx..(j + 1) * nx),
-                self.cls.get((j + 1) * nx..(j + 2) * nx),
-            ) else {
+            let (Some(row0), Some(row1)) =
+                (self.cls.get(j * nx..(j + 1) * nx), self.cls.get((j + 1) * nx..(j + 2) * nx))
+            else {
                 break;
             };
-            let quads = row0
-                .iter()
-                .zip(&row0[1..])
-                .zip(row1.iter().zip(&row1[1..]));
+            let quads = row0.iter().zip(&row0[1..]).zip(row1.iter().zip(&row1[1..]));
             for (i, ((&a, &b), (&d, &e))) in quads.enumerate() {
                 if a == b && a == d && a == e {
                     continue;
@@ -283,14 +260,23 @@ impl<'a> Field<'a> {
                 found.push(((j * nx + i) as u32, lo, hi));
             }
         }
+        let total: usize =
+            found.iter().map(|&(_, lo, hi)| usize::from(hi).min(n_levels).saturating_sub(usize::from(lo))).sum();
+        if total > MAX_CROSSED_CELLS {
+            return Err(ContourError::TooManyCrossings { count: total, max: MAX_CROSSED_CELLS });
+        }
         let mut start = vec![0usize; n_levels + 1];
         for &(_, lo, hi) in &found {
             for k in usize::from(lo)..usize::from(hi).min(n_levels) {
-                start[k + 1] += 1;
+                if let Some(s) = start.get_mut(k + 1) {
+                    *s += 1;
+                }
             }
         }
-        for k in 0..n_levels {
-            start[k + 1] += start[k];
+        let mut running = 0;
+        for s in &mut start {
+            running += *s;
+            *s = running;
         }
         let mut fill = start.clone();
         let mut cells = vec![0u32; start.last().copied().unwrap_or(0)];
@@ -304,7 +290,41 @@ impl<'a> Field<'a> {
                 }
             }
         }
-        Candidates { start, cells }
+        Ok(Candidates { start, cells })
+    }
+}
+
+/// Counts, for each value, the levels `<=` it (NaN counts 0): a few levels, so compare each
+/// block of values against every level in turn, which the compiler vectorises.
+fn classify_few(values: &[f64], levels: &[f64], cls: &mut [u16]) {
+    const BLOCK: usize = 256;
+    let mut acc = [0u64; BLOCK];
+    for (vals, out) in values.chunks(BLOCK).zip(cls.chunks_mut(BLOCK)) {
+        let acc = &mut acc[..vals.len()];
+        acc.fill(0);
+        for &l in levels {
+            for (a, &v) in acc.iter_mut().zip(vals) {
+                *a += u64::from(l <= v);
+            }
+        }
+        for (o, &a) in out.iter_mut().zip(acc.iter()) {
+            *o = a as u16;
+        }
+    }
+}
+
+/// Like [`classify_few`] for many levels: neighbouring nodes usually share a class, so try the
+/// previous node's class before a binary search.
+fn classify_many(values: &[f64], levels: &[f64], cls: &mut [u16]) {
+    let n = levels.len();
+    let mut prev = 0usize;
+    for (o, &v) in cls.iter_mut().zip(values) {
+        let lower_ok = prev == 0 || levels.get(prev - 1).is_some_and(|&l| l <= v);
+        let upper_ok = prev == n || levels.get(prev).is_some_and(|&l| v < l);
+        if !(lower_ok && upper_ok) {
+            prev = levels.partition_point(|&l| l <= v);
+        }
+        *o = prev as u16;
     }
 }
 
@@ -355,9 +375,7 @@ impl Tracer<'_, '_> {
     #[inline]
     fn is_visited(&self, e: u32) -> bool {
         let e = e as usize;
-        self.visited
-            .get(e / 64)
-            .is_some_and(|w| w & (1u64 << (e % 64)) != 0)
+        self.visited.get(e / 64).is_some_and(|w| w & (1u64 << (e % 64)) != 0)
     }
 
     #[inline]
@@ -378,15 +396,8 @@ impl Tracer<'_, '_> {
             return None;
         }
         let k = self.k;
-        let case = usize::from(a > k)
-            | usize::from(b > k) << 1
-            | usize::from(d > k) << 2
-            | usize::from(e > k) << 3;
-        if (case == 5 || case == 10) && self.centre_above(c, case) {
-            Some(case | 16)
-        } else {
-            Some(case)
-        }
+        let case = usize::from(a > k) | usize::from(b > k) << 1 | usize::from(d > k) << 2 | usize::from(e > k) << 3;
+        if (case == 5 || case == 10) && self.centre_above(c, case) { Some(case | 16) } else { Some(case) }
     }
 
     /// Saddle decision for cell `c` with case 5 (corners 0 and 2 above) or 10 (1 and 3 above).
@@ -406,11 +417,7 @@ impl Tracer<'_, '_> {
                 // "saddle value >= level" is "product of the above diagonal >= product of the
                 // below diagonal". No division, so no trouble when D rounds to zero.
                 let (g00, g10, g11, g01) = (f00 - level, f10 - level, f11 - level, f01 - level);
-                let (above, below) = if case == 5 {
-                    (g00 * g11, g01 * g10)
-                } else {
-                    (g10 * g01, g00 * g11)
-                };
+                let (above, below) = if case == 5 { (g00 * g11, g01 * g10) } else { (g10 * g01, g00 * g11) };
                 if self.strict { above > below } else { above >= below }
             }
         }
@@ -509,11 +516,11 @@ pub(super) fn trace_levels(
     levels: &[f64],
     strict_top: bool,
     saddle: Saddle,
-) -> Vec<Vec<RawLine>> {
+) -> Result<Vec<Vec<RawLine>>, ContourError> {
     if !field.has_cells() || levels.is_empty() {
-        return levels.iter().map(|_| Vec::new()).collect();
+        return Ok(levels.iter().map(|_| Vec::new()).collect());
     }
-    let cands = field.candidates(levels.len());
+    let cands = field.candidates(levels.len())?;
     let mut visited = vec![0u64; field.n_edges().div_ceil(64)];
     let mut result = Vec::with_capacity(levels.len());
     for (k, &level) in levels.iter().enumerate() {
@@ -543,7 +550,7 @@ pub(super) fn trace_levels(
         }
         result.push(out);
     }
-    result
+    Ok(result)
 }
 
 /// Removes consecutive repeated points (and, for a ring, a last point equal to the first).
@@ -555,27 +562,23 @@ pub(super) fn dedup_points(points: &mut Vec<(f64, f64)>, closed: bool) {
 }
 
 /// Contour lines for cleaned levels (sorted, distinct, finite, at most `MAX_LEVELS`).
-pub(super) fn contour_lines(grid: &Grid, levels: &[f64], saddle: Saddle) -> Vec<ContourLine> {
+pub(super) fn contour_lines(grid: &Grid, levels: &[f64], saddle: Saddle) -> Result<Vec<ContourLine>, ContourError> {
     if levels.is_empty() || grid.nx() < 2 || grid.ny() < 2 {
-        return Vec::new();
+        return Ok(Vec::new());
     }
     let field = Field::new(grid, levels, false);
-    let traced = trace_levels(&field, levels, false, saddle);
+    let traced = trace_levels(&field, levels, false, saddle)?;
     let mut out = Vec::new();
     for (raw, &level) in traced.into_iter().zip(levels) {
         for line in raw {
             let mut points = line.points;
             dedup_points(&mut points, line.closed);
             if points.len() >= 2 {
-                out.push(ContourLine {
-                    level,
-                    points,
-                    closed: line.closed,
-                });
+                out.push(ContourLine { level, points, closed: line.closed });
             }
         }
     }
-    out
+    Ok(out)
 }
 
 #[cfg(test)]
@@ -593,9 +596,7 @@ mod tests {
             let (a, b) = (corner[l], corner[(l + 1) % 4]);
             ((a.0 + b.0) / 2.0, (a.1 + b.1) / 2.0)
         };
-        let side = |p: (f64, f64), q: (f64, f64), r: (f64, f64)| {
-            (q.0 - p.0) * (r.1 - p.1) - (q.1 - p.1) * (r.0 - p.0)
-        };
+        let side = |p: (f64, f64), q: (f64, f64), r: (f64, f64)| (q.0 - p.0) * (r.1 - p.1) - (q.1 - p.1) * (r.0 - p.0);
         for idx in 0..32usize {
             let case = idx & 15;
             let saddle = case == 5 || case == 10;

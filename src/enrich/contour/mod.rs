@@ -15,14 +15,17 @@
 //! - **Level equal to the grid minimum** gives no line (every node is above, so the region has no
 //!   boundary inside the grid). **Level equal to the maximum** gives closed rings around plateaus
 //!   of maximal nodes; a lone maximal node gives a ring of zero length, which is dropped.
+//! - **Bands** hold `lower <= f < upper`, the topmost band also `f == upper`; values outside
+//!   the first and last level are not filled.
 //! - **Holes.** A cell with a missing corner (NaN or ±inf, see [`crate::enrich::grid`]) is a
 //!   hole: it gets no segments, so lines stop on the hole's edge (as open lines) and bands leave
 //!   it unfilled.
 //! - **Levels** are cleaned first: non-finite levels are dropped, the rest sorted and
 //!   deduplicated. More than [`MAX_LEVELS`] distinct levels is an error
 //!   ([`ContourError::TooManyLevels`]), never a silent cut.
-//! - **Size.** Work and output grow with the number of cells times the number of levels that
-//!   cross them; nothing is allocated per segment.
+//! - **Size.** Work and output grow with the number of (cell, level) crossings; nothing is
+//!   allocated per segment. More than [`MAX_CROSSED_CELLS`] crossings is an error
+//!   ([`ContourError::TooManyCrossings`]), found by counting before anything large is allocated.
 
 mod bands;
 mod lines;
@@ -35,6 +38,11 @@ use crate::enrich::grid::Grid;
 
 /// Most distinct levels one call accepts.
 pub const MAX_LEVELS: usize = 1000;
+
+/// Most (cell, level) crossings one call traces (2²⁶ ≈ 67 million). Each crossing yields about
+/// one output point per line (two for bands, whose rings share lines), so this bounds the output
+/// at a few gigabytes at worst.
+pub const MAX_CROSSED_CELLS: usize = 1 << 26;
 
 /// How a saddle cell (corners alternating above/below around the cell, marching-squares cases 5
 /// and 10) connects its four crossings.
@@ -90,6 +98,14 @@ pub enum ContourError {
         /// The cap, [`MAX_LEVELS`].
         max: usize,
     },
+    /// The levels cross more than [`MAX_CROSSED_CELLS`] cells in total (counted once per level),
+    /// typically many levels over a large noisy grid.
+    TooManyCrossings {
+        /// Number of (cell, level) crossings the request needs.
+        count: usize,
+        /// The cap, [`MAX_CROSSED_CELLS`].
+        max: usize,
+    },
 }
 
 impl fmt::Display for ContourError {
@@ -100,6 +116,11 @@ impl fmt::Display for ContourError {
                 "{count} distinct contour levels were given but at most {max} are allowed; pass \
                  fewer levels (for example a level count, which picks nice round levels)"
             ),
+            ContourError::TooManyCrossings { count, max } => write!(
+                f,
+                "these levels cross grid cells {count} times but at most {max} crossings are \
+                 traced; use fewer levels, or smooth or resample the grid to fewer cells"
+            ),
         }
     }
 }
@@ -109,13 +130,9 @@ impl std::error::Error for ContourError {}
 /// Contour lines of `grid` at each of `levels` (cleaned as described in the module docs),
 /// ordered by level. For example on the plane `f = x` the level 0.5 gives the single open line
 /// `[(0.5, y_max), (0.5, y_min)]` (larger x on its left).
-pub fn contour_lines(
-    grid: &Grid,
-    levels: &[f64],
-    saddle: Saddle,
-) -> Result<Vec<ContourLine>, ContourError> {
+pub fn contour_lines(grid: &Grid, levels: &[f64], saddle: Saddle) -> Result<Vec<ContourLine>, ContourError> {
     let levels = clean_levels(levels)?;
-    Ok(lines::contour_lines(grid, &levels, saddle))
+    lines::contour_lines(grid, &levels, saddle)
 }
 
 /// Filled bands between consecutive levels: band `k` covers `levels[k] <= f < levels[k + 1]`,
@@ -126,13 +143,9 @@ pub fn contour_lines(
 /// first level or above the last are not filled: pass the grid's minimum and maximum (see
 /// [`Grid::range`]) as the outer levels to fill every non-hole cell. Adjacent bands share their
 /// boundary lines exactly, so together they tile the non-hole cells without gaps or overlaps.
-pub fn contour_bands(
-    grid: &Grid,
-    levels: &[f64],
-    saddle: Saddle,
-) -> Result<Vec<Band>, ContourError> {
+pub fn contour_bands(grid: &Grid, levels: &[f64], saddle: Saddle) -> Result<Vec<Band>, ContourError> {
     let levels = clean_levels(levels)?;
-    Ok(bands::contour_bands(grid, &levels, saddle))
+    bands::contour_bands(grid, &levels, saddle)
 }
 
 /// Drops non-finite levels, sorts and deduplicates the rest; errors past [`MAX_LEVELS`].
@@ -141,10 +154,7 @@ pub fn clean_levels(levels: &[f64]) -> Result<Vec<f64>, ContourError> {
     out.sort_by(f64::total_cmp);
     out.dedup_by(|a, b| a == b);
     if out.len() > MAX_LEVELS {
-        return Err(ContourError::TooManyLevels {
-            count: out.len(),
-            max: MAX_LEVELS,
-        });
+        return Err(ContourError::TooManyLevels { count: out.len(), max: MAX_LEVELS });
     }
     Ok(out)
 }
@@ -184,11 +194,7 @@ pub fn nice_levels(min: f64, max: f64, count: usize) -> Vec<f64> {
 /// The multiples of `m × 10^e` strictly inside `(min, max)`, or `None` if more than `cap`.
 fn multiples(min: f64, max: f64, (m, e): (f64, i32), cap: usize) -> Option<Vec<f64>> {
     let at = |k: f64| {
-        if e >= 0 {
-            k * m * 10f64.powi(e)
-        } else {
-            k * m / 10f64.powi(-e)
-        }
+        if e >= 0 { k * m * 10f64.powi(e) } else { k * m / 10f64.powi(-e) }
     };
     let step = at(1.0);
     if !(step.is_finite() && step > 0.0) {
@@ -250,11 +256,7 @@ fn nice_step(raw: f64) -> Option<(f64, i32)> {
 
 /// `10^e` as an `f64`, exact for the integer powers that are representable.
 fn pow10(e: i32) -> f64 {
-    if e >= 0 {
-        10f64.powi(e)
-    } else {
-        1.0 / 10f64.powi(-e)
-    }
+    if e >= 0 { 10f64.powi(e) } else { 1.0 / 10f64.powi(-e) }
 }
 
 /// The value of the bilinear patch at its saddle point, `(f00·f11 − f01·f10) / D` with

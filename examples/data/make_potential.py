@@ -1,0 +1,17 @@
+"""Write potential.csv: the electric potential of three point charges on a 121 x 101 grid
+(long form: x, y, potential), in units of k·q/d. Softened near the charges (r >= 0.15) so the
+field stays finite. Stdlib only: python3 examples/data/make_potential.py
+"""
+import math
+import pathlib
+
+charges = [(-1.0, 0.0, 1.0), (1.0, 0.0, 1.0), (0.0, 1.5, -1.5)]
+out = pathlib.Path(__file__).with_name("potential.csv")
+with out.open("w") as f:
+    f.write("x,y,potential\n")
+    for j in range(101):
+        y = -2.0 + 4.5 * j / 100
+        for i in range(121):
+            x = -3.0 + 6.0 * i / 120
+            v = sum(q / max(math.hypot(x - cx, y - cy), 0.15) for cx, cy, q in charges)
+            f.write(f"{x:.4f},{y:.4f},{v:.6f}\n")
