@@ -2,11 +2,11 @@
 //! long-form table (one row per grid node), with level labels and a stepped colour bar.
 
 use super::derived::{Derived, DerivedColumn};
+use super::gridded::{self, GridInput};
 use super::{ChartOutput, MarkError, encode, frame};
-use crate::data::{Column, Table};
+use crate::data::Table;
 use crate::enrich::contour::{self, Saddle};
-use crate::enrich::grid::Grid;
-use crate::guide::color::{self, ContinuousMap};
+use crate::guide::color::ContinuousMap;
 use crate::guide::format::format_ticks;
 use crate::guide::layout::Domain;
 use crate::guide::legend::Legend;
@@ -16,47 +16,14 @@ use crate::text::measure;
 
 /// Default number of levels.
 pub const DEFAULT_LEVELS: u32 = 10;
-/// Largest grid accepted (nodes).
-pub const MAX_NODES: usize = 25_000_000;
 
 /// Draw a contour chart.
 pub fn draw(chart: &Chart, options: &ContourOptions, index: usize, table: &Table) -> Result<ChartOutput, MarkError> {
     let x_opts = options.x.options();
     let y_opts = options.y.options();
     let z_opts = options.z.options();
-    let x_col = encode::column(chart, index, "x", &x_opts.field, table)?;
-    let y_col = encode::column(chart, index, "y", &y_opts.field, table)?;
-    let z_col = encode::column(chart, index, "z", &z_opts.field, table)?;
-    for (key, field, col) in [("x", &x_opts.field, x_col), ("y", &y_opts.field, y_col), ("z", &z_opts.field, z_col)] {
-        if col.numbers().is_none() {
-            return Err(MarkError::at(
-                index,
-                &[key],
-                format!(
-                    "chart \"{}\": column `{field}` holds {}; a contour grid needs numbers",
-                    chart.name,
-                    col.type_name()
-                ),
-                "use numeric columns for x, y and z",
-            ));
-        }
-    }
-    // Rows without finite coordinates cannot be placed; a non-finite z is a hole in the grid.
-    let (rows, warning) =
-        encode::finite_rows(&chart.name, table.rows, &[(x_opts.field.as_str(), x_col), (y_opts.field.as_str(), y_col)]);
-    let warnings: Vec<String> = warning.into_iter().collect();
-    if rows.is_empty() {
-        return Err(encode::no_rows(chart, index, table, warnings.first().map(String::as_str)));
-    }
-    let grid = grid_from_rows(chart, index, x_col, y_col, z_col, &rows)?;
-    let Some((zmin, zmax)) = grid.range() else {
-        return Err(MarkError::at(
-            index,
-            &["z"],
-            format!("chart \"{}\": every value of `{}` is missing or non-finite", chart.name, z_opts.field),
-            "check the z column",
-        ));
-    };
+    let GridInput { grid, rows, warnings, x_col, y_col, zmin, zmax } =
+        gridded::load_grid(chart, index, &x_opts, &y_opts, &z_opts, table)?;
     let levels = match &options.levels {
         Some(Levels::Values(v)) => v.clone(),
         Some(Levels::Count(n)) => contour::nice_levels(zmin, zmax, (*n as usize).max(1)),
@@ -69,15 +36,7 @@ pub fn draw(chart: &Chart, options: &ContourOptions, index: usize, table: &Table
         SaddleRule::Asymptotic => Saddle::Asymptotic,
         SaddleRule::Center => Saddle::Center,
     };
-    let scheme = z_opts.scheme.as_deref().unwrap_or(color::DEFAULT_SEQUENTIAL);
-    let map = color::continuous(scheme).ok_or_else(|| {
-        let names = color::continuous_names();
-        let hint = match crate::spec::suggest::did_you_mean(scheme, names.iter().copied()) {
-            Some(best) => format!("did you mean `{best}`? continuous schemes: {}", names.join(", ")),
-            None => format!("continuous schemes: {}", names.join(", ")),
-        };
-        MarkError::at(index, &["z", "scheme"], format!("unknown continuous colour scheme `{scheme}`"), hint)
-    })?;
+    let map = encode::continuous_map(index, &["z", "scheme"], z_opts.scheme.as_deref())?;
     let fill = options.fill.unwrap_or(true);
     let draw_lines = options.lines.unwrap_or(true);
 
@@ -236,77 +195,6 @@ fn color_domain(map: &ContinuousMap, zmin: f64, zmax: f64, midpoint: Option<f64>
         hi += 0.5;
     }
     (lo, hi)
-}
-
-/// Build the grid from long-form rows: the distinct x and y values are the grid's axes.
-fn grid_from_rows(
-    chart: &Chart,
-    index: usize,
-    x_col: &Column,
-    y_col: &Column,
-    z_col: &Column,
-    rows: &[u32],
-) -> Result<Grid, MarkError> {
-    let (xv, yv, zv) = (x_col.numbers().unwrap_or(&[]), y_col.numbers().unwrap_or(&[]), z_col.numbers().unwrap_or(&[]));
-    let distinct = |v: &[f64]| {
-        let mut d: Vec<f64> = rows.iter().filter_map(|&r| v.get(r as usize).copied()).collect();
-        d.sort_by(f64::total_cmp);
-        d.dedup();
-        d
-    };
-    let xs = distinct(xv);
-    let ys = distinct(yv);
-    let nodes = xs.len().saturating_mul(ys.len());
-    if nodes > MAX_NODES {
-        return Err(MarkError::at(
-            index,
-            &["x"],
-            format!(
-                "chart \"{}\": the grid would have {} × {} = {nodes} nodes (at most {MAX_NODES})",
-                chart.name,
-                xs.len(),
-                ys.len()
-            ),
-            "resample the field to a coarser grid",
-        ));
-    }
-    if rows.len() * 2 < nodes {
-        return Err(MarkError::at(
-            index,
-            &["x"],
-            format!(
-                "chart \"{}\": x and y do not form a regular grid: {} rows for {} distinct x × {} distinct y values",
-                chart.name,
-                rows.len(),
-                xs.len(),
-                ys.len()
-            ),
-            "contour needs one row per node of a rectangular grid (long form: x, y, z)",
-        ));
-    }
-    let mut values = vec![f64::NAN; nodes];
-    let mut seen = vec![false; nodes];
-    for &r in rows {
-        let (Some(&x), Some(&y)) = (xv.get(r as usize), yv.get(r as usize)) else { continue };
-        let (Ok(i), Ok(j)) = (xs.binary_search_by(|v| v.total_cmp(&x)), ys.binary_search_by(|v| v.total_cmp(&y)))
-        else {
-            continue;
-        };
-        let k = j * xs.len() + i;
-        if seen.get(k).copied().unwrap_or(true) {
-            return Err(MarkError::at(
-                index,
-                &["x"],
-                format!("chart \"{}\": the grid node ({x}, {y}) appears in more than one row (row {r})", chart.name),
-                "each (x, y) pair must appear once; aggregate duplicates first",
-            ));
-        }
-        seen[k] = true;
-        values[k] = zv.get(r as usize).copied().unwrap_or(f64::NAN);
-    }
-    Grid::new(xs, ys, values).map_err(|e| {
-        MarkError::at(index, &["x"], format!("chart \"{}\": {e}", chart.name), "check the grid coordinates")
-    })
 }
 
 /// One label per level, on that level's longest line, rotated along it, over a white halo.

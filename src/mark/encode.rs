@@ -417,15 +417,7 @@ pub fn color_encoding(
         return Ok((ColorEncoding::Categorical { categories, colors }, Some(legend)));
     }
     let values = col.numbers().unwrap_or(&[]).to_vec();
-    let scheme = options.scheme.as_deref().unwrap_or(color::DEFAULT_SEQUENTIAL);
-    let map = color::continuous(scheme).ok_or_else(|| {
-        let names = color::continuous_names();
-        let hint = match crate::spec::suggest::did_you_mean(scheme, names.iter().copied()) {
-            Some(best) => format!("did you mean `{best}`? continuous schemes: {}", names.join(", ")),
-            None => format!("continuous schemes: {}", names.join(", ")),
-        };
-        MarkError::at(index, &["color", "scheme"], format!("unknown continuous colour scheme `{scheme}`"), hint)
-    })?;
+    let map = continuous_map(index, &["color", "scheme"], options.scheme.as_deref())?;
     let (mut lo, mut hi) = extent(&values, rows).unwrap_or((0.0, 1.0));
     if map.is_diverging() {
         let mid = options.midpoint.unwrap_or((lo + hi) / 2.0);
@@ -439,6 +431,19 @@ pub fn color_encoding(
     }
     let legend = Legend::ColorBar { title, map: map.clone(), domain: (lo, hi) };
     Ok((ColorEncoding::Continuous { values, map, lo, hi }, Some(legend)))
+}
+
+/// A continuous colour map by name (default viridis), or an error at `keys` listing the names.
+pub fn continuous_map(index: usize, keys: &[&str], name: Option<&str>) -> Result<ContinuousMap, MarkError> {
+    let scheme = name.unwrap_or(color::DEFAULT_SEQUENTIAL);
+    color::continuous(scheme).ok_or_else(|| {
+        let names = color::continuous_names();
+        let hint = match crate::spec::suggest::did_you_mean(scheme, names.iter().copied()) {
+            Some(best) => format!("did you mean `{best}`? continuous schemes: {}", names.join(", ")),
+            None => format!("continuous schemes: {}", names.join(", ")),
+        };
+        MarkError::at(index, keys, format!("unknown continuous colour scheme `{scheme}`"), hint)
+    })
 }
 
 /// Distinct numbers as sorted categories (for `type = "categorical"` on a numeric column).

@@ -7,6 +7,7 @@ pub mod contour;
 pub mod derived;
 pub mod encode;
 pub mod frame;
+pub mod gridded;
 pub mod interp1d;
 pub mod line;
 pub mod scatter;
