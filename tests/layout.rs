@@ -66,7 +66,7 @@ fn every_chart_is_labelled() {
         let all = texts(&scene);
         let count = |role: Role| all.iter().filter(|(r, _, _)| *r == role).count();
         assert_eq!(count(Role::Title), 1, "{name} has a title");
-        assert_eq!(count(Role::AxisTitle), 2, "{name} has two axis titles");
+        assert!(count(Role::AxisTitle) >= 2, "{name} has axis titles");
         assert!(count(Role::TickLabel) >= 4, "{name} has tick labels");
         let (mut marks, mut with_rows) = (0, 0);
         scene.walk(|item| {

@@ -48,7 +48,7 @@ pub fn draw(chart: &Chart, options: &ContourOptions, index: usize, table: &Table
         // A constant field is one band around its value.
         edges = vec![zmin - 0.5, zmax + 0.5];
     }
-    let (lo, hi) = color_domain(&map, zmin, zmax, z_opts.midpoint);
+    let (lo, hi) = encode::color_domain(&map, zmin, zmax, z_opts.midpoint);
     let band_colors = band_colors(&map, &edges, z_opts.midpoint);
 
     let z_title =
@@ -178,23 +178,6 @@ pub fn band_colors(map: &ContinuousMap, edges: &[f64], midpoint: Option<f64>) ->
             }
         })
         .collect()
-}
-
-/// The value range the colour map spans: the data range, or for diverging maps a range centred
-/// on the midpoint (default: the middle of the data).
-fn color_domain(map: &ContinuousMap, zmin: f64, zmax: f64, midpoint: Option<f64>) -> (f64, f64) {
-    let (mut lo, mut hi) = (zmin, zmax);
-    if map.is_diverging() {
-        let mid = midpoint.unwrap_or((lo + hi) / 2.0);
-        let half = (hi - mid).abs().max((mid - lo).abs());
-        lo = mid - half;
-        hi = mid + half;
-    }
-    if hi <= lo {
-        lo -= 0.5;
-        hi += 0.5;
-    }
-    (lo, hi)
 }
 
 /// One label per level, on that level's longest line, rotated along it, over a white halo.

@@ -433,6 +433,23 @@ pub fn color_encoding(
     Ok((ColorEncoding::Continuous { values, map, lo, hi }, Some(legend)))
 }
 
+/// The value range the colour map spans: the data range, or for diverging maps a range centred
+/// on the midpoint (default: the middle of the data).
+pub fn color_domain(map: &ContinuousMap, zmin: f64, zmax: f64, midpoint: Option<f64>) -> (f64, f64) {
+    let (mut lo, mut hi) = (zmin, zmax);
+    if map.is_diverging() {
+        let mid = midpoint.unwrap_or((lo + hi) / 2.0);
+        let half = (hi - mid).abs().max((mid - lo).abs());
+        lo = mid - half;
+        hi = mid + half;
+    }
+    if hi <= lo {
+        lo -= 0.5;
+        hi += 0.5;
+    }
+    (lo, hi)
+}
+
 /// A continuous colour map by name (default viridis), or an error at `keys` listing the names.
 pub fn continuous_map(index: usize, keys: &[&str], name: Option<&str>) -> Result<ContinuousMap, MarkError> {
     let scheme = name.unwrap_or(color::DEFAULT_SEQUENTIAL);

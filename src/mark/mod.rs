@@ -8,9 +8,11 @@ pub mod derived;
 pub mod encode;
 pub mod frame;
 pub mod gridded;
+pub mod image;
 pub mod interp1d;
 pub mod line;
 pub mod scatter;
+pub mod section;
 
 use std::fmt;
 
@@ -78,6 +80,8 @@ pub fn draw(chart: &Chart, index: usize, table: &Table) -> Result<ChartOutput, M
         ChartKind::Line(options) => line::draw(chart, options, index, table),
         ChartKind::Interp1d(options) => interp1d::draw(chart, options, index, table),
         ChartKind::Contour(options) => contour::draw(chart, options, index, table),
+        ChartKind::Image(options) => image::draw(chart, options, index, table),
+        ChartKind::Section(options) => section::draw(chart, options, index, table),
     }
 }
 
@@ -88,7 +92,7 @@ pub fn column_keys(kind: &str) -> &'static [&'static str] {
         "scatter" => &["x", "y", "color", "point_size"],
         "line" => &["x", "y", "series"],
         "interp1d" => &["x", "y", "slopes"],
-        "contour" => &["x", "y", "z"],
+        "contour" | "image" | "section" => &["x", "y", "z"],
         _ => &[],
     }
 }

@@ -371,3 +371,60 @@ impl Scene {
         go(&self.items, &mut visit);
     }
 }
+
+impl Point {
+    /// The point moved by (dx, dy).
+    pub fn offset(self, dx: f64, dy: f64) -> Point {
+        Point::new(self.x + dx, self.y + dy)
+    }
+}
+
+impl Rect {
+    /// The rectangle moved by (dx, dy).
+    pub fn offset(self, dx: f64, dy: f64) -> Rect {
+        Rect::new(self.x + dx, self.y + dy, self.w, self.h)
+    }
+}
+
+impl Item {
+    /// The same item moved by (dx, dy), children and clips included (for panels laid out as
+    /// separate frames and then placed on one canvas).
+    pub fn translated(mut self, dx: f64, dy: f64) -> Item {
+        self.shape = match self.shape {
+            Shape::Rect(r) => Shape::Rect(r.offset(dx, dy)),
+            Shape::Circle { center, radius } => Shape::Circle { center: center.offset(dx, dy), radius },
+            Shape::Path(cmds) => Shape::Path(
+                cmds.into_iter()
+                    .map(|c| match c {
+                        PathCmd::MoveTo(p) => PathCmd::MoveTo(p.offset(dx, dy)),
+                        PathCmd::LineTo(p) => PathCmd::LineTo(p.offset(dx, dy)),
+                        PathCmd::QuadTo(a, p) => PathCmd::QuadTo(a.offset(dx, dy), p.offset(dx, dy)),
+                        PathCmd::CubicTo(a, b, p) => {
+                            PathCmd::CubicTo(a.offset(dx, dy), b.offset(dx, dy), p.offset(dx, dy))
+                        }
+                        PathCmd::Close => PathCmd::Close,
+                    })
+                    .collect(),
+            ),
+            Shape::Text(mut t) => {
+                t.at = t.at.offset(dx, dy);
+                Shape::Text(t)
+            }
+            Shape::Image(mut r) => {
+                r.dest = r.dest.offset(dx, dy);
+                Shape::Image(r)
+            }
+            Shape::Points(mut b) => {
+                for c in &mut b.centers {
+                    *c = c.offset(dx, dy);
+                }
+                Shape::Points(b)
+            }
+            Shape::Group { items, clip } => Shape::Group {
+                items: items.into_iter().map(|i| i.translated(dx, dy)).collect(),
+                clip: clip.map(|r| r.offset(dx, dy)),
+            },
+        };
+        self
+    }
+}

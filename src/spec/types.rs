@@ -93,11 +93,15 @@ pub enum ChartKind {
     Interp1d(Interp1dOptions),
     /// Contour lines and filled bands of a scalar field on a regular grid.
     Contour(ContourOptions),
+    /// A scalar field on a regular grid as a colour image (heatmap) with a colour bar.
+    Image(ImageOptions),
+    /// Cross-sections of a gridded field: z along x at chosen y values (or along y at chosen x).
+    Section(SectionOptions),
 }
 
 impl ChartKind {
     /// Every kind's name as written in the spec, in declaration order.
-    pub const NAMES: &'static [&'static str] = &["scatter", "line", "interp1d", "contour"];
+    pub const NAMES: &'static [&'static str] = &["scatter", "line", "interp1d", "contour", "image", "section"];
 
     /// The kind's name as written in the spec.
     pub fn name(&self) -> &'static str {
@@ -106,6 +110,8 @@ impl ChartKind {
             ChartKind::Line(_) => "line",
             ChartKind::Interp1d(_) => "interp1d",
             ChartKind::Contour(_) => "contour",
+            ChartKind::Image(_) => "image",
+            ChartKind::Section(_) => "section",
         }
     }
 }
@@ -244,6 +250,71 @@ pub struct ContourOptions {
     /// Write each level's value on its longest line (default true).
     #[serde(default)]
     pub labels: Option<bool>,
+}
+
+/// Options of `kind = "image"`.
+#[derive(Clone, Debug, Deserialize, Serialize, JsonSchema, PartialEq)]
+pub struct ImageOptions {
+    /// Grid x coordinate: a numeric column of a long-form table (one row per grid node).
+    pub x: Channel,
+    /// Grid y coordinate: a numeric column of a long-form table (one row per grid node).
+    pub y: Channel,
+    /// The field's value: a column name, or `{ field, title, unit, scheme, midpoint }`.
+    pub z: ColorChannel,
+    /// `nearest` (default: each node colours the cell around it) or `bilinear` (smooth).
+    #[serde(default)]
+    pub resample: Option<Resample>,
+    /// Colour of missing cells (default light grey, `#d9d9d9`).
+    #[serde(default)]
+    pub nan_color: Option<String>,
+}
+
+/// How an image is resampled to pixels.
+#[derive(Clone, Copy, Debug, Deserialize, Serialize, JsonSchema, PartialEq, Eq)]
+#[serde(rename_all = "lowercase")]
+pub enum Resample {
+    /// Each pixel takes the value of the nearest grid node.
+    Nearest,
+    /// Each pixel takes the bilinear interpolation of the four surrounding nodes.
+    Bilinear,
+}
+
+/// Options of `kind = "section"`.
+#[derive(Clone, Debug, Deserialize, Serialize, JsonSchema, PartialEq)]
+pub struct SectionOptions {
+    /// Grid x coordinate: a numeric column of a long-form table (one row per grid node).
+    pub x: Channel,
+    /// Grid y coordinate: a numeric column of a long-form table (one row per grid node).
+    pub y: Channel,
+    /// The field's value: a column name, or `{ field, title, unit }`.
+    pub z: ColorChannel,
+    /// Sections along x at these y values (give this or `at_x`).
+    #[serde(default)]
+    pub at_y: Option<Vec<f64>>,
+    /// Sections along y at these x values (give this or `at_y`).
+    #[serde(default)]
+    pub at_x: Option<Vec<f64>>,
+    /// `overlay` (default: one plot, a line per section) or `multiples` (one panel per
+    /// section, stacked, sharing both scales).
+    #[serde(default)]
+    pub layout: Option<SectionLayout>,
+    /// Line width in pixels (default 2).
+    #[serde(default)]
+    #[schemars(range(min = 0.0))]
+    pub stroke_width: Option<f64>,
+    /// Categorical colour scheme for the sections (default `okabe-ito`).
+    #[serde(default)]
+    pub scheme: Option<String>,
+}
+
+/// How sections are arranged.
+#[derive(Clone, Copy, Debug, Deserialize, Serialize, JsonSchema, PartialEq, Eq)]
+#[serde(rename_all = "lowercase")]
+pub enum SectionLayout {
+    /// All sections in one plot.
+    Overlay,
+    /// One panel per section, sharing scales.
+    Multiples,
 }
 
 /// Contour levels: how many, or which.
