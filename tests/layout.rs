@@ -76,8 +76,8 @@ fn every_chart_is_labelled() {
             }
         });
         assert!(marks >= 1, "{name} has data marks");
-        // Marks drawn from rows keep them (contours are derived geometry and have none).
-        if !name.starts_with("contour") {
+        // Marks drawn from rows keep them (contours and sections are derived geometry).
+        if !name.starts_with("contour") && !name.starts_with("section") {
             assert_eq!(with_rows, marks, "{name}: every data mark keeps its source rows");
         }
     }

@@ -485,3 +485,124 @@ fn make_quad(
         cell: (i0, j0),
     })
 }
+
+/// The eight corners of the model box; bit 0 of the index picks the x side, bit 1 y, bit 2 z.
+fn box_corners(t: &Transform) -> [[f64; 3]; 8] {
+    let mut corners = [[0.0; 3]; 8];
+    for (c, corner) in corners.iter_mut().enumerate() {
+        for (k, coord) in corner.iter_mut().enumerate() {
+            let side = if c >> k & 1 == 1 { 0.5 } else { -0.5 };
+            *coord = side * t.extent.get(k).copied().unwrap_or(0.0);
+        }
+    }
+    corners
+}
+
+/// Whether the box face on `side` (0 = low, 1 = high) of model axis `k` faces the camera.
+fn faces_camera(t: &Transform, k: usize, side: usize) -> bool {
+    let e = t.eye.get(k).copied().unwrap_or(0.0);
+    let outward = if side == 1 { e } else { -e };
+    outward > 1e-12
+}
+
+/// The twelve box edges, each flagged hidden when neither adjacent face faces the camera.
+fn box_edges(t: &Transform, corners: &[[f64; 3]; 8]) -> Vec<BoxEdge> {
+    const AXES: [SurfaceAxis; 3] = [SurfaceAxis::X, SurfaceAxis::Y, SurfaceAxis::Z];
+    let mut edges = Vec::with_capacity(12);
+    for (c, &a) in corners.iter().enumerate() {
+        for (k, &axis) in AXES.iter().enumerate() {
+            if c >> k & 1 == 1 {
+                continue;
+            }
+            let Some(&b) = corners.get(c | 1 << k) else { continue };
+            let visible = (0..3).filter(|&m| m != k).any(|m| faces_camera(t, m, c >> m & 1));
+            edges.push(BoxEdge { start: t.screen(a), end: t.screen(b), axis, hidden: !visible });
+        }
+    }
+    edges
+}
+
+/// Screen direction of the model direction `d`, normalised; `fallback` when it is edge-on.
+fn screen_direction(t: &Transform, d: [f64; 3], fallback: (f64, f64)) -> (f64, f64) {
+    let (sx, sy) = (dot(t.right, d), dot(t.up, d));
+    let len = sx.hypot(sy);
+    if len > 1e-9 { (sx / len, sy / len) } else { fallback }
+}
+
+/// Tick lines: x and y along the bottom edges nearest the camera, z along the leftmost vertical
+/// edge.
+fn axis_lines(t: &Transform) -> [AxisLine; 3] {
+    let (x0, x1) = t.x;
+    let (y0, y1) = t.y;
+    let (z0, z1) = t.z;
+    let line = |axis, from: [f64; 3], to: [f64; 3], outward| AxisLine {
+        axis,
+        from,
+        to,
+        start: t.project(from[0], from[1], from[2]),
+        end: t.project(to[0], to[1], to[2]),
+        outward,
+    };
+    // The camera is on the high side of an axis when the eye vector points that way.
+    let near_y_high = t.eye[1] > 0.0;
+    let near_x_high = t.eye[0] > 0.0;
+    let y_near = if near_y_high { y1 } else { y0 };
+    let x_near = if near_x_high { x1 } else { x0 };
+    let x_out = screen_direction(t, [0.0, if near_y_high { 1.0 } else { -1.0 }, 0.0], (0.0, -1.0));
+    let y_out = screen_direction(t, [if near_x_high { 1.0 } else { -1.0 }, 0.0, 0.0], (0.0, -1.0));
+    // Leftmost vertical edge: the bottom corner with the smallest screen x.
+    let mut best = (x0, y0);
+    let mut best_sx = f64::INFINITY;
+    for (x, y) in [(x0, y0), (x1, y0), (x0, y1), (x1, y1)] {
+        let (sx, _) = t.project(x, y, z0);
+        if sx < best_sx {
+            best_sx = sx;
+            best = (x, y);
+        }
+    }
+    [
+        line(SurfaceAxis::X, [x0, y_near, z0], [x1, y_near, z0], x_out),
+        line(SurfaceAxis::Y, [x_near, y0, z0], [x_near, y1, z0], y_out),
+        line(SurfaceAxis::Z, [best.0, best.1, z0], [best.0, best.1, z1], (-1.0, 0.0)),
+    ]
+}
+
+/// Node indices kept along an axis of `n` nodes and the stride: every `s`-th node plus the last,
+/// with `s` the smallest stride leaving at most [`MAX_CELLS_PER_AXIS`] cells.
+fn strided(n: usize) -> (Vec<usize>, usize) {
+    let cells = n.saturating_sub(1);
+    let stride = cells.div_ceil(MAX_CELLS_PER_AXIS).max(1);
+    let mut kept: Vec<usize> = (0..cells).step_by(stride).collect();
+    if n > 0 {
+        kept.push(cells);
+    }
+    (kept, stride)
+}
+
+/// Position of `v` on the range `[a, b]` as a fraction (0 at `a`, 1 at `b`, unclamped) without
+/// overflow for huge spans; 0.5 when `a == b`.
+fn unit(a: f64, b: f64, v: f64) -> f64 {
+    if a == b {
+        return 0.5;
+    }
+    let (num, den) = (v - a, b - a);
+    if num.is_finite() && den.is_finite() { num / den } else { (0.5 * v - 0.5 * a) / (0.5 * b - 0.5 * a) }
+}
+
+/// Length of the range `a` over that of `b`, without overflow for huge spans.
+fn span_ratio(a: (f64, f64), b: (f64, f64)) -> f64 {
+    let (num, den) = (a.1 - a.0, b.1 - b.0);
+    if num.is_finite() && den.is_finite() { num / den } else { (0.5 * a.1 - 0.5 * a.0) / (0.5 * b.1 - 0.5 * b.0) }
+}
+
+fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+
+fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
+}
