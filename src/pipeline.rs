@@ -219,6 +219,8 @@ pub struct Formats {
     pub png: bool,
     /// `NAME.csv` (derived geometry).
     pub csv: bool,
+    /// `NAME.geojson` (derived geometry, for kinds that have it).
+    pub geojson: bool,
 }
 
 /// Options of `dataink render`.
@@ -375,6 +377,11 @@ fn write_chart(
         let empty = Table::default();
         let csv = out.derived.to_csv(table.unwrap_or(&empty));
         write(options.out_dir.join(format!("{name}.csv")), csv.as_bytes(), &mut files)?;
+    }
+    if let (true, Some(geojson)) = (options.formats.geojson, &out.geojson) {
+        let text = serde_json::to_string(geojson)
+            .map_err(|e| Diagnostic::error(format!("chart \"{name}\": cannot write GeoJSON: {e}")))?;
+        write(options.out_dir.join(format!("{name}.geojson")), text.as_bytes(), &mut files)?;
     }
     Ok(files)
 }

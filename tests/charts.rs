@@ -220,3 +220,46 @@ fn constant_and_all_nan_fields() {
     let out = Fixture::new(nan_rows, &[]).draw().expect_err("all NaN");
     assert!(out.contains("every value of `z` is missing or non-finite"), "{out}");
 }
+
+#[test]
+fn contour_geojson_has_closed_oriented_rings() {
+    // A cone f = −√(x² + y²) + 3 on a 21 × 21 grid: bands are nested annuli around the peak.
+    let mut rows = Vec::new();
+    for j in 0..21 {
+        for i in 0..21 {
+            let (x, y) = (i as f64 * 0.3 - 3.0, j as f64 * 0.3 - 3.0);
+            rows.push((x, y, 3.0 - (x * x + y * y).sqrt()));
+        }
+    }
+    let out = Fixture::new(&grid_spec(&rows, "levels = [0.5, 1.5, 2.5]\n"), &[]).draw().expect("draws");
+    let geojson = out[0].geojson.as_ref().expect("contour charts export GeoJSON");
+    let features = geojson["features"].as_array().expect("features");
+    let lines: Vec<_> = features.iter().filter(|f| f["properties"]["kind"] == "line").collect();
+    let bands: Vec<_> = features.iter().filter(|f| f["properties"]["kind"] == "band").collect();
+    assert_eq!(lines.len(), 3, "one closed ring per level around the peak");
+    assert_eq!(bands.len(), 4, "min..0.5, 0.5..1.5, 1.5..2.5, 2.5..max");
+    let signed_area = |ring: &[serde_json::Value]| -> f64 {
+        ring.windows(2)
+            .map(|w| {
+                let (a, b) = (&w[0], &w[1]);
+                a[0].as_f64().unwrap_or(0.0) * b[1].as_f64().unwrap_or(0.0)
+                    - b[0].as_f64().unwrap_or(0.0) * a[1].as_f64().unwrap_or(0.0)
+            })
+            .sum::<f64>()
+            / 2.0
+    };
+    let mut total = 0.0;
+    for band in bands {
+        for polygon in band["geometry"]["coordinates"].as_array().expect("polygons") {
+            for (k, ring) in polygon.as_array().expect("rings").iter().enumerate() {
+                let ring = ring.as_array().expect("ring");
+                assert_eq!(ring.first(), ring.last(), "GeoJSON rings repeat their first point");
+                let area = signed_area(ring);
+                assert!(if k == 0 { area > 0.0 } else { area < 0.0 }, "outer CCW, holes CW: {area}");
+                total += area;
+            }
+        }
+    }
+    // The bands tile the grid's domain, a 6 × 6 square.
+    assert!((total - 36.0).abs() < 1e-9, "{total}");
+}

@@ -61,6 +61,8 @@ enum Format {
     Png,
     /// Derived geometry in data coordinates.
     Csv,
+    /// Derived geometry as GeoJSON (contour lines and bands).
+    Geojson,
 }
 
 /// Run the tool; returns the process exit code.
@@ -106,6 +108,7 @@ pub fn run() -> ExitCode {
                 svg: format.contains(&Format::Svg),
                 png: format.contains(&Format::Png),
                 csv: format.contains(&Format::Csv),
+                geojson: format.contains(&Format::Geojson),
             };
             let options = RenderOptions { out_dir: out, formats, charts: chart, scale };
             let bar = progress_bar(loaded.spec.chart.len(), quiet);

@@ -75,10 +75,14 @@ pub fn draw(chart: &Chart, options: &ContourOptions, index: usize, table: &Table
     let to_px = |(x, y): (f64, f64)| Point::new(frame.x.map(x), frame.y.map(y));
 
     let mut marks = Vec::new();
-    if fill {
-        let bands = contour::contour_bands(&grid, &edges, saddle).map_err(|e| {
+    let bands = if fill {
+        contour::contour_bands(&grid, &edges, saddle).map_err(|e| {
             MarkError::at(index, &["levels"], format!("chart \"{}\": {e}", chart.name), "give fewer levels")
-        })?;
+        })?
+    } else {
+        Vec::new()
+    };
+    {
         for (band, color) in bands.iter().zip(&band_colors) {
             let mut cmds = Vec::new();
             for ring in band.polygons.iter().flatten() {
@@ -148,7 +152,7 @@ pub fn draw(chart: &Chart, options: &ContourOptions, index: usize, table: &Table
     derived.push("line", DerivedColumn::Number(derived_line));
     derived.push(&x_opts.field, DerivedColumn::Number(derived_x));
     derived.push(&y_opts.field, DerivedColumn::Number(derived_y));
-    Ok(ChartOutput { scene, derived, warnings })
+    Ok(ChartOutput { scene, derived, warnings, geojson: Some(geojson(&lines, &bands)) })
 }
 
 /// One colour per band, by the band's rank rather than its value, so that unevenly spaced
@@ -271,4 +275,38 @@ fn point_along(px: &[Point], distance: f64) -> Option<(Point, f64)> {
         walked += seg;
     }
     None
+}
+
+/// Contour lines as `LineString` features (`level`) and bands as `MultiPolygon` features
+/// (`lower`, `upper`), in data coordinates. GeoJSON rings repeat their first point and run
+/// counter-clockwise for outer rings, clockwise for holes (RFC 7946), as the bands already do.
+pub fn geojson(lines: &[contour::ContourLine], bands: &[contour::Band]) -> serde_json::Value {
+    use serde_json::json;
+    let coords = |pts: &[(f64, f64)], close: bool| -> Vec<[f64; 2]> {
+        let mut v: Vec<[f64; 2]> = pts.iter().map(|&(x, y)| [x, y]).collect();
+        if close {
+            if let Some(&first) = v.first() {
+                v.push(first);
+            }
+        }
+        v
+    };
+    let mut features = Vec::new();
+    for line in lines {
+        features.push(json!({
+            "type": "Feature",
+            "properties": { "kind": "line", "level": line.level, "closed": line.closed },
+            "geometry": { "type": "LineString", "coordinates": coords(&line.points, line.closed) },
+        }));
+    }
+    for band in bands {
+        let polygons: Vec<Vec<Vec<[f64; 2]>>> =
+            band.polygons.iter().map(|rings| rings.iter().map(|r| coords(r, true)).collect()).collect();
+        features.push(json!({
+            "type": "Feature",
+            "properties": { "kind": "band", "lower": band.lower, "upper": band.upper },
+            "geometry": { "type": "MultiPolygon", "coordinates": polygons },
+        }));
+    }
+    json!({ "type": "FeatureCollection", "features": features })
 }

@@ -76,7 +76,7 @@ pub fn draw(chart: &Chart, options: &ImageOptions, index: usize, table: &Table) 
     derived.push(&x_opts.field, DerivedColumn::Source(x_opts.field.clone()));
     derived.push(&y_opts.field, DerivedColumn::Source(y_opts.field.clone()));
     derived.push(&z_opts.field, DerivedColumn::Source(z_opts.field.clone()));
-    Ok(ChartOutput { scene, derived, warnings })
+    Ok(ChartOutput { scene, derived, warnings, geojson: None })
 }
 
 /// The data extent an image covers: node to node for bilinear; for nearest, half a cell beyond

@@ -191,7 +191,7 @@ pub fn draw(chart: &Chart, options: &Interp1dOptions, index: usize, table: &Tabl
     );
     derived.push(&x_opts.field, DerivedColumn::Number(sampled.iter().flatten().map(|p| p.0).collect()));
     derived.push(&y_opts.field, DerivedColumn::Number(sampled.iter().flatten().map(|p| p.1).collect()));
-    Ok(ChartOutput { scene, derived, warnings })
+    Ok(ChartOutput { scene, derived, warnings, geojson: None })
 }
 
 /// Whether the scale maps data to pixels by an affine function (so Bézier curves map exactly).

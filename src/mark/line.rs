@@ -220,7 +220,7 @@ pub fn draw(chart: &Chart, options: &LineOptions, index: usize, table: &Table) -
     derived.push("row", DerivedColumn::RowIndex);
     derived.push(&x_opts.field, DerivedColumn::Source(x_opts.field.clone()));
     derived.push("y", DerivedColumn::Number(derived_y));
-    Ok(ChartOutput { scene, derived, warnings })
+    Ok(ChartOutput { scene, derived, warnings, geojson: None })
 }
 
 /// Numbers as categories (a numeric `series` column).

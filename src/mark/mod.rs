@@ -32,6 +32,9 @@ pub struct ChartOutput {
     pub derived: Derived,
     /// Non-fatal notes, e.g. rows dropped for non-finite values.
     pub warnings: Vec<String>,
+    /// Derived geometry as a GeoJSON FeatureCollection in data coordinates (`--format geojson`),
+    /// for kinds whose output is geometry (contour lines and bands).
+    pub geojson: Option<serde_json::Value>,
 }
 
 /// Why a chart could not be drawn. Each error carries the spec path it is about.

@@ -148,7 +148,7 @@ pub fn draw(chart: &Chart, options: &ScatterOptions, index: usize, table: &Table
     if let Some(o) = &size_opts {
         derived.push(&o.field, DerivedColumn::Source(o.field.clone()));
     }
-    Ok(ChartOutput { scene, derived, warnings })
+    Ok(ChartOutput { scene, derived, warnings, geojson: None })
 }
 
 /// Radius whose area is proportional to `value` (the largest value gets `max_radius`).

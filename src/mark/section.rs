@@ -137,7 +137,7 @@ pub fn draw(chart: &Chart, options: &SectionOptions, index: usize, table: &Table
         .push(&pos_opts.field, DerivedColumn::Number(cuts.iter().flat_map(|c| c.points.iter().map(|p| p.0)).collect()));
     derived
         .push(&z_opts.field, DerivedColumn::Number(cuts.iter().flat_map(|c| c.points.iter().map(|p| p.1)).collect()));
-    Ok(ChartOutput { scene, derived, warnings })
+    Ok(ChartOutput { scene, derived, warnings, geojson: None })
 }
 
 /// A section's polyline, broken where the field is missing.
