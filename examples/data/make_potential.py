@@ -15,3 +15,16 @@ with out.open("w") as f:
             x = -3.0 + 6.0 * i / 120
             v = sum(q / max(math.hypot(x - cx, y - cy), 0.15) for cx, cy, q in charges)
             f.write(f"{x:.4f},{y:.4f},{v:.6f}\n")
+
+# The same charges in 3-D space on a 25 x 25 x 25 grid (x, y, z, potential), for the hyperslice.
+out3 = pathlib.Path(__file__).with_name("potential3d.csv")
+with out3.open("w") as f:
+    f.write("x,y,z,potential\n")
+    for k in range(25):
+        z = -1.5 + 3.0 * k / 24
+        for j in range(25):
+            y = -2.0 + 4.5 * j / 24
+            for i in range(25):
+                x = -3.0 + 6.0 * i / 24
+                v = sum(q / max(math.sqrt((x - cx) ** 2 + (y - cy) ** 2 + z * z), 0.15) for cx, cy, q in charges)
+                f.write(f"{x:.4f},{y:.4f},{z:.4f},{v:.6f}\n")

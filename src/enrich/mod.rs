@@ -3,4 +3,7 @@
 
 pub mod contour;
 pub mod grid;
+pub mod hyperslice;
 pub mod interp1d;
+pub mod scattered;
+pub mod surface;

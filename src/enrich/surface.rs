@@ -336,7 +336,8 @@ impl Transform {
 /// at half the larger horizontal extent.
 pub fn project(grid: &Grid, view: View, light: Light, z_scale: Option<f64>) -> Result<SurfaceProjection, SurfaceError> {
     let (nx, ny) = (grid.nx(), grid.ny());
-    let (Some(&x0), Some(&x1), Some(&y0), Some(&y1)) = (grid.xs().first(), grid.xs().last(), grid.ys().first(), grid.ys().last())
+    let (Some(&x0), Some(&x1), Some(&y0), Some(&y1)) =
+        (grid.xs().first(), grid.xs().last(), grid.ys().first(), grid.ys().last())
     else {
         return Err(SurfaceError::NoCells { nx, ny });
     };
@@ -378,7 +379,7 @@ pub fn project(grid: &Grid, view: View, light: Light, z_scale: Option<f64>) -> R
                 return Err(SurfaceError::ZScale { value: k });
             }
             let ratio = k * span_ratio(z_range, wide);
-            if !(ratio <= MAX_HEIGHT_RATIO) {
+            if ratio.is_nan() || ratio > MAX_HEIGHT_RATIO {
                 return Err(SurfaceError::ZScaleTooLarge { value: k, ratio });
             }
             ratio
@@ -436,7 +437,7 @@ pub fn project(grid: &Grid, view: View, light: Light, z_scale: Option<f64>) -> R
     if quads.is_empty() {
         return Err(SurfaceError::NoCompleteCells { nx, ny });
     }
-    quads.sort_by(|a, b| a.depth.total_cmp(&b.depth).then(a.cell.1.cmp(&b.cell.1)).then(a.cell.0.cmp(&b.cell.0)));
+    quads.sort_by(|a, b| b.depth.total_cmp(&a.depth).then(a.cell.1.cmp(&b.cell.1)).then(a.cell.0.cmp(&b.cell.0)));
 
     let box_edges = box_edges(&t, &corners);
     let axes = axis_lines(&t);
@@ -743,9 +744,11 @@ mod tests {
         }
         // The spike top really covers some cell behind it on screen.
         let top = p.project_point(2.0, 1.0, 10.0);
-        let covered = p.quads.iter().filter(|q| q.cell.1 >= 2).any(|q| {
-            barycentric(top, &q.corners).is_some_and(|(s, t)| s.min(t) > -1e-9 && s.max(t) < 1.0 + 1e-9)
-        });
+        let covered = p
+            .quads
+            .iter()
+            .filter(|q| q.cell.1 >= 2)
+            .any(|q| barycentric(top, &q.corners).is_some_and(|(s, t)| s.min(t) > -1e-9 && s.max(t) < 1.0 + 1e-9));
         assert!(covered, "the spike top {top:?} should overlap a cell behind it");
     }
 
@@ -799,7 +802,9 @@ mod tests {
             // Every quad corner lies in the box.
             for q in &p.quads {
                 for c in q.corners {
-                    assert!(c.0 >= min_x - 1e-12 && c.0 <= max_x + 1e-12 && c.1 >= min_y - 1e-12 && c.1 <= max_y + 1e-12);
+                    assert!(
+                        c.0 >= min_x - 1e-12 && c.0 <= max_x + 1e-12 && c.1 >= min_y - 1e-12 && c.1 <= max_y + 1e-12
+                    );
                 }
             }
         }

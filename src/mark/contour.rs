@@ -142,7 +142,8 @@ pub fn draw(chart: &Chart, options: &ContourOptions, index: usize, table: &Table
             );
         }
         if options.labels.unwrap_or(true) {
-            marks.extend(level_labels(&lines, &levels, &to_px, theme.font_size * 0.85));
+            let pairs = lines.iter().map(|l| (l.level, l.points.as_slice()));
+            marks.extend(level_labels(pairs, &levels, &to_px, theme.font_size * 0.85));
         }
     }
     let scene = frame::scene(chart, frame, &theme, marks);
@@ -185,8 +186,10 @@ pub fn band_colors(map: &ContinuousMap, edges: &[f64], midpoint: Option<f64>) ->
 }
 
 /// One label per level, on that level's longest line, rotated along it, over a white halo.
-fn level_labels(
-    lines: &[contour::ContourLine],
+/// `lines` are `(level, points in data coordinates)`; labels that would collide with one placed
+/// before are moved along their line or dropped.
+pub fn level_labels<'a>(
+    lines: impl Iterator<Item = (f64, &'a [(f64, f64)])> + Clone,
     levels: &[f64],
     to_px: &impl Fn((f64, f64)) -> Point,
     size: f64,
@@ -197,10 +200,10 @@ fn level_labels(
     let mut placed: Vec<crate::scene::Rect> = Vec::new();
     for (level, label) in levels.iter().zip(texts) {
         let best = lines
-            .iter()
-            .filter(|l| l.level == *level)
-            .map(|l| {
-                let px: Vec<Point> = l.points.iter().map(|&p| to_px(p)).collect();
+            .clone()
+            .filter(|(l, _)| *l == *level)
+            .map(|(_, points)| {
+                let px: Vec<Point> = points.iter().map(|&p| to_px(p)).collect();
                 let len: f64 = px.windows(2).map(|w| (w[1].x - w[0].x).hypot(w[1].y - w[0].y)).sum();
                 (len, px)
             })

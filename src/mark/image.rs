@@ -13,7 +13,7 @@ use crate::guide::color;
 use crate::guide::layout::Domain;
 use crate::guide::legend::Legend;
 use crate::guide::scale::Scale;
-use crate::scene::{Color, Item, Raster, Role, Shape, Style};
+use crate::scene::{Color, Item, Raster, Rect, Role, Shape, Style};
 use crate::spec::{Chart, ImageOptions, Resample};
 
 /// Default colour of missing cells.
@@ -92,6 +92,27 @@ pub fn image_extent(coords: &[f64], resample: Resample) -> Option<(f64, f64)> {
             Some((first - lead, last + trail))
         }
     }
+}
+
+/// The grid resampled to the pixels of `plot` (through the scales, so uneven grids and log axes
+/// stay exact) and coloured by `color`.
+pub fn raster_for(
+    grid: &Grid,
+    plot: Rect,
+    x: &Scale,
+    y: &Scale,
+    resample: Resample,
+    color: impl Fn(f64) -> Color,
+) -> Raster {
+    let width = (plot.w.round().max(1.0) as usize).min(MAX_RASTER_SIDE);
+    let height = (plot.h.round().max(1.0) as usize).min(MAX_RASTER_SIDE);
+    let sample = |scale: &Scale, start: f64, extent: f64, n: usize| -> Vec<f64> {
+        (0..n).map(|k| scale.invert(start + extent * (k as f64 + 0.5) / n as f64).unwrap_or(f64::NAN)).collect()
+    };
+    let px_x = sample(x, plot.x, plot.w, width);
+    let px_y = sample(y, plot.y, plot.h, height);
+    let rgba = raster(grid, &px_x, &px_y, resample, color);
+    Raster { dest: plot, width: width as u32, height: height as u32, rgba: Arc::new(rgba), smooth: false }
 }
 
 /// Index of the node nearest `v` along sorted `coords` (cell boundaries at midpoints).

@@ -8,11 +8,14 @@ pub mod derived;
 pub mod encode;
 pub mod frame;
 pub mod gridded;
+pub mod hyperslice;
 pub mod image;
 pub mod interp1d;
 pub mod line;
 pub mod scatter;
+pub mod scattered;
 pub mod section;
+pub mod surface;
 
 use std::fmt;
 
@@ -85,6 +88,9 @@ pub fn draw(chart: &Chart, index: usize, table: &Table) -> Result<ChartOutput, M
         ChartKind::Contour(options) => contour::draw(chart, options, index, table),
         ChartKind::Image(options) => image::draw(chart, options, index, table),
         ChartKind::Section(options) => section::draw(chart, options, index, table),
+        ChartKind::Surface(options) => surface::draw(chart, options, index, table),
+        ChartKind::Scattered(options) => scattered::draw(chart, options, index, table),
+        ChartKind::Hyperslice(options) => hyperslice::draw(chart, options, index, table),
     }
 }
 
@@ -95,7 +101,8 @@ pub fn column_keys(kind: &str) -> &'static [&'static str] {
         "scatter" => &["x", "y", "color", "point_size"],
         "line" => &["x", "y", "series"],
         "interp1d" => &["x", "y", "slopes"],
-        "contour" | "image" | "section" => &["x", "y", "z"],
+        "contour" | "image" | "section" | "surface" | "scattered" => &["x", "y", "z"],
+        "hyperslice" => &["axes", "z"],
         _ => &[],
     }
 }

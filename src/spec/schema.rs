@@ -229,15 +229,18 @@ mod tests {
             assert_eq!(branch["additionalProperties"], false);
             assert_eq!(branch["type"], "object");
             assert_eq!(branch["properties"]["kind"]["const"], *kind);
-            for key in ["name", "data", "title", "caption", "size", "font_size", "kind", "x", "y"] {
+            for key in ["name", "data", "title", "caption", "size", "font_size", "kind"] {
                 assert!(branch["properties"].get(key).is_some(), "{kind} lacks {key}");
             }
             let required: Vec<&str> =
                 branch["required"].as_array().into_iter().flatten().filter_map(Value::as_str).collect();
-            assert_eq!(required[..5], ["name", "data", "kind", "x", "y"], "{kind}");
-            if *kind == "contour" {
-                assert_eq!(required[5..], ["z"]);
-            }
+            assert_eq!(required[..3], ["name", "data", "kind"], "{kind}");
+            let own: &[&str] = match *kind {
+                "hyperslice" => &["axes", "z"],
+                "contour" | "image" | "section" | "scattered" | "surface" => &["x", "y", "z"],
+                _ => &["x", "y"],
+            };
+            assert_eq!(required[3..], *own, "{kind}");
         }
         assert!(branches[0]["properties"].get("opacity").is_some());
         assert!(branches[0]["properties"].get("series").is_none());

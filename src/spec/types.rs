@@ -97,11 +97,19 @@ pub enum ChartKind {
     Image(ImageOptions),
     /// Cross-sections of a gridded field: z along x at chosen y values (or along y at chosen x).
     Section(SectionOptions),
+    /// Scattered points: Delaunay triangulation, linear interpolation in the triangles, contours
+    /// on the triangulation, and Voronoi tiles.
+    Scattered(ScatteredOptions),
+    /// A gridded field as a shaded 3D surface (orthographic, hidden surfaces removed).
+    Surface(SurfaceOptions),
+    /// A matrix of 2D slices through gridded data of more than two dimensions, around a focus point.
+    Hyperslice(HypersliceOptions),
 }
 
 impl ChartKind {
     /// Every kind's name as written in the spec, in declaration order.
-    pub const NAMES: &'static [&'static str] = &["scatter", "line", "interp1d", "contour", "image", "section"];
+    pub const NAMES: &'static [&'static str] =
+        &["scatter", "line", "interp1d", "contour", "image", "section", "scattered", "surface", "hyperslice"];
 
     /// The kind's name as written in the spec.
     pub fn name(&self) -> &'static str {
@@ -112,6 +120,9 @@ impl ChartKind {
             ChartKind::Contour(_) => "contour",
             ChartKind::Image(_) => "image",
             ChartKind::Section(_) => "section",
+            ChartKind::Scattered(_) => "scattered",
+            ChartKind::Surface(_) => "surface",
+            ChartKind::Hyperslice(_) => "hyperslice",
         }
     }
 }
@@ -315,6 +326,69 @@ pub enum SectionLayout {
     Overlay,
     /// One panel per section, sharing scales.
     Multiples,
+}
+
+/// Options of `kind = "scattered"`.
+#[derive(Clone, Debug, Deserialize, Serialize, JsonSchema, PartialEq)]
+pub struct ScatteredOptions {
+    /// Point x coordinate (numeric).
+    pub x: Channel,
+    /// Point y coordinate (numeric).
+    pub y: Channel,
+    /// The value at each point: a column name, or `{ field, title, unit, scheme, midpoint }`.
+    pub z: ColorChannel,
+    /// Fill the triangulation with the linear interpolant of z (default true).
+    #[serde(default)]
+    pub fill: Option<bool>,
+    /// Draw the edges of the Delaunay triangles (default true).
+    #[serde(default)]
+    pub mesh: Option<bool>,
+    /// Overlay the Voronoi (Dirichlet) tiles of the points (default false).
+    #[serde(default)]
+    pub voronoi: Option<bool>,
+    /// Contour lines on the triangulation: a number of nice levels or the levels themselves
+    /// (default: none).
+    #[serde(default)]
+    pub levels: Option<Levels>,
+    /// Draw the points on top (default true).
+    #[serde(default)]
+    pub points: Option<bool>,
+}
+
+/// Options of `kind = "surface"`.
+#[derive(Clone, Debug, Deserialize, Serialize, JsonSchema, PartialEq)]
+pub struct SurfaceOptions {
+    /// Grid x coordinate: a numeric column of a long-form table (one row per grid node).
+    pub x: Channel,
+    /// Grid y coordinate: a numeric column of a long-form table (one row per grid node).
+    pub y: Channel,
+    /// The height: a column name, or `{ field, title, unit, scheme, midpoint }` (surface colours).
+    pub z: ColorChannel,
+    /// Viewing direction in degrees, counter-clockwise from +x (default −60).
+    #[serde(default)]
+    pub azimuth: Option<f64>,
+    /// Height of the eye above the xy plane in degrees, 1 to 90 (default 30).
+    #[serde(default)]
+    #[schemars(range(min = 1.0, max = 90.0))]
+    pub elevation: Option<f64>,
+    /// Drawn z length per x/y unit (default: the z range drawn at half the larger horizontal extent).
+    #[serde(default)]
+    #[schemars(range(min = 0.0))]
+    pub z_scale: Option<f64>,
+}
+
+/// Options of `kind = "hyperslice"`.
+#[derive(Clone, Debug, Deserialize, Serialize, JsonSchema, PartialEq)]
+pub struct HypersliceOptions {
+    /// The grid's coordinate columns, one per dimension (2 to 16), in a long-form table with one
+    /// row per grid node.
+    pub axes: Vec<String>,
+    /// The value: a column name, or `{ field, title, unit, scheme, midpoint }`.
+    pub z: ColorChannel,
+    /// The focus point, one coordinate per axis (default: the middle node of each axis); each
+    /// slice holds the other axes at the grid node nearest the focus.
+    #[serde(default)]
+    pub focus: Option<Vec<f64>>,
 }
 
 /// Contour levels: how many, or which.

@@ -1,0 +1,758 @@
+//! Scattered data: a Delaunay triangulation (a TIN) of points carrying values, linear
+//! interpolation inside its triangles, contour lines traced on the triangulation itself (no
+//! resampling), and the Voronoi (Dirichlet) tessellation of the points.
+//!
+//! The triangulation comes from [`spade`], whose geometric predicates are exact, so the result is
+//! a true Delaunay triangulation whatever the spacing or scale of the points. Internally every
+//! coordinate is multiplied by one power of two (an exact operation) so that the largest
+//! magnitude lies in `[0.5, 1)`; any finite coordinates work, from `1e-300` to `1e300`.
+//!
+//! Rules, in the order [`Triangulation::new`] applies them:
+//! - **Coordinates** must be finite: a NaN or infinite `x` or `y` is an error naming the first
+//!   bad row ([`ScatteredError::NonFiniteCoordinate`]); the caller drops such rows first.
+//! - **Duplicates.** Rows at exactly the same position (`==` on both coordinates, so `0.0` and
+//!   `-0.0` are the same) are merged: the first row is kept with its value, later ones are dropped
+//!   and counted by [`Triangulation::merged_duplicates`]. [`Triangulation::points`] holds the
+//!   kept points in input order and [`Triangulation::rows`] names the input row of each. A
+//!   coordinate smaller in magnitude than 2⁻¹⁴² times the largest one (far below `f64`
+//!   resolution at that scale) counts as zero, as spade's exact predicates require.
+//! - **Values.** Non-finite values (NaN, ±inf) are stored as NaN and mean "missing". The point
+//!   still takes part in the triangulation and the Voronoi tessellation, but every triangle
+//!   touching it is a *hole*: [`Triangulation::interpolate`] is NaN inside it and
+//!   [`Triangulation::contour_lines`] leaves it empty.
+//! - **Degenerate input.** Fewer than three distinct points, or all points on one line (decided
+//!   exactly), is not an error: the result has no triangles, an empty hull and
+//!   [`Triangulation::is_degenerate`] is `true`, so a chart can still draw the points and their
+//!   Voronoi cells (strips or half-planes), while interpolation is NaN everywhere and there are no
+//!   contours.
+//! - **Outside the hull** interpolation is NaN.
+//! - **Above / below.** For contours a point with `value >= level` is *above* the level; a
+//!   contour line is the boundary of the region `{f >= level}` of the linear TIN, with that region
+//!   on its left.
+//! - **Size.** At most [`MAX_POINTS`] points; contouring is capped by [`MAX_LEVELS`] and
+//!   [`MAX_CROSSINGS`], checked before anything large is allocated.
+
+mod contour;
+#[cfg(test)]
+mod tests;
+mod voronoi;
+
+use std::fmt;
+use std::sync::OnceLock;
+
+use spade::handles::FixedVertexHandle;
+use spade::{DelaunayTriangulation, HasPosition, Point2, PositionInTriangulation, Triangulation as _};
+
+use crate::enrich::grid::{Grid, GridError};
+
+/// Most points [`Triangulation::new`] accepts (2²⁴ ≈ 16.8 million): the triangulation needs
+/// a few hundred bytes per point, so this bounds it at a few gigabytes.
+pub const MAX_POINTS: usize = 1 << 24;
+
+/// Most distinct finite levels one [`Triangulation::contour_lines`] call traces.
+pub const MAX_LEVELS: usize = 1000;
+
+/// Most (triangle, level) crossings one [`Triangulation::contour_lines`] call traces (2²⁶ ≈ 67
+/// million); each yields one output point.
+pub const MAX_CROSSINGS: usize = 1 << 26;
+
+/// When more than this many points nearest the centre may lie on one line, spade's bulk loader
+/// would spend quadratic time on them, so the triangulation is built by insertion instead.
+const SEED_LIMIT: usize = 1024;
+
+/// "No triangle" in the neighbour table.
+const NONE: u32 = u32::MAX;
+
+/// Why scattered data could not be triangulated, contoured or tessellated.
+#[derive(Debug, Clone, PartialEq)]
+pub enum ScatteredError {
+    /// The number of values differs from the number of points.
+    LengthMismatch {
+        /// Number of points given.
+        points: usize,
+        /// Number of values given.
+        values: usize,
+    },
+    /// A point has a NaN or infinite coordinate.
+    NonFiniteCoordinate {
+        /// Row of the first such point.
+        index: usize,
+        /// Its x coordinate.
+        x: f64,
+        /// Its y coordinate.
+        y: f64,
+    },
+    /// More than [`MAX_POINTS`] points.
+    TooManyPoints {
+        /// Number of points given.
+        count: usize,
+        /// The cap, [`MAX_POINTS`].
+        max: usize,
+    },
+    /// More than [`MAX_LEVELS`] distinct finite contour levels.
+    TooManyLevels {
+        /// Number of distinct finite levels given.
+        count: usize,
+        /// The cap, [`MAX_LEVELS`].
+        max: usize,
+    },
+    /// The levels cross triangles more than [`MAX_CROSSINGS`] times in total.
+    TooManyCrossings {
+        /// Number of (triangle, level) crossings the request needs.
+        count: usize,
+        /// The cap, [`MAX_CROSSINGS`].
+        max: usize,
+    },
+    /// The Voronoi clip rectangle is not finite or has no area.
+    InvalidClip {
+        /// The rectangle as given, `(xmin, ymin, xmax, ymax)`.
+        clip: (f64, f64, f64, f64),
+    },
+    /// The resampling grid is invalid.
+    Grid(GridError),
+    /// The triangulator refused points that had passed validation (a bug).
+    Triangulator {
+        /// spade's description of the problem.
+        message: String,
+    },
+}
+
+impl fmt::Display for ScatteredError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            ScatteredError::LengthMismatch { points, values } => write!(
+                f,
+                "{points} points but {values} values were given; give exactly one value per point \
+                 (NaN for a missing value)"
+            ),
+            ScatteredError::NonFiniteCoordinate { index, x, y } => write!(
+                f,
+                "point {index} is ({x}, {y}); coordinates must be finite numbers, so drop rows with \
+                 missing or infinite coordinates first"
+            ),
+            ScatteredError::TooManyPoints { count, max } => write!(
+                f,
+                "{count} points were given but at most {max} can be triangulated; thin them first \
+                 (sample them, or bin them onto a grid)"
+            ),
+            ScatteredError::TooManyLevels { count, max } => write!(
+                f,
+                "{count} distinct contour levels were given but at most {max} are allowed; pass \
+                 fewer levels"
+            ),
+            ScatteredError::TooManyCrossings { count, max } => write!(
+                f,
+                "these levels cross triangles {count} times but at most {max} crossings are \
+                 traced; use fewer levels or fewer points"
+            ),
+            ScatteredError::InvalidClip { clip: (xmin, ymin, xmax, ymax) } => write!(
+                f,
+                "the clip rectangle (xmin, ymin, xmax, ymax) = ({xmin}, {ymin}, {xmax}, {ymax}) is \
+                 not valid; give finite corners with xmin < xmax and ymin < ymax"
+            ),
+            ScatteredError::Grid(e) => write!(f, "cannot resample onto this grid: {e}"),
+            ScatteredError::Triangulator { message } => write!(
+                f,
+                "the triangulator refused the points ({message}); this is a bug in dataink, please \
+                 report it together with the data"
+            ),
+        }
+    }
+}
+
+impl std::error::Error for ScatteredError {
+    fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
+        match self {
+            ScatteredError::Grid(e) => Some(e),
+            _ => None,
+        }
+    }
+}
+
+impl From<GridError> for ScatteredError {
+    fn from(e: GridError) -> Self {
+        ScatteredError::Grid(e)
+    }
+}
+
+/// One contour line of a [`Triangulation`] at one level.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TinLine {
+    /// The level this line traces.
+    pub level: f64,
+    /// Vertices in data coordinates, with the region `{f >= level}` on the left. No two
+    /// consecutive points are equal; a closed line does not repeat its first point at the end.
+    pub points: Vec<(f64, f64)>,
+    /// `true` for a ring (the last point joins back to the first). An open line starts and ends
+    /// on the hull or on the edge of a hole.
+    pub closed: bool,
+}
+
+/// A vertex as spade stores it: the scaled position and the index into [`Triangulation::points`].
+#[derive(Debug, Clone, Copy)]
+struct Site {
+    pos: Point2<f64>,
+    pt: u32,
+}
+
+impl HasPosition for Site {
+    type Scalar = f64;
+
+    fn position(&self) -> Point2<f64> {
+        self.pos
+    }
+}
+
+/// Multiplication by `2^k` for any `k` in about ±2100, in two exact steps when `2^k` itself is
+/// not representable.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Pow2 {
+    a: f64,
+    b: f64,
+}
+
+impl Pow2 {
+    fn new(k: i32) -> Pow2 {
+        let half = k / 2;
+        Pow2 { a: pow2(half), b: pow2(k - half) }
+    }
+
+    /// `x · 2^k`; exact unless the result underflows.
+    fn apply(self, x: f64) -> f64 {
+        x * self.a * self.b
+    }
+}
+
+/// `2^k` for `k` in `-1022..=1023` (clamped to that range).
+fn pow2(k: i32) -> f64 {
+    let k = k.clamp(-1022, 1023);
+    f64::from_bits(((k + 1023) as u64) << 52)
+}
+
+/// The exponent `e` with `m / 2^e` in `[0.5, 1)` for a finite `m > 0`; 0 for `m == 0`.
+fn binary_exponent(m: f64) -> i32 {
+    let bits = m.abs().to_bits();
+    let biased = ((bits >> 52) & 0x7ff) as i32;
+    if bits == 0 {
+        0
+    } else if biased == 0 {
+        // Subnormal: value = mantissa · 2^-1074.
+        let mantissa = bits & ((1u64 << 52) - 1);
+        64 - mantissa.leading_zeros() as i32 - 1074
+    } else {
+        biased - 1022
+    }
+}
+
+/// Maps data coordinates to the frame spade sees (largest magnitude in `[0.5, 1)`) and back.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Frame {
+    down: Pow2,
+    up: Pow2,
+}
+
+impl Frame {
+    /// The frame for data whose largest coordinate magnitude is `max_abs`.
+    fn for_magnitude(max_abs: f64) -> Frame {
+        let e = binary_exponent(max_abs);
+        Frame { down: Pow2::new(-e), up: Pow2::new(e) }
+    }
+
+    /// Data → frame, with magnitudes below spade's smallest allowed coordinate flushed to zero.
+    fn to_unit(self, x: f64) -> f64 {
+        let s = self.down.apply(x);
+        if s.abs() < spade::MIN_ALLOWED_VALUE { 0.0 } else { s }
+    }
+
+    /// Frame → data.
+    fn from_unit(self, x: f64) -> f64 {
+        self.up.apply(x)
+    }
+}
+
+/// A Delaunay triangulation of scattered points with one value per point; see the module docs
+/// for the rules on duplicates, missing values and degenerate input.
+#[derive(Debug, Clone)]
+pub struct Triangulation {
+    points: Vec<(f64, f64)>,
+    values: Vec<f64>,
+    rows: Vec<usize>,
+    triangles: Vec<[usize; 3]>,
+    /// `neighbors[t][k]`: the triangle across edge `k` (from corner `k` to corner `k + 1`) of
+    /// triangle `t`, or [`NONE`] on the hull. Copied out of spade's structure when first needed.
+    neighbors: OnceLock<Vec<[u32; 3]>>,
+    hull: Vec<usize>,
+    merged: usize,
+    frame: Frame,
+    /// Bounding box of the points in the frame: `(xmin, ymin, xmax, ymax)`.
+    bbox: (f64, f64, f64, f64),
+    /// The spade triangulation (vertex data names the point); `None` when degenerate.
+    dt: Option<DelaunayTriangulation<Site>>,
+}
+
+impl Triangulation {
+    /// Triangulates `points`, the value of `points[i]` being `values[i]`.
+    ///
+    /// Errors when the lengths differ, a coordinate is not finite (naming the first such row),
+    /// or there are more than [`MAX_POINTS`] points. Duplicates are merged (first row wins);
+    /// fewer than three distinct points or collinear points give an `Ok` result with no triangles
+    /// ([`Triangulation::is_degenerate`]). Runs in `O(n log n)` time, also for collinear input.
+    pub fn new(points: &[(f64, f64)], values: &[f64]) -> Result<Triangulation, ScatteredError> {
+        if points.len() != values.len() {
+            return Err(ScatteredError::LengthMismatch { points: points.len(), values: values.len() });
+        }
+        if points.len() > MAX_POINTS {
+            return Err(ScatteredError::TooManyPoints { count: points.len(), max: MAX_POINTS });
+        }
+        let t0 = std::time::Instant::now();
+        let mut max_abs = 0.0f64;
+        for (index, &(x, y)) in points.iter().enumerate() {
+            if !(x.is_finite() && y.is_finite()) {
+                return Err(ScatteredError::NonFiniteCoordinate { index, x, y });
+            }
+            max_abs = max_abs.max(x.abs()).max(y.abs());
+        }
+        let frame = Frame::for_magnitude(max_abs);
+        let scaled: Vec<Point2<f64>> =
+            points.iter().map(|&(x, y)| Point2::new(frame.to_unit(x), frame.to_unit(y))).collect();
+
+        // Distinct rows in the order spade's bulk loader sorts them (see `sweep_order`).
+        eprintln!("validate+scale {:?}", t0.elapsed());
+        let order = sweep_order(&scaled);
+        eprintln!("sweep {:?}", t0.elapsed());
+        let merged = points.len() - order.len();
+
+        let clean = |v: f64| if v.is_finite() { v } else { f64::NAN };
+        let (kept_points, kept_values, rows, sites) = if merged == 0 {
+            // No duplicates: every row is a point, under its own index.
+            let sites: Vec<Site> =
+                order.iter().filter_map(|&row| Some(Site { pos: *scaled.get(row as usize)?, pt: row })).collect();
+            (points.to_vec(), values.iter().map(|&v| clean(v)).collect(), (0..points.len()).collect(), sites)
+        } else {
+            // Kept rows in input order; `pt_of_row` maps a kept row to its point index.
+            let mut pt_of_row = vec![NONE; points.len()];
+            for &row in &order {
+                if let Some(slot) = pt_of_row.get_mut(row as usize) {
+                    *slot = 0;
+                }
+            }
+            let mut kept_points = Vec::with_capacity(order.len());
+            let mut kept_values = Vec::with_capacity(order.len());
+            let mut rows = Vec::with_capacity(order.len());
+            for (row, ((slot, &p), &v)) in pt_of_row.iter_mut().zip(points).zip(values).enumerate() {
+                if *slot != NONE {
+                    *slot = rows.len() as u32;
+                    rows.push(row);
+                    kept_points.push(p);
+                    kept_values.push(clean(v));
+                }
+            }
+            let sites: Vec<Site> = order
+                .iter()
+                .filter_map(|&row| {
+                    let pos = *scaled.get(row as usize)?;
+                    let pt = *pt_of_row.get(row as usize)?;
+                    Some(Site { pos, pt })
+                })
+                .collect();
+            (kept_points, kept_values, rows, sites)
+        };
+        drop(scaled);
+
+        let bbox = sites.iter().fold((f64::INFINITY, f64::INFINITY, f64::NEG_INFINITY, f64::NEG_INFINITY), |b, s| {
+            (b.0.min(s.pos.x), b.1.min(s.pos.y), b.2.max(s.pos.x), b.3.max(s.pos.y))
+        });
+
+        eprintln!("sites {:?}", t0.elapsed());
+        let dt = build(sites)?;
+        eprintln!("spade {:?}", t0.elapsed());
+        let mut tin = Triangulation {
+            points: kept_points,
+            values: kept_values,
+            rows,
+            triangles: Vec::new(),
+            neighbors: OnceLock::new(),
+            hull: Vec::new(),
+            merged,
+            frame,
+            bbox,
+            dt: None,
+        };
+        if let Some(dt) = dt
+            && dt.num_inner_faces() > 0
+        {
+            tin.extract(&dt);
+            tin.dt = Some(dt);
+        }
+        eprintln!("extract {:?}", t0.elapsed());
+        Ok(tin)
+    }
+
+    /// Copies the triangles and the hull out of spade's structure.
+    fn extract(&mut self, dt: &DelaunayTriangulation<Site>) {
+        let mut triangles = vec![[0usize; 3]; dt.num_inner_faces()];
+        for face in dt.inner_faces() {
+            // Inner faces are numbered from 1 (0 is the outer face).
+            if let Some(tri) = triangles.get_mut(face.fix().index().wrapping_sub(1)) {
+                *tri = face.vertices().map(|v| v.data().pt as usize);
+            }
+        }
+        // Hull edges run clockwise around the triangulation; reverse for counter-clockwise.
+        let mut hull: Vec<usize> = dt.convex_hull().map(|e| e.from().data().pt as usize).collect();
+        hull.reverse();
+        self.triangles = triangles;
+        self.hull = hull;
+    }
+
+    /// The neighbour table (see the field), built from spade's structure on first use.
+    fn neighbor_table(&self) -> &[[u32; 3]] {
+        self.neighbors.get_or_init(|| {
+            let Some(dt) = &self.dt else {
+                return Vec::new();
+            };
+            let mut table = vec![[NONE; 3]; dt.num_inner_faces()];
+            for face in dt.inner_faces() {
+                if let Some(nb) = table.get_mut(face.fix().index().wrapping_sub(1)) {
+                    *nb = face
+                        .adjacent_edges()
+                        .map(|e| e.rev().face().as_inner().map_or(NONE, |f| f.index().wrapping_sub(1) as u32));
+                }
+            }
+            table
+        })
+    }
+
+    /// The distinct points in input order (duplicates merged, the first row kept).
+    pub fn points(&self) -> &[(f64, f64)] {
+        &self.points
+    }
+
+    /// The value of each point; missing (non-finite) values are NaN.
+    pub fn values(&self) -> &[f64] {
+        &self.values
+    }
+
+    /// The input row of each point, increasing: `points()[i]` is `points[rows()[i]]` of the input.
+    pub fn rows(&self) -> &[usize] {
+        &self.rows
+    }
+
+    /// Triangles as indices into [`Triangulation::points`], each counter-clockwise. Empty when
+    /// degenerate.
+    pub fn triangles(&self) -> &[[usize; 3]] {
+        &self.triangles
+    }
+
+    /// The convex hull as a counter-clockwise ring of point indices (first not repeated), including
+    /// points that lie on a hull edge. Empty when degenerate.
+    pub fn hull(&self) -> &[usize] {
+        &self.hull
+    }
+
+    /// How many input rows were dropped because an earlier row had the same position.
+    pub fn merged_duplicates(&self) -> usize {
+        self.merged
+    }
+
+    /// `true` when there are no triangles: fewer than three distinct points, or all collinear.
+    pub fn is_degenerate(&self) -> bool {
+        self.triangles.is_empty()
+    }
+
+    /// The triangle across edge `k` (from corner `k` to corner `k + 1`) of triangle `t`.
+    fn neighbor(&self, t: usize, k: usize) -> Option<usize> {
+        let n = *self.neighbor_table().get(t)?.get(k)?;
+        (n != NONE).then_some(n as usize)
+    }
+
+    /// Linear interpolation at `(x, y)`: within the triangle containing the point, the plane
+    /// through its three corners (barycentric weights). NaN outside the convex hull, for a NaN
+    /// coordinate, when degenerate, and inside a hole (a triangle with a missing value; on an edge
+    /// both of whose ends have values, the value along that edge is returned). At a data point the
+    /// result is its value.
+    pub fn interpolate(&self, x: f64, y: f64) -> f64 {
+        let Some(dt) = &self.dt else {
+            return f64::NAN;
+        };
+        let (sx, sy) = (self.frame.to_unit(x), self.frame.to_unit(y));
+        let (x0, y0, x1, y1) = self.bbox;
+        if !(sx >= x0 && sx <= x1 && sy >= y0 && sy <= y1) {
+            return f64::NAN;
+        }
+        let q = Point2::new(sx, sy);
+        match dt.locate(q) {
+            PositionInTriangulation::OnVertex(v) => self.value_of(dt, v),
+            PositionInTriangulation::OnEdge(e) => {
+                let e = dt.directed_edge(e);
+                let (a, b) = (e.from(), e.to());
+                let (pa, pb) = (a.position(), b.position());
+                let (dx, dy) = (pb.x - pa.x, pb.y - pa.y);
+                let len2 = dx * dx + dy * dy;
+                let t = if len2 > 0.0 { (((q.x - pa.x) * dx + (q.y - pa.y) * dy) / len2).clamp(0.0, 1.0) } else { 0.0 };
+                let (za, zb) = (self.value_of(dt, a.fix()), self.value_of(dt, b.fix()));
+                lerp(za, zb, t)
+            }
+            PositionInTriangulation::OnFace(f) => {
+                let [a, b, c] = dt.face(f).vertices();
+                let (p0, p1, p2) = (a.position(), b.position(), c.position());
+                let z = [self.value_of(dt, a.fix()), self.value_of(dt, b.fix()), self.value_of(dt, c.fix())];
+                barycentric(p0, p1, p2, q, z)
+            }
+            PositionInTriangulation::OutsideOfConvexHull(_) | PositionInTriangulation::NoTriangulation => f64::NAN,
+        }
+    }
+
+    /// The value of the point a spade vertex stands for.
+    fn value_of(&self, dt: &DelaunayTriangulation<Site>, v: FixedVertexHandle) -> f64 {
+        self.values.get(dt.vertex(v).data().pt as usize).copied().unwrap_or(f64::NAN)
+    }
+
+    /// Contour lines of the linear TIN at each of `levels`, ordered by level. Non-finite levels
+    /// are dropped and the rest sorted and deduplicated. Each triangle crossed by a level holds
+    /// one straight segment between the crossings on its edges (linear interpolation along the
+    /// edge); segments are joined through shared edges into polylines. A point with
+    /// `value >= level` counts as above; each line has `{f >= level}` on its left. Open lines end
+    /// on the hull or on the edge of a hole. A level equal to the minimum gives no line; one equal
+    /// to the maximum gives only lines along plateaus of maximal points (a lone maximum gives a
+    /// line of zero length, which is dropped). Degenerate triangulations give no lines.
+    ///
+    /// Errors past [`MAX_LEVELS`] distinct levels or [`MAX_CROSSINGS`] crossings, found before
+    /// the output is allocated.
+    pub fn contour_lines(&self, levels: &[f64]) -> Result<Vec<TinLine>, ScatteredError> {
+        contour::contour_lines(self, levels)
+    }
+
+    /// The Voronoi (Dirichlet) cell of every point, in the order of [`Triangulation::points`],
+    /// clipped to the rectangle `clip = (xmin, ymin, xmax, ymax)`: the part of the rectangle
+    /// closer to that point than to any other. Cells are convex counter-clockwise rings (first
+    /// point not repeated); unbounded cells are clipped too, and the cells tile the rectangle. A
+    /// cell that misses the rectangle is empty. Degenerate input still has cells: the whole
+    /// rectangle for one point, parallel strips for collinear points.
+    ///
+    /// Errors when the rectangle is not finite or has no area.
+    pub fn voronoi_cells(&self, clip: (f64, f64, f64, f64)) -> Result<Vec<Vec<(f64, f64)>>, ScatteredError> {
+        voronoi::cells(self, clip)
+    }
+
+    /// Linear interpolation onto the regular grid with column coordinates `xs` and row
+    /// coordinates `ys` (see [`Triangulation::interpolate`]); nodes outside the hull are NaN
+    /// (missing). Errors when the axes are not a valid [`Grid`] (empty, non-finite, not strictly
+    /// increasing, too many nodes), checked before any node is evaluated.
+    pub fn resample(&self, xs: &[f64], ys: &[f64]) -> Result<Grid, ScatteredError> {
+        Ok(Grid::from_fn(xs.to_vec(), ys.to_vec(), |x, y| self.interpolate(x, y))?)
+    }
+}
+
+/// `a + t (b − a)`, falling back to the convex form when the difference overflows.
+fn lerp(a: f64, b: f64, t: f64) -> f64 {
+    let v = a + t * (b - a);
+    if v.is_finite() || v.is_nan() { v } else { (1.0 - t) * a + t * b }
+}
+
+/// The plane through `(p_i, z_i)` evaluated at `q`.
+fn barycentric(p0: Point2<f64>, p1: Point2<f64>, p2: Point2<f64>, q: Point2<f64>, z: [f64; 3]) -> f64 {
+    let (d1x, d1y) = (p1.x - p0.x, p1.y - p0.y);
+    let (d2x, d2y) = (p2.x - p0.x, p2.y - p0.y);
+    let (qx, qy) = (q.x - p0.x, q.y - p0.y);
+    let det = d1x * d2y - d1y * d2x;
+    if det == 0.0 {
+        return f64::NAN;
+    }
+    let l1 = (qx * d2y - qy * d2x) / det;
+    let l2 = (d1x * qy - d1y * qx) / det;
+    let [z0, z1, z2] = z;
+    let v = z0 + l1 * (z1 - z0) + l2 * (z2 - z0);
+    if v.is_finite() || v.is_nan() { v } else { (1.0 - l1 - l2) * z0 + l1 * z1 + l2 * z2 }
+}
+
+/// Distinct rows (first of each position kept) ordered as spade's bulk loader orders them:
+/// by decreasing distance from the mean position, ties by increasing x, then y. spade sorts
+/// again, but a sorted input costs it only a linear check, and this radix sort is several times
+/// faster than its comparison sort. (spade computes the mean over the deduplicated points; when
+/// that differs in the last bits from the mean used here, spade's own sort fixes the order, so
+/// correctness never depends on this.)
+fn sweep_order(pts: &[Point2<f64>]) -> Vec<u32> {
+    if pts.is_empty() {
+        return Vec::new();
+    }
+    let (mut sx, mut sy) = (0.0f64, 0.0f64);
+    for p in pts {
+        sx += p.x;
+        sy += p.y;
+    }
+    let inv = 1.0 / pts.len() as f64;
+    let (cx, cy) = (sx * inv, sy * inv);
+    // Squared distances are non-negative, so their bit patterns sort like the values; the
+    // complement sorts by decreasing distance. Same arithmetic as spade's `distance_2`.
+    let key = |i: u32| -> (u64, f64, f64) {
+        pts.get(i as usize).map_or((u64::MAX, 0.0, 0.0), |p| {
+            let (dx, dy) = (cx - p.x, cy - p.y);
+            (!(dx * dx + dy * dy).to_bits(), p.x, p.y)
+        })
+    };
+    // Radix sort on the upper 32 bits of the key, then finish each run of equal upper halves
+    // by the full key, x and y (a stable sort, so identical points keep their input order).
+    let t0 = std::time::Instant::now();
+    let keyed: Vec<(u32, u32)> = (0..pts.len() as u32).map(|i| ((key(i).0 >> 32) as u32, i)).collect();
+    eprintln!("  keys {:?}", t0.elapsed());
+    let sorted = radix_sort(keyed);
+    eprintln!("  radix {:?}", t0.elapsed());
+    let mut order: Vec<u32> = Vec::with_capacity(sorted.len());
+    let mut run: Vec<u32> = Vec::new();
+    let mut rest = sorted.as_slice();
+    while let Some(&(high, _)) = rest.first() {
+        let len = rest.iter().take_while(|e| e.0 == high).count().max(1);
+        let (group, tail) = rest.split_at(len.min(rest.len()));
+        rest = tail;
+        if let [(_, only)] = group {
+            order.push(*only);
+            continue;
+        }
+        run.clear();
+        run.extend(group.iter().map(|e| e.1));
+        run.sort_by(|&a, &b| {
+            let (ka, kb) = (key(a), key(b));
+            ka.0.cmp(&kb.0)
+                .then(ka.1.partial_cmp(&kb.1).unwrap_or(std::cmp::Ordering::Equal))
+                .then(ka.2.partial_cmp(&kb.2).unwrap_or(std::cmp::Ordering::Equal))
+        });
+        let mut last: Option<(f64, f64)> = None;
+        for &i in &run {
+            let (_, x, y) = key(i);
+            if last != Some((x, y)) {
+                order.push(i);
+                last = Some((x, y));
+            }
+        }
+    }
+    eprintln!("  runs {:?}", t0.elapsed());
+    order
+}
+
+/// Stable LSD radix sort of `(key, payload)` pairs by key, 11 bits per pass; passes in which
+/// every key has the same digit are skipped.
+fn radix_sort(mut items: Vec<(u32, u32)>) -> Vec<(u32, u32)> {
+    const BITS: u32 = 11;
+    let mut buffer = vec![(0u32, 0u32); items.len()];
+    let mut counts = vec![0usize; 1 << BITS];
+    for pass in 0..3 {
+        let shift = pass * BITS;
+        let digit = |e: &(u32, u32)| ((e.0 >> shift) & ((1 << BITS) - 1)) as usize;
+        counts.iter_mut().for_each(|c| *c = 0);
+        for e in &items {
+            if let Some(c) = counts.get_mut(digit(e)) {
+                *c += 1;
+            }
+        }
+        if counts.iter().any(|&c| c == items.len()) {
+            continue;
+        }
+        let mut sum = 0;
+        for c in counts.iter_mut() {
+            let here = *c;
+            *c = sum;
+            sum += here;
+        }
+        for e in &items {
+            if let Some(c) = counts.get_mut(digit(e)) {
+                if let Some(slot) = buffer.get_mut(*c) {
+                    *slot = *e;
+                }
+                *c += 1;
+            }
+        }
+        std::mem::swap(&mut items, &mut buffer);
+    }
+    items
+}
+
+/// Triangulates distinct sites given in [`sweep_order`]. `None` when all sites are collinear
+/// (or fewer than three) and the triangulation would have no triangles.
+fn build(sites: Vec<Site>) -> Result<Option<DelaunayTriangulation<Site>>, ScatteredError> {
+    let spade_err = |e: spade::InsertionError| ScatteredError::Triangulator { message: format!("{e:?}") };
+    if sites.len() < 3 {
+        return Ok(None);
+    }
+    if collinear_prefix(&sites) <= SEED_LIMIT {
+        let dt = DelaunayTriangulation::<Site>::bulk_load(sites).map_err(spade_err)?;
+        return Ok((dt.num_inner_faces() > 0).then_some(dt));
+    }
+    // Many points nearest the centre (the bulk loader's seed) may be collinear: find, exactly,
+    // a point off the line through the two nearest, or learn that all points are collinear.
+    let n = sites.len();
+    let (Some(&a), Some(&b)) = (sites.get(n - 1), sites.get(n - 2)) else {
+        return Ok(None);
+    };
+    let mut probe = DelaunayTriangulation::<Site>::new();
+    probe.insert(a).map_err(spade_err)?;
+    probe.insert(b).map_err(spade_err)?;
+    let Some(edge) = probe.directed_edges().next() else {
+        return Ok(None);
+    };
+    let Some(c_at) = sites.iter().rposition(|s| !edge.side_query(s.pos).is_on_line()) else {
+        return Ok(None);
+    };
+    let Some(&c) = sites.get(c_at) else {
+        return Ok(None);
+    };
+    // Insert a non-degenerate seed, then the rest in Morton (Z-curve) order so each walk from
+    // the previous vertex is short.
+    let mut dt = DelaunayTriangulation::<Site>::new();
+    dt.insert(a).map_err(spade_err)?;
+    dt.insert(b).map_err(spade_err)?;
+    let mut last = dt.insert(c).map_err(spade_err)?;
+    let rest: Vec<Site> = sites.iter().enumerate().filter(|&(i, _)| i + 2 < n && i != c_at).map(|(_, &s)| s).collect();
+    for s in morton_order(rest) {
+        last = dt.insert_with_hint(s, last).map_err(spade_err)?;
+    }
+    Ok(Some(dt))
+}
+
+/// How many of the points nearest the centre (the end of `sites`) might lie on the line through
+/// the two nearest, counted until the first one that is certainly off it (float orientation with
+/// a conservative error bound).
+fn collinear_prefix(sites: &[Site]) -> usize {
+    let n = sites.len();
+    let (Some(a), Some(b)) = (sites.get(n.wrapping_sub(1)), sites.get(n.wrapping_sub(2))) else {
+        return n;
+    };
+    let (a, b) = (a.pos, b.pos);
+    let mut count = 2;
+    for s in sites.iter().rev().skip(2) {
+        let p = s.pos;
+        let left = (b.x - a.x) * (p.y - a.y);
+        let right = (b.y - a.y) * (p.x - a.x);
+        let det = left - right;
+        let detsum = left.abs() + right.abs();
+        if detsum > 1e-280 && det.abs() > 1e-14 * detsum {
+            return count;
+        }
+        count += 1;
+    }
+    count
+}
+
+/// `sites` sorted along a Z-order curve over their bounding box.
+fn morton_order(sites: Vec<Site>) -> Vec<Site> {
+    let (x0, y0, x1, y1) =
+        sites.iter().fold((f64::INFINITY, f64::INFINITY, f64::NEG_INFINITY, f64::NEG_INFINITY), |b, s| {
+            (b.0.min(s.pos.x), b.1.min(s.pos.y), b.2.max(s.pos.x), b.3.max(s.pos.y))
+        });
+    let quantize = |v: f64, lo: f64, hi: f64| -> u32 {
+        let t = if hi > lo { (v - lo) / (hi - lo) } else { 0.0 };
+        (t.clamp(0.0, 1.0) * 65535.0) as u32
+    };
+    let spread = |mut v: u32| -> u32 {
+        v &= 0xffff;
+        v = (v | (v << 8)) & 0x00ff_00ff;
+        v = (v | (v << 4)) & 0x0f0f_0f0f;
+        v = (v | (v << 2)) & 0x3333_3333;
+        (v | (v << 1)) & 0x5555_5555
+    };
+    let mut keyed: Vec<(u32, Site)> = sites
+        .into_iter()
+        .map(|s| (spread(quantize(s.pos.x, x0, x1)) | (spread(quantize(s.pos.y, y0, y1)) << 1), s))
+        .collect();
+    keyed.sort_by_key(|e| e.0);
+    keyed.into_iter().map(|e| e.1).collect()
+}

@@ -1,0 +1,218 @@
+//! `surface`: a gridded field drawn as a shaded 3D heightfield — orthographic projection,
+//! painter's-order hidden-surface removal, Lambert shading — with projected axes and a colour bar.
+
+use super::derived::{Derived, DerivedColumn};
+use super::gridded::{self, GridInput};
+use super::{ChartOutput, DEFAULT_SIZE, MarkError, encode};
+use crate::data::Table;
+use crate::enrich::surface::{self, AxisLine, Light, SurfaceProjection, View};
+use crate::guide::Theme;
+use crate::guide::axis::title_with_unit;
+use crate::guide::format::format_ticks;
+use crate::guide::legend::{Legend, truncate_to_width};
+use crate::guide::ticks::extended;
+use crate::scene::{Anchor, Baseline, Color, Item, PathCmd, Point, Rect, Role, Scene, Shape, Stroke, Style, Text};
+use crate::spec::{Chart, SurfaceOptions};
+use crate::text::measure;
+
+/// Draw a surface chart.
+pub fn draw(chart: &Chart, options: &SurfaceOptions, index: usize, table: &Table) -> Result<ChartOutput, MarkError> {
+    let x_opts = options.x.options();
+    let y_opts = options.y.options();
+    let z_opts = options.z.options();
+    let GridInput { grid, rows, warnings, zmin, zmax, .. } =
+        gridded::load_grid(chart, index, &x_opts, &y_opts, &z_opts, table)?;
+    let map = encode::continuous_map(index, &["z", "scheme"], z_opts.scheme.as_deref())?;
+    let (lo, hi) = encode::color_domain(&map, zmin, zmax, z_opts.midpoint);
+    let view = View { azimuth_deg: options.azimuth.unwrap_or(-60.0), elevation_deg: options.elevation.unwrap_or(30.0) };
+    let projection = surface::project(&grid, view, Light::default(), options.z_scale).map_err(|e| {
+        MarkError::at(index, &["z"], format!("chart \"{}\": {e}", chart.name), "check the grid and the view")
+    })?;
+
+    let [width, height] = chart.size.unwrap_or(DEFAULT_SIZE);
+    let theme = Theme::with_font_size(chart.font_size.unwrap_or(12.0));
+    let m = theme.margin;
+    let title_h = chart.title.as_ref().map(|_| theme.title_size * 1.8).unwrap_or(0.0);
+    let caption_h = chart.caption.as_ref().map(|_| theme.caption_size * 1.8).unwrap_or(0.0);
+    let z_title = title_with_unit(z_opts.title.as_deref().unwrap_or(&z_opts.field), z_opts.unit.as_deref());
+    let legend = Legend::ColorBar { title: z_title.clone(), map: map.clone(), domain: (lo, hi) };
+    let room = height - title_h - caption_h - 2.0 * m;
+    let (legend_w, _) = legend.extent(&theme, room);
+    // Room around the box for tick labels and axis titles.
+    let pad = theme.font_size * 5.0;
+    let area = Rect::new(
+        m + pad,
+        m + title_h + pad * 0.5,
+        width - 2.0 * m - legend_w - theme.font_size * 1.5 - 2.0 * pad,
+        room - 1.5 * pad,
+    );
+    if area.w < 40.0 || area.h < 40.0 {
+        return Err(MarkError::layout(
+            index,
+            &chart.name,
+            crate::guide::layout::LayoutError::TooSmall { plot_width: area.w.max(0.0), plot_height: area.h.max(0.0) },
+        ));
+    }
+    let side = area.w.min(area.h);
+    let (ox, oy) = (area.x + (area.w - side) / 2.0, area.y + (area.h - side) / 2.0);
+    let to_px = |(u, v): (f64, f64)| Point::new(ox + u * side, oy + (1.0 - v) * side);
+
+    let mut items = vec![Item::new(
+        Role::Background,
+        Shape::Rect(Rect::new(0.0, 0.0, width, height)),
+        Style::fill(theme.background),
+    )];
+    let edge = |e: &surface::BoxEdge, color: Color| {
+        Item::new(
+            Role::Axis,
+            Shape::Path(vec![PathCmd::MoveTo(to_px(e.start)), PathCmd::LineTo(to_px(e.end))]),
+            Style::stroke(color, 1.0),
+        )
+    };
+    for e in projection.box_edges.iter().filter(|e| e.hidden) {
+        items.push(edge(e, theme.grid));
+    }
+    let mut quads = Vec::with_capacity(projection.quads.len());
+    for q in &projection.quads {
+        let base = map.at((q.value - lo) / (hi - lo));
+        let shade = |c: u8| (c as f64 * q.shade).round().clamp(0.0, 255.0) as u8;
+        let color = Color::rgb(shade(base.r), shade(base.g), shade(base.b));
+        let [a, b, c, d] = q.corners;
+        let mut style = Style::fill(color);
+        // A hairline of the fill colour closes anti-aliasing seams between neighbouring quads.
+        style.stroke = Some(Stroke::solid(color, 0.6));
+        quads.push(Item::new(
+            Role::DataMark,
+            Shape::Path(vec![
+                PathCmd::MoveTo(to_px(a)),
+                PathCmd::LineTo(to_px(b)),
+                PathCmd::LineTo(to_px(c)),
+                PathCmd::LineTo(to_px(d)),
+                PathCmd::Close,
+            ]),
+            style,
+        ));
+    }
+    items.push(Item::group(Role::DataMark, quads, None).with_rows(rows.clone()).labelled(z_opts.field.clone()));
+    for e in projection.box_edges.iter().filter(|e| !e.hidden) {
+        items.push(edge(e, theme.axis));
+    }
+    let titles = [
+        title_with_unit(x_opts.title.as_deref().unwrap_or(&x_opts.field), x_opts.unit.as_deref()),
+        title_with_unit(y_opts.title.as_deref().unwrap_or(&y_opts.field), y_opts.unit.as_deref()),
+        z_title,
+    ];
+    let ranges = [projection.x_range, projection.y_range, projection.z_range];
+    for ((line, title), range) in projection.axes.iter().zip(&titles).zip(ranges) {
+        items.extend(axis_items(&projection, line, title, range, &to_px, &theme));
+    }
+    let text = |role, at, content: &str, size, baseline, color| {
+        Item::text(
+            role,
+            Text {
+                at,
+                content: truncate_to_width(content, width - 2.0 * m, size),
+                size,
+                anchor: Anchor::Start,
+                baseline,
+                angle: 0.0,
+                color,
+            },
+        )
+    };
+    if let Some(t) = &chart.title {
+        items.push(text(Role::Title, Point::new(m, m), t, theme.title_size, Baseline::Top, theme.text));
+    }
+    if let Some(c) = &chart.caption {
+        items.push(text(
+            Role::Caption,
+            Point::new(m, height - m),
+            c,
+            theme.caption_size,
+            Baseline::Bottom,
+            theme.muted_text,
+        ));
+    }
+    items.extend(legend.draw(Point::new(width - m - legend_w, m + title_h), &theme, room));
+    let scene = Scene { width, height, background: theme.background, title: chart.title.clone(), items };
+
+    let mut derived = Derived::over(rows);
+    derived.push("row", DerivedColumn::RowIndex);
+    derived.push(&x_opts.field, DerivedColumn::Source(x_opts.field.clone()));
+    derived.push(&y_opts.field, DerivedColumn::Source(y_opts.field.clone()));
+    derived.push(&z_opts.field, DerivedColumn::Source(z_opts.field.clone()));
+    Ok(ChartOutput { scene, derived, warnings, geojson: None })
+}
+
+/// Tick marks, tick labels and the title of one projected axis.
+fn axis_items(
+    projection: &SurfaceProjection,
+    line: &AxisLine,
+    title: &str,
+    range: (f64, f64),
+    to_px: &impl Fn((f64, f64)) -> Point,
+    theme: &Theme,
+) -> Vec<Item> {
+    let mut items = Vec::new();
+    let (start, end) = (to_px(line.start), to_px(line.end));
+    let length = (end.x - start.x).hypot(end.y - start.y);
+    let target = ((length / (theme.font_size * 6.0)).round() as usize).clamp(2, 6);
+    let ticks = extended(range.0, range.1, target, false);
+    let inside: Vec<f64> =
+        ticks.values.iter().copied().filter(|v| *v >= range.0 - 1e-12 && *v <= range.1 + 1e-12).collect();
+    let labels = format_ticks(&inside, ticks.step);
+    // `outward` is in screen units with y up; canvas y runs down.
+    let (nx, ny) = (line.outward.0, -line.outward.1);
+    let anchor = if nx > 0.3 {
+        Anchor::Start
+    } else if nx < -0.3 {
+        Anchor::End
+    } else {
+        Anchor::Middle
+    };
+    let baseline = if ny > 0.3 {
+        Baseline::Top
+    } else if ny < -0.3 {
+        Baseline::Bottom
+    } else {
+        Baseline::Middle
+    };
+    let mut cmds = Vec::new();
+    let mut widest: f64 = 0.0;
+    for (v, label) in inside.iter().zip(labels) {
+        let [x, y, z] = line.at(*v);
+        let p = to_px(projection.project_point(x, y, z));
+        let tip = Point::new(p.x + nx * theme.tick_length, p.y + ny * theme.tick_length);
+        cmds.push(PathCmd::MoveTo(p));
+        cmds.push(PathCmd::LineTo(tip));
+        widest = widest.max(measure(&label, theme.font_size).width);
+        items.push(Item::text(
+            Role::TickLabel,
+            Text {
+                at: Point::new(tip.x + nx * 3.0, tip.y + ny * 3.0),
+                content: label,
+                size: theme.font_size,
+                anchor,
+                baseline,
+                angle: 0.0,
+                color: theme.muted_text,
+            },
+        ));
+    }
+    items.push(Item::new(Role::Axis, Shape::Path(cmds), Style::stroke(theme.axis, 1.0)));
+    let mid = Point::new((start.x + end.x) / 2.0, (start.y + end.y) / 2.0);
+    let away = theme.tick_length + 6.0 + if nx.abs() > 0.3 { widest } else { theme.font_size * 1.2 };
+    items.push(Item::text(
+        Role::AxisTitle,
+        Text {
+            at: Point::new(mid.x + nx * away, mid.y + ny * (away + theme.font_size * 0.3)),
+            content: title.to_string(),
+            size: theme.label_size,
+            anchor,
+            baseline,
+            angle: 0.0,
+            color: theme.text,
+        },
+    ));
+    items
+}
