@@ -304,7 +304,6 @@ impl Triangulation {
         if points.len() > MAX_POINTS {
             return Err(ScatteredError::TooManyPoints { count: points.len(), max: MAX_POINTS });
         }
-        let t0 = std::time::Instant::now();
         let mut max_abs = 0.0f64;
         for (index, &(x, y)) in points.iter().enumerate() {
             if !(x.is_finite() && y.is_finite()) {
@@ -317,16 +316,16 @@ impl Triangulation {
             points.iter().map(|&(x, y)| Point2::new(frame.to_unit(x), frame.to_unit(y))).collect();
 
         // Distinct rows in the order spade's bulk loader sorts them (see `sweep_order`).
-        eprintln!("validate+scale {:?}", t0.elapsed());
         let order = sweep_order(&scaled);
-        eprintln!("sweep {:?}", t0.elapsed());
         let merged = points.len() - order.len();
 
         let clean = |v: f64| if v.is_finite() { v } else { f64::NAN };
         let (kept_points, kept_values, rows, sites) = if merged == 0 {
             // No duplicates: every row is a point, under its own index.
-            let sites: Vec<Site> =
-                order.iter().filter_map(|&row| Some(Site { pos: *scaled.get(row as usize)?, pt: row })).collect();
+            let sites: Vec<Site> = order
+                .iter()
+                .filter_map(|&row| Some(Site { pos: *scaled.get(row as usize)?, pt: row }))
+                .collect();
             (points.to_vec(), values.iter().map(|&v| clean(v)).collect(), (0..points.len()).collect(), sites)
         } else {
             // Kept rows in input order; `pt_of_row` maps a kept row to its point index.
@@ -363,9 +362,7 @@ impl Triangulation {
             (b.0.min(s.pos.x), b.1.min(s.pos.y), b.2.max(s.pos.x), b.3.max(s.pos.y))
         });
 
-        eprintln!("sites {:?}", t0.elapsed());
         let dt = build(sites)?;
-        eprintln!("spade {:?}", t0.elapsed());
         let mut tin = Triangulation {
             points: kept_points,
             values: kept_values,
@@ -384,7 +381,6 @@ impl Triangulation {
             tin.extract(&dt);
             tin.dt = Some(dt);
         }
-        eprintln!("extract {:?}", t0.elapsed());
         Ok(tin)
     }
 
@@ -413,9 +409,9 @@ impl Triangulation {
             let mut table = vec![[NONE; 3]; dt.num_inner_faces()];
             for face in dt.inner_faces() {
                 if let Some(nb) = table.get_mut(face.fix().index().wrapping_sub(1)) {
-                    *nb = face
-                        .adjacent_edges()
-                        .map(|e| e.rev().face().as_inner().map_or(NONE, |f| f.index().wrapping_sub(1) as u32));
+                    *nb = face.adjacent_edges().map(|e| {
+                        e.rev().face().as_inner().map_or(NONE, |f| f.index().wrapping_sub(1) as u32)
+                    });
                 }
             }
             table
@@ -592,11 +588,8 @@ fn sweep_order(pts: &[Point2<f64>]) -> Vec<u32> {
     };
     // Radix sort on the upper 32 bits of the key, then finish each run of equal upper halves
     // by the full key, x and y (a stable sort, so identical points keep their input order).
-    let t0 = std::time::Instant::now();
     let keyed: Vec<(u32, u32)> = (0..pts.len() as u32).map(|i| ((key(i).0 >> 32) as u32, i)).collect();
-    eprintln!("  keys {:?}", t0.elapsed());
     let sorted = radix_sort(keyed);
-    eprintln!("  radix {:?}", t0.elapsed());
     let mut order: Vec<u32> = Vec::with_capacity(sorted.len());
     let mut run: Vec<u32> = Vec::new();
     let mut rest = sorted.as_slice();
@@ -625,7 +618,6 @@ fn sweep_order(pts: &[Point2<f64>]) -> Vec<u32> {
             }
         }
     }
-    eprintln!("  runs {:?}", t0.elapsed());
     order
 }
 
