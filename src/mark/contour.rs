@@ -287,10 +287,8 @@ pub fn geojson(lines: &[contour::ContourLine], bands: &[contour::Band]) -> serde
     use serde_json::json;
     let coords = |pts: &[(f64, f64)], close: bool| -> Vec<[f64; 2]> {
         let mut v: Vec<[f64; 2]> = pts.iter().map(|&(x, y)| [x, y]).collect();
-        if close {
-            if let Some(&first) = v.first() {
-                v.push(first);
-            }
+        if close && let Some(&first) = v.first() {
+            v.push(first);
         }
         v
     };

@@ -90,19 +90,20 @@ impl Derived {
                     DerivedColumn::RowIndex => {
                         let _ = write!(out, "{row}");
                     }
-                    DerivedColumn::Source(_) => match sources.get(i).copied().flatten() {
-                        Some(col) => match (col.categories(), col.numbers()) {
-                            (Some(cats), _) => out.push_str(&csv_field(cats.value(row as usize).unwrap_or(""))),
-                            (None, Some(nums)) if col.is_time() => {
-                                if let Some(ms) = nums.get(row as usize).filter(|v| v.is_finite()) {
-                                    out.push_str(&format_timestamp(*ms));
+                    DerivedColumn::Source(_) => {
+                        if let Some(col) = sources.get(i).copied().flatten() {
+                            match (col.categories(), col.numbers()) {
+                                (Some(cats), _) => out.push_str(&csv_field(cats.value(row as usize).unwrap_or(""))),
+                                (None, Some(nums)) if col.is_time() => {
+                                    if let Some(ms) = nums.get(row as usize).filter(|v| v.is_finite()) {
+                                        out.push_str(&format_timestamp(*ms));
+                                    }
                                 }
+                                (None, Some(nums)) => push_number(&mut out, nums.get(row as usize).copied()),
+                                _ => {}
                             }
-                            (None, Some(nums)) => push_number(&mut out, nums.get(row as usize).copied()),
-                            _ => {}
-                        },
-                        None => {}
-                    },
+                        }
+                    }
                 }
             }
             out.push('\n');

@@ -43,10 +43,10 @@ pub fn draw(chart: &Chart, options: &ImageOptions, index: usize, table: &Table) 
     for (axis, opts, coords) in [(&mut x_axis, &x_opts, grid.xs()), (&mut y_axis, &y_opts, grid.ys())] {
         axis.nice = false;
         axis.grid = false;
-        if opts.domain.is_none() {
-            if let Some(extent) = image_extent(coords, resample) {
-                axis.domain = Domain::Continuous(extent.0, extent.1);
-            }
+        if opts.domain.is_none()
+            && let Some(extent) = image_extent(coords, resample)
+        {
+            axis.domain = Domain::Continuous(extent.0, extent.1);
         }
     }
     let title = title_with_unit(z_opts.title.as_deref().unwrap_or(&z_opts.field), z_opts.unit.as_deref());

@@ -31,6 +31,14 @@
 //!   on its left.
 //! - **Size.** At most [`MAX_POINTS`] points; contouring is capped by [`MAX_LEVELS`] and
 //!   [`MAX_CROSSINGS`], checked before anything large is allocated.
+//!
+//! Speed: spade's bulk loader (a circle sweep) does the work. Large inputs are handed to it
+//! already in its sweep order (sorted on two threads, which saves it its own comparison sort),
+//! and the flat triangle list is copied out on a few threads; the neighbour table contours need
+//! is copied on first use. The bulk loader's seed (the points nearest the centre, inserted until
+//! they are not all on one line) costs time quadratic in its length, so when many points near
+//! the centre may be collinear the triangulation is built by insertion instead, starting from
+//! an exactly non-collinear triangle; all-collinear input never reaches spade's line code.
 
 mod contour;
 #[cfg(test)]
@@ -57,7 +65,7 @@ pub const MAX_LEVELS: usize = 1000;
 pub const MAX_CROSSINGS: usize = 1 << 26;
 
 /// When more than this many points nearest the centre may lie on one line, spade's bulk loader
-/// would spend quadratic time on them, so the triangulation is built by insertion instead.
+/// would spend quadratic time on them (its seed), so the triangulation is built by insertion.
 const SEED_LIMIT: usize = 1024;
 
 /// "No triangle" in the neighbour table.
@@ -258,14 +266,15 @@ impl Frame {
         Frame { down: Pow2::new(-e), up: Pow2::new(e) }
     }
 
-    /// Data → frame, with magnitudes below spade's smallest allowed coordinate flushed to zero.
+    /// Data → frame, with magnitudes below spade's smallest allowed coordinate flushed to zero
+    /// and −0.0 made +0.0 (so equal positions have equal bits).
     fn to_unit(self, x: f64) -> f64 {
         let s = self.down.apply(x);
-        if s.abs() < spade::MIN_ALLOWED_VALUE { 0.0 } else { s }
+        if s.abs() < spade::MIN_ALLOWED_VALUE { 0.0 } else { s + 0.0 }
     }
 
     /// Frame → data.
-    fn from_unit(self, x: f64) -> f64 {
+    fn to_data(self, x: f64) -> f64 {
         self.up.apply(x)
     }
 }
@@ -296,7 +305,8 @@ impl Triangulation {
     /// Errors when the lengths differ, a coordinate is not finite (naming the first such row),
     /// or there are more than [`MAX_POINTS`] points. Duplicates are merged (first row wins);
     /// fewer than three distinct points or collinear points give an `Ok` result with no triangles
-    /// ([`Triangulation::is_degenerate`]). Runs in `O(n log n)` time, also for collinear input.
+    /// ([`Triangulation::is_degenerate`]). Takes about `O(n log n)` time, also for collinear,
+    /// cocircular or heavily duplicated input.
     pub fn new(points: &[(f64, f64)], values: &[f64]) -> Result<Triangulation, ScatteredError> {
         if points.len() != values.len() {
             return Err(ScatteredError::LengthMismatch { points: points.len(), values: values.len() });
@@ -312,85 +322,97 @@ impl Triangulation {
             max_abs = max_abs.max(x.abs()).max(y.abs());
         }
         let frame = Frame::for_magnitude(max_abs);
-        let scaled: Vec<Point2<f64>> =
-            points.iter().map(|&(x, y)| Point2::new(frame.to_unit(x), frame.to_unit(y))).collect();
-
-        // Distinct rows in the order spade's bulk loader sorts them (see `sweep_order`).
-        let order = sweep_order(&scaled);
-        let merged = points.len() - order.len();
-
-        let clean = |v: f64| if v.is_finite() { v } else { f64::NAN };
-        let (kept_points, kept_values, rows, sites) = if merged == 0 {
-            // No duplicates: every row is a point, under its own index.
-            let sites: Vec<Site> = order
-                .iter()
-                .filter_map(|&row| Some(Site { pos: *scaled.get(row as usize)?, pt: row }))
-                .collect();
-            (points.to_vec(), values.iter().map(|&v| clean(v)).collect(), (0..points.len()).collect(), sites)
-        } else {
-            // Kept rows in input order; `pt_of_row` maps a kept row to its point index.
-            let mut pt_of_row = vec![NONE; points.len()];
-            for &row in &order {
-                if let Some(slot) = pt_of_row.get_mut(row as usize) {
-                    *slot = 0;
-                }
-            }
-            let mut kept_points = Vec::with_capacity(order.len());
-            let mut kept_values = Vec::with_capacity(order.len());
-            let mut rows = Vec::with_capacity(order.len());
-            for (row, ((slot, &p), &v)) in pt_of_row.iter_mut().zip(points).zip(values).enumerate() {
-                if *slot != NONE {
-                    *slot = rows.len() as u32;
-                    rows.push(row);
-                    kept_points.push(p);
-                    kept_values.push(clean(v));
-                }
-            }
-            let sites: Vec<Site> = order
-                .iter()
-                .filter_map(|&row| {
-                    let pos = *scaled.get(row as usize)?;
-                    let pt = *pt_of_row.get(row as usize)?;
-                    Some(Site { pos, pt })
-                })
-                .collect();
-            (kept_points, kept_values, rows, sites)
-        };
-        drop(scaled);
-
+        // Every row goes to spade (it merges duplicates); the vertex data names the row for now.
+        let sites: Vec<Site> = points
+            .iter()
+            .enumerate()
+            .map(|(row, &(x, y))| Site { pos: Point2::new(frame.to_unit(x), frame.to_unit(y)), pt: row as u32 })
+            .collect();
         let bbox = sites.iter().fold((f64::INFINITY, f64::INFINITY, f64::NEG_INFINITY, f64::NEG_INFINITY), |b, s| {
             (b.0.min(s.pos.x), b.1.min(s.pos.y), b.2.max(s.pos.x), b.3.max(s.pos.y))
         });
 
-        let dt = build(sites)?;
+        let mut dt = build(sites)?.filter(|dt| dt.num_inner_faces() > 0);
+        let clean = |v: f64| if v.is_finite() { v } else { f64::NAN };
         let mut tin = Triangulation {
-            points: kept_points,
-            values: kept_values,
-            rows,
+            points: Vec::new(),
+            values: Vec::new(),
+            rows: Vec::new(),
             triangles: Vec::new(),
             neighbors: OnceLock::new(),
             hull: Vec::new(),
-            merged,
+            merged: 0,
             frame,
             bbox,
             dt: None,
         };
-        if let Some(dt) = dt
-            && dt.num_inner_faces() > 0
-        {
+        if dt.as_ref().is_some_and(|dt| dt.num_vertices() == points.len()) {
+            // No duplicates: every row is a point, under its own index.
+            tin.points = points.to_vec();
+            tin.values = values.iter().map(|&v| clean(v)).collect();
+            tin.rows = (0..points.len()).collect();
+        } else {
+            // Duplicates were merged (spade keeps an arbitrary one of each), or there is no
+            // triangulation to tell: find the first row of every position, keep those rows in
+            // input order, and point spade's vertices at them.
+            let first = first_rows(points, frame);
+            let mut pt_of_row = vec![NONE; points.len()];
+            for (row, (((slot, &f), &p), &v)) in pt_of_row.iter_mut().zip(&first).zip(points).zip(values).enumerate() {
+                if f as usize == row {
+                    *slot = tin.rows.len() as u32;
+                    tin.rows.push(row);
+                    tin.points.push(p);
+                    tin.values.push(clean(v));
+                }
+            }
+            tin.merged = points.len() - tin.rows.len();
+            if let Some(dt) = &mut dt {
+                let handles: Vec<FixedVertexHandle> = dt.fixed_vertices().collect();
+                for v in handles {
+                    let site = dt.vertex_data_mut(v);
+                    let f = first.get(site.pt as usize).copied().unwrap_or(site.pt);
+                    site.pt = pt_of_row.get(f as usize).copied().unwrap_or(NONE);
+                }
+            }
+        }
+        if let Some(dt) = dt {
             tin.extract(&dt);
             tin.dt = Some(dt);
         }
         Ok(tin)
     }
 
-    /// Copies the triangles and the hull out of spade's structure.
+    /// Copies the triangles and the hull out of spade's structure, on a few threads (the
+    /// copy is bound by memory latency, not arithmetic).
     fn extract(&mut self, dt: &DelaunayTriangulation<Site>) {
-        let mut triangles = vec![[0usize; 3]; dt.num_inner_faces()];
-        for face in dt.inner_faces() {
-            // Inner faces are numbered from 1 (0 is the outer face).
-            if let Some(tri) = triangles.get_mut(face.fix().index().wrapping_sub(1)) {
+        let count = dt.num_inner_faces();
+        let mut triangles = vec![[0usize; 3]; count];
+        // Inner faces are numbered from 1 (0 is the outer face), so face `t + 1` is triangle `t`.
+        let fill = |part: &mut [[usize; 3]], first: usize| {
+            for (tri, face) in part.iter_mut().zip(dt.inner_faces().skip(first)) {
                 *tri = face.vertices().map(|v| v.data().pt as usize);
+            }
+        };
+        let threads = std::thread::available_parallelism().map_or(1, |n| n.get()).clamp(1, 8);
+        let chunk = count.div_ceil(threads).max(1 << 16);
+        let mut unstarted = Vec::new();
+        std::thread::scope(|scope| {
+            let mut parts = triangles.chunks_mut(chunk).enumerate();
+            let here = parts.next();
+            for (c, part) in parts {
+                if std::thread::Builder::new().spawn_scoped(scope, move || fill(part, c * chunk)).is_err() {
+                    unstarted.push(c);
+                }
+            }
+            if let Some((_, part)) = here {
+                fill(part, 0);
+            }
+        });
+        // A chunk whose thread could not be started is done here.
+        for c in unstarted {
+            let end = ((c + 1) * chunk).min(count);
+            if let Some(part) = triangles.get_mut(c * chunk..end) {
+                fill(part, c * chunk);
             }
         }
         // Hull edges run clockwise around the triangulation; reverse for counter-clockwise.
@@ -409,9 +431,9 @@ impl Triangulation {
             let mut table = vec![[NONE; 3]; dt.num_inner_faces()];
             for face in dt.inner_faces() {
                 if let Some(nb) = table.get_mut(face.fix().index().wrapping_sub(1)) {
-                    *nb = face.adjacent_edges().map(|e| {
-                        e.rev().face().as_inner().map_or(NONE, |f| f.index().wrapping_sub(1) as u32)
-                    });
+                    *nb = face
+                        .adjacent_edges()
+                        .map(|e| e.rev().face().as_inner().map_or(NONE, |f| f.index().wrapping_sub(1) as u32));
                 }
             }
             table
@@ -561,118 +583,49 @@ fn barycentric(p0: Point2<f64>, p1: Point2<f64>, p2: Point2<f64>, q: Point2<f64>
     if v.is_finite() || v.is_nan() { v } else { (1.0 - l1 - l2) * z0 + l1 * z1 + l2 * z2 }
 }
 
-/// Distinct rows (first of each position kept) ordered as spade's bulk loader orders them:
-/// by decreasing distance from the mean position, ties by increasing x, then y. spade sorts
-/// again, but a sorted input costs it only a linear check, and this radix sort is several times
-/// faster than its comparison sort. (spade computes the mean over the deduplicated points; when
-/// that differs in the last bits from the mean used here, spade's own sort fixes the order, so
-/// correctness never depends on this.)
-fn sweep_order(pts: &[Point2<f64>]) -> Vec<u32> {
-    if pts.is_empty() {
-        return Vec::new();
-    }
-    let (mut sx, mut sy) = (0.0f64, 0.0f64);
-    for p in pts {
-        sx += p.x;
-        sy += p.y;
-    }
-    let inv = 1.0 / pts.len() as f64;
-    let (cx, cy) = (sx * inv, sy * inv);
-    // Squared distances are non-negative, so their bit patterns sort like the values; the
-    // complement sorts by decreasing distance. Same arithmetic as spade's `distance_2`.
-    let key = |i: u32| -> (u64, f64, f64) {
-        pts.get(i as usize).map_or((u64::MAX, 0.0, 0.0), |p| {
-            let (dx, dy) = (cx - p.x, cy - p.y);
-            (!(dx * dx + dy * dy).to_bits(), p.x, p.y)
-        })
-    };
-    // Radix sort on the upper 32 bits of the key, then finish each run of equal upper halves
-    // by the full key, x and y (a stable sort, so identical points keep their input order).
-    let keyed: Vec<(u32, u32)> = (0..pts.len() as u32).map(|i| ((key(i).0 >> 32) as u32, i)).collect();
-    let sorted = radix_sort(keyed);
-    let mut order: Vec<u32> = Vec::with_capacity(sorted.len());
-    let mut run: Vec<u32> = Vec::new();
-    let mut rest = sorted.as_slice();
-    while let Some(&(high, _)) = rest.first() {
-        let len = rest.iter().take_while(|e| e.0 == high).count().max(1);
-        let (group, tail) = rest.split_at(len.min(rest.len()));
-        rest = tail;
-        if let [(_, only)] = group {
-            order.push(*only);
-            continue;
-        }
-        run.clear();
-        run.extend(group.iter().map(|e| e.1));
-        run.sort_by(|&a, &b| {
-            let (ka, kb) = (key(a), key(b));
-            ka.0.cmp(&kb.0)
-                .then(ka.1.partial_cmp(&kb.1).unwrap_or(std::cmp::Ordering::Equal))
-                .then(ka.2.partial_cmp(&kb.2).unwrap_or(std::cmp::Ordering::Equal))
-        });
-        let mut last: Option<(f64, f64)> = None;
-        for &i in &run {
-            let (_, x, y) = key(i);
-            if last != Some((x, y)) {
-                order.push(i);
-                last = Some((x, y));
-            }
-        }
-    }
-    order
-}
-
-/// Stable LSD radix sort of `(key, payload)` pairs by key, 11 bits per pass; passes in which
-/// every key has the same digit are skipped.
-fn radix_sort(mut items: Vec<(u32, u32)>) -> Vec<(u32, u32)> {
-    const BITS: u32 = 11;
-    let mut buffer = vec![(0u32, 0u32); items.len()];
-    let mut counts = vec![0usize; 1 << BITS];
-    for pass in 0..3 {
-        let shift = pass * BITS;
-        let digit = |e: &(u32, u32)| ((e.0 >> shift) & ((1 << BITS) - 1)) as usize;
-        counts.iter_mut().for_each(|c| *c = 0);
-        for e in &items {
-            if let Some(c) = counts.get_mut(digit(e)) {
-                *c += 1;
-            }
-        }
-        if counts.iter().any(|&c| c == items.len()) {
-            continue;
-        }
-        let mut sum = 0;
-        for c in counts.iter_mut() {
-            let here = *c;
-            *c = sum;
-            sum += here;
-        }
-        for e in &items {
-            if let Some(c) = counts.get_mut(digit(e)) {
-                if let Some(slot) = buffer.get_mut(*c) {
-                    *slot = *e;
+/// For every row, the first row at the same position (itself when it is the first).
+fn first_rows(points: &[(f64, f64)], frame: Frame) -> Vec<u32> {
+    // Positions in the frame have no -0.0, so equal positions have equal bits.
+    let mut keyed: Vec<(u64, u64, u32)> = points
+        .iter()
+        .enumerate()
+        .map(|(row, &(x, y))| (frame.to_unit(x).to_bits(), frame.to_unit(y).to_bits(), row as u32))
+        .collect();
+    keyed.sort_unstable();
+    let mut first: Vec<u32> = (0..points.len() as u32).collect();
+    let mut group: Option<(u64, u64, u32)> = None;
+    for (x, y, row) in keyed {
+        match group {
+            Some((gx, gy, f)) if gx == x && gy == y => {
+                if let Some(slot) = first.get_mut(row as usize) {
+                    *slot = f;
                 }
-                *c += 1;
             }
+            _ => group = Some((x, y, row)),
         }
-        std::mem::swap(&mut items, &mut buffer);
     }
-    items
+    first
 }
 
-/// Triangulates distinct sites given in [`sweep_order`]. `None` when all sites are collinear
-/// (or fewer than three) and the triangulation would have no triangles.
+/// Triangulates the sites (duplicates allowed: spade merges them). `None` when fewer than three
+/// sites or when all are collinear and the insertion path found that out.
 fn build(sites: Vec<Site>) -> Result<Option<DelaunayTriangulation<Site>>, ScatteredError> {
     let spade_err = |e: spade::InsertionError| ScatteredError::Triangulator { message: format!("{e:?}") };
     if sites.len() < 3 {
         return Ok(None);
     }
-    if collinear_prefix(&sites) <= SEED_LIMIT {
-        let dt = DelaunayTriangulation::<Site>::bulk_load(sites).map_err(spade_err)?;
-        return Ok((dt.num_inner_faces() > 0).then_some(dt));
+    let Some((ia, ib, prefix)) = seed_prefix(&sites) else {
+        // At most two distinct positions: nothing to triangulate.
+        return Ok(None);
+    };
+    if prefix <= SEED_LIMIT {
+        // Presorting pays off only for large inputs (it runs on two threads).
+        let sites = if sites.len() >= 1 << 16 { sweep_sorted(&sites) } else { sites };
+        return Ok(Some(DelaunayTriangulation::<Site>::bulk_load(sites).map_err(spade_err)?));
     }
     // Many points nearest the centre (the bulk loader's seed) may be collinear: find, exactly,
     // a point off the line through the two nearest, or learn that all points are collinear.
-    let n = sites.len();
-    let (Some(&a), Some(&b)) = (sites.get(n - 1), sites.get(n - 2)) else {
+    let (Some(&a), Some(&b)) = (sites.get(ia), sites.get(ib)) else {
         return Ok(None);
     };
     let mut probe = DelaunayTriangulation::<Site>::new();
@@ -681,47 +634,145 @@ fn build(sites: Vec<Site>) -> Result<Option<DelaunayTriangulation<Site>>, Scatte
     let Some(edge) = probe.directed_edges().next() else {
         return Ok(None);
     };
-    let Some(c_at) = sites.iter().rposition(|s| !edge.side_query(s.pos).is_on_line()) else {
+    let Some(ic) = sites.iter().position(|s| !edge.side_query(s.pos).is_on_line()) else {
         return Ok(None);
     };
-    let Some(&c) = sites.get(c_at) else {
+    let Some(&c) = sites.get(ic) else {
         return Ok(None);
     };
-    // Insert a non-degenerate seed, then the rest in Morton (Z-curve) order so each walk from
+    // Insert that triangle first, then the rest in Morton (Z-curve) order so each walk from
     // the previous vertex is short.
     let mut dt = DelaunayTriangulation::<Site>::new();
     dt.insert(a).map_err(spade_err)?;
     dt.insert(b).map_err(spade_err)?;
     let mut last = dt.insert(c).map_err(spade_err)?;
-    let rest: Vec<Site> = sites.iter().enumerate().filter(|&(i, _)| i + 2 < n && i != c_at).map(|(_, &s)| s).collect();
+    let rest: Vec<Site> =
+        sites.iter().enumerate().filter(|&(i, _)| i != ia && i != ib && i != ic).map(|(_, &s)| s).collect();
     for s in morton_order(rest) {
         last = dt.insert_with_hint(s, last).map_err(spade_err)?;
     }
     Ok(Some(dt))
 }
 
-/// How many of the points nearest the centre (the end of `sites`) might lie on the line through
-/// the two nearest, counted until the first one that is certainly off it (float orientation with
-/// a conservative error bound).
-fn collinear_prefix(sites: &[Site]) -> usize {
-    let n = sites.len();
-    let (Some(a), Some(b)) = (sites.get(n.wrapping_sub(1)), sites.get(n.wrapping_sub(2))) else {
-        return n;
+/// The sites in the order spade's bulk loader sorts them into (decreasing distance from their
+/// mean, ties by increasing x, then y). spade sorts again, but finds a sorted input in one linear
+/// pass; sorting plain integer keys here, on two threads, is faster than its comparison sort.
+/// spade recomputes the mean in this order, which can differ in the last bits from the mean
+/// used here; a pair that swaps because of that only costs spade a full sort.
+fn sweep_sorted(sites: &[Site]) -> Vec<Site> {
+    let (mut sx, mut sy) = (0.0f64, 0.0f64);
+    for s in sites {
+        sx += s.pos.x;
+        sy += s.pos.y;
+    }
+    let inv = 1.0 / sites.len() as f64;
+    let (cx, cy) = (sx * inv, sy * inv);
+    // Same arithmetic as spade's `distance_2`; the complement of the (non-negative) distance's
+    // bits sorts by decreasing distance.
+    let key = |p: Point2<f64>| !((cx - p.x) * (cx - p.x) + (cy - p.y) * (cy - p.y)).to_bits();
+    let mut keyed: Vec<(u64, u32)> = sites.iter().enumerate().map(|(i, s)| (key(s.pos), i as u32)).collect();
+    let mid = keyed.len() / 2;
+    let (lo, hi) = keyed.split_at_mut(mid);
+    let started = std::thread::scope(|scope| {
+        let started = std::thread::Builder::new().spawn_scoped(scope, || lo.sort_unstable()).is_ok();
+        hi.sort_unstable();
+        started
+    });
+    if !started && let Some(lo) = keyed.get_mut(..mid) {
+        lo.sort_unstable();
+    }
+    // Merge the halves.
+    let (lo, hi) = keyed.split_at(mid);
+    let mut merged: Vec<(u64, u32)> = Vec::with_capacity(keyed.len());
+    let (mut i, mut j) = (0, 0);
+    while let (Some(&a), Some(&b)) = (lo.get(i), hi.get(j)) {
+        if a <= b {
+            merged.push(a);
+            i += 1;
+        } else {
+            merged.push(b);
+            j += 1;
+        }
+    }
+    merged.extend_from_slice(lo.get(i..).unwrap_or_default());
+    merged.extend_from_slice(hi.get(j..).unwrap_or_default());
+    drop(keyed);
+    let pos = |i: u32| sites.get(i as usize).map_or(Point2::new(0.0, 0.0), |s| s.pos);
+    // Equal distances (rare): by x, then y.
+    let mut start = 0;
+    while let Some(&(k, _)) = merged.get(start) {
+        let len = merged.get(start..).map_or(1, |rest| rest.iter().take_while(|e| e.0 == k).count()).max(1);
+        if len > 1
+            && let Some(run) = merged.get_mut(start..start + len)
+        {
+            run.sort_by(|a, b| {
+                let (p, q) = (pos(a.1), pos(b.1));
+                p.x.total_cmp(&q.x).then(p.y.total_cmp(&q.y))
+            });
+        }
+        start += len;
+    }
+    // Gather (random reads, so two threads help).
+    let mut out = vec![Site { pos: Point2::new(0.0, 0.0), pt: 0 }; merged.len()];
+    let gather = |part: &mut [Site], order: &[(u64, u32)]| {
+        for (slot, &(_, i)) in part.iter_mut().zip(order) {
+            if let Some(&s) = sites.get(i as usize) {
+                *slot = s;
+            }
+        }
     };
-    let (a, b) = (a.pos, b.pos);
-    let mut count = 2;
-    for s in sites.iter().rev().skip(2) {
-        let p = s.pos;
+    let half = merged.len().div_ceil(2).max(1);
+    let started = std::thread::scope(|scope| {
+        let mut parts = out.chunks_mut(half).zip(merged.chunks(half));
+        let here = parts.next();
+        let started = parts
+            .all(|(part, order)| std::thread::Builder::new().spawn_scoped(scope, move || gather(part, order)).is_ok());
+        if let Some((part, order)) = here {
+            gather(part, order);
+        }
+        started
+    });
+    if !started && let (Some(part), Some(order)) = (out.get_mut(half..), merged.get(half..)) {
+        gather(part, order);
+    }
+    out
+}
+
+/// The bulk loader's seed: it inserts points by increasing distance from their mean until they
+/// are not all on one line, at a cost quadratic in their number. Returns the indices of the two
+/// nearest distinct points and a bound on the seed's length: the number of points no farther
+/// than the nearest one that is certainly off the line through those two (float orientation
+/// with a conservative error bound). `None` when there are not two distinct positions.
+fn seed_prefix(sites: &[Site]) -> Option<(usize, usize, usize)> {
+    let (mut sx, mut sy) = (0.0f64, 0.0f64);
+    for s in sites {
+        sx += s.pos.x;
+        sy += s.pos.y;
+    }
+    let inv = 1.0 / sites.len() as f64;
+    let (cx, cy) = (sx * inv, sy * inv);
+    let dist = |p: Point2<f64>| (cx - p.x) * (cx - p.x) + (cy - p.y) * (cy - p.y);
+    let nearest = |skip: Option<Point2<f64>>| {
+        sites
+            .iter()
+            .enumerate()
+            .filter(|(_, s)| skip != Some(s.pos))
+            .min_by(|(_, s), (_, t)| dist(s.pos).total_cmp(&dist(t.pos)))
+            .map(|(i, _)| i)
+    };
+    let ia = nearest(None)?;
+    let a = sites.get(ia)?.pos;
+    let ib = nearest(Some(a))?;
+    let b = sites.get(ib)?.pos;
+    let certainly_off = |p: Point2<f64>| {
         let left = (b.x - a.x) * (p.y - a.y);
         let right = (b.y - a.y) * (p.x - a.x);
-        let det = left - right;
         let detsum = left.abs() + right.abs();
-        if detsum > 1e-280 && det.abs() > 1e-14 * detsum {
-            return count;
-        }
-        count += 1;
-    }
-    count
+        detsum > 1e-280 && (left - right).abs() > 1e-14 * detsum
+    };
+    let reach = sites.iter().filter(|s| certainly_off(s.pos)).map(|s| dist(s.pos)).fold(f64::INFINITY, f64::min);
+    let prefix = sites.iter().filter(|s| dist(s.pos) <= reach).count();
+    Some((ia, ib, prefix))
 }
 
 /// `sites` sorted along a Z-order curve over their bounding box.

@@ -698,22 +698,62 @@ fn resample_onto_a_grid() {
 }
 
 #[test]
-fn sweep_order_is_what_spade_sorts_to() {
-    // Decreasing distance from the mean, ties by x then y, duplicates dropped (first kept).
-    let pts: Vec<Point2<f64>> = [(0.0, 0.0), (2.0, 0.0), (1.0, 1.0), (1.0, -1.0), (1.0, 0.0), (2.0, 0.0)]
-        .iter()
-        .map(|&(x, y)| Point2::new(x, y))
-        .collect();
-    // Mean (7/6, 0): (0,0) is farthest, then (1, -1), (1, 1) (tied, y ascending), (2, 0), (1, 0).
-    assert_eq!(sweep_order(&pts), vec![0, 3, 2, 1, 4]);
-    // Distances that differ only in their last bits are ordered by the full key.
+fn first_rows_group_identical_positions() {
+    let pts = [(1.0, 2.0), (0.0, 0.0), (1.0, 2.0), (-0.0, 0.0), (3.0, 3.0), (1.0, 2.0)];
+    assert_eq!(first_rows(&pts, Frame::for_magnitude(3.0)), vec![0, 1, 0, 1, 4, 0]);
+}
+
+#[test]
+fn heavy_duplication_is_fast_and_keeps_first_rows() {
+    let spots = [(0.0, 0.0), (4.0, 0.0), (0.0, 3.0)];
+    let n = 300_000;
+    let pts: Vec<(f64, f64)> = (0..n).map(|i| spots[(i * 7 + 1) % 3]).collect();
+    let values: Vec<f64> = (0..n).map(|i| i as f64).collect();
+    let start = std::time::Instant::now();
+    let tin = Triangulation::new(&pts, &values).unwrap();
+    assert_eq!(tin.merged_duplicates(), n - 3);
+    assert_eq!(tin.rows(), &[0, 1, 2]);
+    assert_eq!(tin.values(), &[0.0, 1.0, 2.0]);
+    assert_eq!(tin.triangles().len(), 1);
+    let [a, b, c] = corners(&tin, &tin.triangles()[0]);
+    assert!(cross(a, b, c) > 0.0);
+    // Two positions only: degenerate.
+    let pts: Vec<(f64, f64)> = (0..n).map(|i| spots[i % 2]).collect();
+    let tin = Triangulation::new(&pts, &values).unwrap();
+    assert!(tin.is_degenerate());
+    assert_eq!(tin.points(), &spots[..2]);
+    assert!(start.elapsed().as_secs_f64() < 20.0, "took {:?}", start.elapsed());
+}
+
+#[test]
+fn presort_matches_spades_bulk_load_order() {
+    let site = |(x, y): (f64, f64), pt: u32| Site { pos: Point2::new(x, y), pt };
+    let rows = |v: Vec<Site>| v.iter().map(|s| s.pt).collect::<Vec<_>>();
+    // Mean (7/6, 0): decreasing distance, ties by x then y; identical points stay, in row order.
+    let pts = [(0.0, 0.0), (2.0, 0.0), (1.0, 1.0), (1.0, -1.0), (1.0, 0.0), (2.0, 0.0)];
+    let sites: Vec<Site> = pts.iter().enumerate().map(|(i, &p)| site(p, i as u32)).collect();
+    assert_eq!(rows(sweep_sorted(&sites)), vec![0, 3, 2, 1, 5, 4]);
+    // Distances that differ only in the last bit.
     let b = 1.0 + f64::EPSILON;
-    let pts: Vec<Point2<f64>> =
-        [(1.0, 0.0), (-1.0, 0.0), (0.0, b), (0.0, -b)].iter().map(|&(x, y)| Point2::new(x, y)).collect();
-    assert_eq!(sweep_order(&pts), vec![3, 2, 1, 0]);
-    let keyed = vec![(5, 0), (1, 1), (5, 2), (u32::MAX, 3), (0, 4), (1 << 20, 5)];
-    let sorted: Vec<u32> = radix_sort(keyed).into_iter().map(|e| e.1).collect();
-    assert_eq!(sorted, vec![4, 1, 0, 2, 5, 3]);
+    let pts = [(1.0, 0.0), (-1.0, 0.0), (0.0, b), (0.0, -b)];
+    let sites: Vec<Site> = pts.iter().enumerate().map(|(i, &p)| site(p, i as u32)).collect();
+    assert_eq!(rows(sweep_sorted(&sites)), vec![3, 2, 1, 0]);
+    // Random points: sorted under spade's key, with the mean spade computes from this order.
+    let mut rng = Rng::new(14);
+    let sites: Vec<Site> = random_points(&mut rng, 20_000, 1.0, (0.0, 0.0))
+        .into_iter()
+        .enumerate()
+        .map(|(i, p)| site(p, i as u32))
+        .collect();
+    let sorted = sweep_sorted(&sites);
+    let mut kept = rows(sorted.clone());
+    kept.sort_unstable();
+    assert_eq!(kept, (0..20_000).collect::<Vec<u32>>());
+    let (sx, sy) = sorted.iter().fold((0.0, 0.0), |(x, y), s| (x + s.pos.x, y + s.pos.y));
+    let inv = 1.0 / sorted.len() as f64;
+    let c = Point2::new(sx * inv, sy * inv);
+    let key = |s: &Site| (std::cmp::Reverse(c.distance_2(s.pos).to_bits()), s.pos.x.to_bits(), s.pos.y.to_bits());
+    assert!(sorted.windows(2).all(|w| key(&w[0]) <= key(&w[1])));
 }
 
 #[test]
@@ -727,7 +767,7 @@ fn frames_scale_by_exact_powers_of_two() {
         let f = Frame::for_magnitude(m);
         let u = f.to_unit(m);
         assert!((0.5..1.0).contains(&u), "{m}: {u}");
-        assert_eq!(f.from_unit(u), m);
+        assert_eq!(f.to_data(u), m);
     }
 }
 
@@ -749,6 +789,17 @@ fn timing_one_million_points() {
         println!("run {run}: {:.3} s, {} triangles, hull {}", secs, tin.triangles().len(), tin.hull().len());
         assert_eq!(tin.triangles().len(), 2 * n - tin.hull().len() - 2);
     }
+    // For reference: spade's bulk loader alone on the same points (no validation, duplicate
+    // bookkeeping or copies).
+    let mut spade_best = f64::INFINITY;
+    for _ in 0..3 {
+        let raw: Vec<Point2<f64>> = pts.iter().map(|&(x, y)| Point2::new(x, y)).collect();
+        let start = std::time::Instant::now();
+        let dt = DelaunayTriangulation::<Point2<f64>>::bulk_load(raw).unwrap();
+        spade_best = spade_best.min(start.elapsed().as_secs_f64());
+        assert_eq!(dt.num_inner_faces(), 2 * n - dt.convex_hull_size() - 2);
+    }
+    println!("spade bulk_load alone: best of 3 = {spade_best:.3} s");
     let tin = Triangulation::new(&pts, &values).unwrap();
     let start = std::time::Instant::now();
     let cells = tin.voronoi_cells((0.0, 0.0, 1.0, 1.0)).unwrap();
@@ -758,4 +809,35 @@ fn timing_one_million_points() {
     let lines = tin.contour_lines(&levels).unwrap();
     println!("contours (9 levels): {:.3} s ({} lines)", start.elapsed().as_secs_f64(), lines.len());
     println!("Triangulation::new, 1,000,000 random points: best of 3 = {best:.3} s");
+}
+
+/// Times degenerate inputs that make some triangulators quadratic: a 1000 × 1000 lattice
+/// (cocircular quads, collinear hull), 1,000,000 points on one line, the same plus one point off
+/// it, and 200,000 points on a circle. Run with `cargo test --release -- --ignored --nocapture`.
+#[test]
+#[ignore]
+fn timing_degenerate_inputs() {
+    let time = |name: &str, pts: &[(f64, f64)]| {
+        let start = std::time::Instant::now();
+        let tin = tin_of(pts);
+        println!("{name}: {:.3} s, {} triangles", start.elapsed().as_secs_f64(), tin.triangles().len());
+        tin
+    };
+    let m = 1000;
+    let lattice: Vec<(f64, f64)> = (0..m * m).map(|i| ((i % m) as f64, (i / m) as f64)).collect();
+    let tin = time("lattice 1000 x 1000", &lattice);
+    assert_eq!(tin.triangles().len(), 2 * (m - 1) * (m - 1));
+    let line: Vec<(f64, f64)> = (0..1_000_000).map(|i| (i as f64, 0.5 * i as f64)).collect();
+    assert!(time("1,000,000 collinear", &line).is_degenerate());
+    let mut fan = line.clone();
+    fan.push((0.0, 1.0));
+    assert_eq!(time("1,000,000 collinear + 1", &fan).triangles().len(), 999_999);
+    let circle: Vec<(f64, f64)> = (0..200_000)
+        .map(|i| {
+            let a = i as f64 * std::f64::consts::TAU / 200_000.0;
+            (a.cos(), a.sin())
+        })
+        .collect();
+    let tin = time("200,000 on a circle", &circle);
+    assert_eq!(tin.triangles().len(), 200_000 - 2);
 }

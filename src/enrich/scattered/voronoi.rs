@@ -45,7 +45,7 @@ pub(super) fn cells(tin: &Triangulation, clip: (f64, f64, f64, f64)) -> Result<V
                 break;
             }
         }
-        Some(poly.into_iter().map(|(x, y)| (frame.from_unit(x + p.0), frame.from_unit(y + p.1))).collect())
+        Some(poly.into_iter().map(|(x, y)| (frame.to_data(x + p.0), frame.to_data(y + p.1))).collect())
     };
 
     match &tin.dt {
