@@ -263,3 +263,37 @@ fn contour_geojson_has_closed_oriented_rings() {
     // The bands tile the grid's domain, a 6 × 6 square.
     assert!((total - 36.0).abs() < 1e-9, "{total}");
 }
+
+#[test]
+fn grid_files_load_as_long_form_tables() {
+    // A CSV matrix: rows along y, columns along x, coordinates from `extent`.
+    let spec = "[data.m]\npath = \"m.csv\"\nformat = \"matrix\"\nextent = [0.0, 1.0, 10.0, 20.0]\n\n[[chart]]\nname = \"m\"\nkind = \"contour\"\ndata = \"m\"\nx = \"x\"\ny = \"y\"\nz = \"value\"\nlevels = [1.5]\n";
+    let fx = Fixture::new(spec, &[("m.csv", b"0,1\n2,3\n4,5\n")]);
+    let loaded = fx.load().unwrap_or_else(|e| panic!("{e}"));
+    let t = &loaded.tables["m"];
+    assert_eq!(t.column("x").and_then(|c| c.numbers()), Some(&[0.0, 1.0, 0.0, 1.0, 0.0, 1.0][..]));
+    assert_eq!(t.column("y").and_then(|c| c.numbers()), Some(&[10.0, 10.0, 15.0, 15.0, 20.0, 20.0][..]));
+    assert_eq!(t.column("value").and_then(|c| c.numbers()), Some(&[0.0, 1.0, 2.0, 3.0, 4.0, 5.0][..]));
+    fx.draw().unwrap_or_else(|e| panic!("{e}"));
+
+    // The same grid as a .npy file (version 1, little-endian f8, C order).
+    let mut header = "{'descr': '<f8', 'fortran_order': False, 'shape': (3, 2), }".to_string();
+    while (10 + header.len() + 1) % 64 != 0 {
+        header.push(' ');
+    }
+    header.push('\n');
+    let mut npy = b"\x93NUMPY\x01\x00".to_vec();
+    npy.extend_from_slice(&(header.len() as u16).to_le_bytes());
+    npy.extend_from_slice(header.as_bytes());
+    for v in [0.0f64, 1.0, 2.0, 3.0, 4.0, 5.0] {
+        npy.extend_from_slice(&v.to_le_bytes());
+    }
+    let spec = spec.replace("path = \"m.csv\"\nformat = \"matrix\"", "path = \"m.npy\"");
+    let fx = Fixture::new(&spec, &[("m.npy", &npy)]);
+    let loaded = fx.load().unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(loaded.tables["m"], *t);
+
+    let bad = Fixture::new(&spec, &[("m.npy", b"not numpy")]).load().expect_err("bad npy");
+    assert!(bad.contains("as NumPy .npy: not a NumPy .npy file (bad magic bytes)"), "{bad}");
+    assert!(bad.contains("= hint: save a 2-D float or integer array with numpy.save"), "{bad}");
+}

@@ -37,3 +37,13 @@ with grid.open("w") as f:
         for i in range(41):
             x, y = i / 40, j / 40
             f.write(f"{x:.3f},{y:.3f},{franke(x, y):.6f}\n")
+
+# The same function as a 2-D NumPy array (rows along y) for the grid-file reader; needs numpy.
+try:
+    import numpy as np
+
+    xs = np.linspace(0.0, 1.0, 61)
+    X, Y = np.meshgrid(xs, xs)
+    np.save(pathlib.Path(__file__).with_name("franke.npy"), np.vectorize(franke)(X, Y))
+except ImportError:
+    print("numpy not installed: franke.npy not rewritten")

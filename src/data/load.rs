@@ -84,6 +84,12 @@ impl LoadError {
                 "JSON data must be an array of records, e.g. [{\"x\": 1, \"y\": 2}], or one record per line".into()
             }
             LoadError::Parse { format: DataFormat::Parquet, .. } => "the file is not a readable Parquet file".into(),
+            LoadError::Parse { format: DataFormat::Npy, .. } => {
+                "save a 2-D float or integer array with numpy.save".into()
+            }
+            LoadError::Parse { format: DataFormat::Matrix, .. } => {
+                "a CSV matrix has no header and the same number of numbers on every line".into()
+            }
             LoadError::NoColumns(_) => "the source needs a header row and at least one column".into(),
             LoadError::UnsupportedType { .. } => {
                 "use numbers, text, booleans, dates or date-times; flatten nested values first".into()
@@ -98,6 +104,8 @@ fn format_name(format: DataFormat) -> &'static str {
         DataFormat::Csv => "CSV",
         DataFormat::Parquet => "Parquet",
         DataFormat::Json => "JSON",
+        DataFormat::Npy => "NumPy .npy",
+        DataFormat::Matrix => "a CSV matrix",
     }
 }
 
@@ -108,6 +116,7 @@ pub fn infer_format(path: &Path) -> Option<DataFormat> {
         "csv" | "tsv" | "txt" => Some(DataFormat::Csv),
         "parquet" | "pq" => Some(DataFormat::Parquet),
         "json" | "jsonl" | "ndjson" => Some(DataFormat::Json),
+        "npy" => Some(DataFormat::Npy),
         _ => None,
     }
 }
@@ -131,6 +140,11 @@ pub fn load_source(
             let separator = source.delimiter.as_deref().and_then(|d| d.bytes().next()).unwrap_or_else(|| {
                 if resolved.extension().is_some_and(|e| e.eq_ignore_ascii_case("tsv")) { b'\t' } else { b',' }
             });
+            match format {
+                DataFormat::Npy => return Ok(super::matrix::read_npy(&resolved)?.to_table(source.extent)),
+                DataFormat::Matrix => return Ok(read_csv_matrix(&resolved, separator)?.to_table(source.extent)),
+                _ => {}
+            }
             match columns {
                 Some(cols) if !cols.is_empty() && format != DataFormat::Json => {
                     load_file(&resolved, format, separator, Some(cols))
@@ -180,6 +194,9 @@ pub fn load_file(
             .into_reader_with_file_handle(file)
             .finish(),
         DataFormat::Parquet => ParquetReader::new(file).with_columns(columns.map(<[String]>::to_vec)).finish(),
+        DataFormat::Npy | DataFormat::Matrix => {
+            return Err(LoadError::Parse { origin, format, message: "grid files are read by load_source".into() });
+        }
         DataFormat::Json => {
             let lines =
                 path.extension().is_some_and(|e| e.eq_ignore_ascii_case("jsonl") || e.eq_ignore_ascii_case("ndjson"));
@@ -281,4 +298,43 @@ fn detect_time_text(values: ColumnValues) -> ColumnValues {
         }
     }
     ColumnValues::Time(cats.codes.iter().map(|&c| parsed.get(c as usize).copied().unwrap_or(f64::NAN)).collect())
+}
+
+/// A headerless CSV of numbers, read through polars, as a matrix (rows along y).
+pub fn read_csv_matrix(path: &Path, separator: u8) -> Result<super::matrix::Matrix, LoadError> {
+    let file = File::open(path).map_err(|e| match e.kind() {
+        std::io::ErrorKind::NotFound => LoadError::NotFound(path.to_path_buf()),
+        _ => LoadError::Io(path.to_path_buf(), e),
+    })?;
+    let origin = format!("`{}`", path.display());
+    let df = CsvReadOptions::default()
+        .with_has_header(false)
+        .with_infer_schema_length(None)
+        .map_parse_options(|p| p.with_separator(separator))
+        .into_reader_with_file_handle(file)
+        .finish()
+        .map_err(|e| parse_error(&origin, DataFormat::Matrix, e))?;
+    let (rows, cols) = (df.height(), df.width());
+    if rows == 0 || cols == 0 {
+        return Err(LoadError::NoColumns(origin));
+    }
+    let mut columns = Vec::with_capacity(cols);
+    for column in df.columns() {
+        let series = column.as_materialized_series();
+        if !series.dtype().is_primitive_numeric() && series.null_count() != series.len() {
+            return Err(LoadError::Parse {
+                origin,
+                format: DataFormat::Matrix,
+                message: format!("column {} holds text ({})", columns.len() + 1, series.dtype()),
+            });
+        }
+        columns.push(to_f64(series).unwrap_or_else(|| vec![f64::NAN; rows]));
+    }
+    let mut values = Vec::with_capacity(rows * cols);
+    for i in 0..rows {
+        for col in &columns {
+            values.push(col.get(i).copied().unwrap_or(f64::NAN));
+        }
+    }
+    Ok(super::matrix::Matrix { rows, cols, values })
 }

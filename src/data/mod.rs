@@ -5,6 +5,7 @@
 //! numbers, times (milliseconds since the Unix epoch, UTC) or categories.
 
 pub mod load;
+pub mod matrix;
 pub mod paths;
 pub mod table;
 pub mod time;

@@ -467,6 +467,7 @@ point_size = "d"
                 path: Some("data/iris.csv".to_owned()),
                 format: Some(DataFormat::Csv),
                 values: None,
+                extent: None,
                 delimiter: Some(";".to_owned()),
             },
         );
@@ -479,6 +480,7 @@ point_size = "d"
                     row(&[("x", json!(1)), ("y", json!(2.5)), ("when", json!("1979-05-27"))]),
                     row(&[("x", json!(2)), ("y", json!(3.0)), ("label", json!("b"))]),
                 ]),
+                extent: None,
                 delimiter: None,
             },
         );

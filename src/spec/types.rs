@@ -35,6 +35,11 @@ pub struct DataSource {
     /// Inline rows, e.g. `values = [{ x = 1, y = 2 }, { x = 2, y = 3 }]` (instead of `path`).
     #[serde(default)]
     pub values: Option<Vec<BTreeMap<String, serde_json::Value>>>,
+    /// For grid files (`npy`, `matrix`): coordinates `[x_first, x_last, y_first, y_last]` of the
+    /// first and last column and row (default: the column and row indices). The table gets the
+    /// columns `x`, `y` and `value`.
+    #[serde(default)]
+    pub extent: Option<[f64; 4]>,
     /// CSV field separator (one character; default `,`).
     #[serde(default)]
     #[schemars(length(min = 1, max = 1), example = &";")]
@@ -51,6 +56,10 @@ pub enum DataFormat {
     Parquet,
     /// A JSON array of records (`[{"x": 1}, ...]`) or newline-delimited records.
     Json,
+    /// A 2-D NumPy array (`.npy`), read as a grid: columns along x, rows along y.
+    Npy,
+    /// A CSV file of numbers without a header, read as a grid: columns along x, rows along y.
+    Matrix,
 }
 
 /// One chart: options shared by every kind, plus the options of its `kind`.

@@ -1,0 +1,229 @@
+//! Grid files: 2-D NumPy arrays (`.npy`) and headerless CSV matrices, read into a long-form
+//! [`Table`] with columns `x`, `y` and `value` (one row per grid node), which the grid chart
+//! kinds (`contour`, `image`, `section`, `surface`) read like any other long-form table.
+//!
+//! Column `j` of the matrix lies at x index `j` and row `i` at y index `i` (y grows with the row
+//! index); `extent = [x_first, x_last, y_first, y_last]` maps the indices linearly to coordinates.
+
+use std::path::Path;
+
+use super::load::LoadError;
+use super::table::{Column, ColumnValues, Table};
+use crate::spec::DataFormat;
+
+/// Largest matrix accepted (cells), checked before allocating.
+pub const MAX_CELLS: usize = 50_000_000;
+
+/// A dense row-major matrix of numbers.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Matrix {
+    /// Number of rows (along y).
+    pub rows: usize,
+    /// Number of columns (along x).
+    pub cols: usize,
+    /// `rows * cols` values, row-major.
+    pub values: Vec<f64>,
+}
+
+impl Matrix {
+    /// The matrix as a long-form table `x, y, value`, with coordinates from `extent`
+    /// (`[x_first, x_last, y_first, y_last]`) or the indices.
+    pub fn to_table(&self, extent: Option<[f64; 4]>) -> Table {
+        let coord = |k: usize, n: usize, first: f64, last: f64| {
+            if n <= 1 { first } else { first + (last - first) * k as f64 / (n - 1) as f64 }
+        };
+        let [x0, x1, y0, y1] =
+            extent.unwrap_or([0.0, self.cols.saturating_sub(1) as f64, 0.0, self.rows.saturating_sub(1) as f64]);
+        let n = self.rows * self.cols;
+        let (mut xs, mut ys) = (Vec::with_capacity(n), Vec::with_capacity(n));
+        for i in 0..self.rows {
+            let y = coord(i, self.rows, y0, y1);
+            for j in 0..self.cols {
+                xs.push(coord(j, self.cols, x0, x1));
+                ys.push(y);
+            }
+        }
+        Table {
+            columns: vec![
+                Column { name: "x".into(), values: ColumnValues::Number(xs) },
+                Column { name: "y".into(), values: ColumnValues::Number(ys) },
+                Column { name: "value".into(), values: ColumnValues::Number(self.values.clone()) },
+            ],
+            rows: n,
+        }
+    }
+}
+
+fn npy_error(path: &Path, message: impl Into<String>) -> LoadError {
+    LoadError::Parse { origin: format!("`{}`", path.display()), format: DataFormat::Npy, message: message.into() }
+}
+
+/// Read a 2-D `.npy` array of integers or floats (any byte order, C or Fortran order).
+pub fn read_npy(path: &Path) -> Result<Matrix, LoadError> {
+    let bytes = std::fs::read(path).map_err(|e| match e.kind() {
+        std::io::ErrorKind::NotFound => LoadError::NotFound(path.to_path_buf()),
+        _ => LoadError::Io(path.to_path_buf(), e),
+    })?;
+    parse_npy(&bytes).map_err(|m| npy_error(path, m))
+}
+
+/// Parse `.npy` bytes into a matrix; the error is a message for the user.
+pub fn parse_npy(bytes: &[u8]) -> Result<Matrix, String> {
+    if bytes.get(..6) != Some(b"\x93NUMPY") {
+        return Err("not a NumPy .npy file (bad magic bytes)".into());
+    }
+    let major = *bytes.get(6).ok_or("truncated header")?;
+    let (len, start) = match major {
+        1 => (
+            u16::from_le_bytes([*bytes.get(8).ok_or("truncated header")?, *bytes.get(9).ok_or("truncated header")?])
+                as usize,
+            10,
+        ),
+        2 | 3 => {
+            let b = bytes.get(8..12).ok_or("truncated header")?;
+            (u32::from_le_bytes([b[0], b[1], b[2], b[3]]) as usize, 12)
+        }
+        v => return Err(format!("unsupported .npy version {v}")),
+    };
+    let header = std::str::from_utf8(bytes.get(start..start + len).ok_or("truncated header")?)
+        .map_err(|_| "header is not text".to_string())?;
+    let descr = dict_value(header, "descr").ok_or("header has no 'descr'")?;
+    let descr = descr.trim_matches(|c| c == '\'' || c == '"');
+    let fortran = dict_value(header, "fortran_order").map(|v| v.starts_with("True")).unwrap_or(false);
+    let shape = dict_value(header, "shape").ok_or("header has no 'shape'")?;
+    let dims: Vec<usize> = shape
+        .trim_matches(|c| c == '(' || c == ')')
+        .split(',')
+        .map(str::trim)
+        .filter(|s| !s.is_empty())
+        .map(|s| s.parse::<usize>().map_err(|_| format!("bad shape {shape}")))
+        .collect::<Result<_, _>>()?;
+    let [rows, cols] = dims[..] else {
+        return Err(format!("the array has shape {shape}; a grid needs a 2-D array"));
+    };
+    let cells = rows
+        .checked_mul(cols)
+        .filter(|&n| n <= MAX_CELLS)
+        .ok_or(format!("the array has {rows} × {cols} cells, more than {MAX_CELLS}"))?;
+    let (little, kind, size) = {
+        let mut chars = descr.chars();
+        let order = chars.next().ok_or("empty dtype")?;
+        let kind = chars.next().ok_or("bad dtype")?;
+        let size: usize = chars.as_str().parse().map_err(|_| format!("unsupported dtype {descr}"))?;
+        (order != '>', kind, size)
+    };
+    let data = bytes.get(start + len..).ok_or("truncated data")?;
+    if data.len() < cells * size {
+        return Err(format!(
+            "the data has {} bytes, {} expected for {rows} × {cols} {descr}",
+            data.len(),
+            cells * size
+        ));
+    }
+    let read = |chunk: &[u8]| -> Option<f64> {
+        let mut b = [0u8; 8];
+        let slot = b.get_mut(..size)?;
+        slot.copy_from_slice(chunk);
+        if !little {
+            slot.reverse();
+        }
+        Some(match (kind, size) {
+            ('f', 8) => f64::from_le_bytes(b),
+            ('f', 4) => f32::from_le_bytes([b[0], b[1], b[2], b[3]]) as f64,
+            ('i', 8) => i64::from_le_bytes(b) as f64,
+            ('i', 4) => i32::from_le_bytes([b[0], b[1], b[2], b[3]]) as f64,
+            ('i', 2) => i16::from_le_bytes([b[0], b[1]]) as f64,
+            ('i', 1) => b[0] as i8 as f64,
+            ('u', 8) => u64::from_le_bytes(b) as f64,
+            ('u', 4) => u32::from_le_bytes([b[0], b[1], b[2], b[3]]) as f64,
+            ('u', 2) => u16::from_le_bytes([b[0], b[1]]) as f64,
+            ('u', 1) => b[0] as f64,
+            _ => return None,
+        })
+    };
+    let mut values = Vec::with_capacity(cells);
+    for chunk in data.chunks_exact(size).take(cells) {
+        values.push(read(chunk).ok_or(format!("unsupported dtype {descr}; use float or integer arrays"))?);
+    }
+    if fortran {
+        // Column-major on disk: transpose to row-major.
+        let mut t = vec![0.0; cells];
+        for j in 0..cols {
+            for i in 0..rows {
+                if let (Some(dst), Some(&src)) = (t.get_mut(i * cols + j), values.get(j * rows + i)) {
+                    *dst = src;
+                }
+            }
+        }
+        values = t;
+    }
+    Ok(Matrix { rows, cols, values })
+}
+
+/// The text after `'key':` in a Python dict literal, up to the next top-level comma.
+fn dict_value<'a>(header: &'a str, key: &str) -> Option<&'a str> {
+    let at = header.find(&format!("'{key}'"))? + key.len() + 2;
+    let rest = header.get(at..)?.trim_start().strip_prefix(':')?.trim_start();
+    let mut depth = 0i32;
+    for (i, c) in rest.char_indices() {
+        match c {
+            '(' | '[' => depth += 1,
+            ')' | ']' => depth -= 1,
+            ',' | '}' if depth == 0 => return Some(rest[..i].trim()),
+            _ => {}
+        }
+    }
+    Some(rest.trim())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A version-1 .npy file of little-endian f8 values.
+    fn npy(shape: &str, fortran: bool, values: &[f64]) -> Vec<u8> {
+        let mut header = format!(
+            "{{'descr': '<f8', 'fortran_order': {}, 'shape': {shape}, }}",
+            if fortran { "True" } else { "False" }
+        );
+        while (10 + header.len() + 1) % 64 != 0 {
+            header.push(' ');
+        }
+        header.push('\n');
+        let mut out = b"\x93NUMPY\x01\x00".to_vec();
+        out.extend_from_slice(&(header.len() as u16).to_le_bytes());
+        out.extend_from_slice(header.as_bytes());
+        for v in values {
+            out.extend_from_slice(&v.to_le_bytes());
+        }
+        out
+    }
+
+    #[test]
+    fn c_and_fortran_order_read_the_same_matrix() {
+        let c = parse_npy(&npy("(2, 3)", false, &[1.0, 2.0, 3.0, 4.0, 5.0, 6.0])).expect("C order");
+        let f = parse_npy(&npy("(2, 3)", true, &[1.0, 4.0, 2.0, 5.0, 3.0, 6.0])).expect("Fortran order");
+        assert_eq!(c, Matrix { rows: 2, cols: 3, values: vec![1.0, 2.0, 3.0, 4.0, 5.0, 6.0] });
+        assert_eq!(c, f);
+    }
+
+    #[test]
+    fn bad_files_give_clear_messages() {
+        assert_eq!(parse_npy(b"PK\x03\x04"), Err("not a NumPy .npy file (bad magic bytes)".into()));
+        assert_eq!(
+            parse_npy(&npy("(2, 2, 2)", false, &[0.0; 8])),
+            Err("the array has shape (2, 2, 2); a grid needs a 2-D array".into())
+        );
+        let short = npy("(3, 3)", false, &[0.0; 4]);
+        assert_eq!(parse_npy(&short), Err("the data has 32 bytes, 72 expected for 3 × 3 <f8".into()));
+    }
+
+    #[test]
+    fn extent_maps_indices_to_coordinates() {
+        let m = Matrix { rows: 2, cols: 3, values: vec![1.0, 2.0, 3.0, 4.0, 5.0, 6.0] };
+        let t = m.to_table(Some([10.0, 20.0, -1.0, 1.0]));
+        assert_eq!(t.column("x").and_then(|c| c.numbers()), Some(&[10.0, 15.0, 20.0, 10.0, 15.0, 20.0][..]));
+        assert_eq!(t.column("y").and_then(|c| c.numbers()), Some(&[-1.0, -1.0, -1.0, 1.0, 1.0, 1.0][..]));
+        assert_eq!(t.column("value").and_then(|c| c.numbers()), Some(&m.values[..]));
+    }
+}
