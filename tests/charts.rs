@@ -297,3 +297,11 @@ fn grid_files_load_as_long_form_tables() {
     assert!(bad.contains("as NumPy .npy: not a NumPy .npy file (bad magic bytes)"), "{bad}");
     assert!(bad.contains("= hint: save a 2-D float or integer array with numpy.save"), "{bad}");
 }
+
+#[test]
+fn contours_need_cells() {
+    for rows in [&[(0.0, 0.0, 1.0)][..], &[(0.0, 0.0, 1.0), (1.0, 0.0, 2.0), (2.0, 0.0, 3.0)][..]] {
+        let out = Fixture::new(&grid_spec(rows, ""), &[]).draw().expect_err("no cells");
+        assert!(out.contains("contours need at least 2 × 2 grid nodes, the grid has"), "{out}");
+    }
+}

@@ -24,6 +24,19 @@ pub fn draw(chart: &Chart, options: &ContourOptions, index: usize, table: &Table
     let z_opts = options.z.options();
     let GridInput { grid, rows, warnings, x_col, y_col, zmin, zmax } =
         gridded::load_grid(chart, index, &x_opts, &y_opts, &z_opts, table)?;
+    if grid.nx() < 2 || grid.ny() < 2 {
+        return Err(MarkError::at(
+            index,
+            &["x"],
+            format!(
+                "chart \"{}\": contours need at least 2 × 2 grid nodes, the grid has {} × {}",
+                chart.name,
+                grid.nx(),
+                grid.ny()
+            ),
+            "give at least two distinct coordinates along each axis",
+        ));
+    }
     let levels = match &options.levels {
         Some(Levels::Values(v)) => v.clone(),
         Some(Levels::Count(n)) => contour::nice_levels(zmin, zmax, (*n as usize).max(1)),
