@@ -278,7 +278,7 @@ fn grid_files_load_as_long_form_tables() {
 
     // The same grid as a .npy file (version 1, little-endian f8, C order).
     let mut header = "{'descr': '<f8', 'fortran_order': False, 'shape': (3, 2), }".to_string();
-    while (10 + header.len() + 1) % 64 != 0 {
+    while !(10 + header.len() + 1).is_multiple_of(64) {
         header.push(' ');
     }
     header.push('\n');

@@ -139,15 +139,7 @@ pub fn draw(chart: &Chart, options: &ContourOptions, index: usize, table: &Table
     if draw_lines {
         let line_color = if fill { Color::rgb(0x20, 0x20, 0x20).with_opacity(0.55) } else { Color::BLACK };
         for line in &lines {
-            let mut cmds: Vec<PathCmd> = line
-                .points
-                .iter()
-                .enumerate()
-                .map(|(k, &p)| if k == 0 { PathCmd::MoveTo(to_px(p)) } else { PathCmd::LineTo(to_px(p)) })
-                .collect();
-            if line.closed {
-                cmds.push(PathCmd::Close);
-            }
+            let cmds = frame::polyline(&line.points, line.closed, &to_px);
             let color = if fill { line_color } else { map.at((line.level - lo) / (hi - lo)) };
             marks.push(
                 Item::new(Role::DataMark, Shape::Path(cmds), Style::stroke(color, if fill { 0.8 } else { 1.4 }))

@@ -35,6 +35,16 @@ impl Derived {
         Derived { rows, columns: Vec::new() }
     }
 
+    /// Output rows for `rows`: the row index, then each named table column read at those rows.
+    pub fn of_rows(rows: Vec<u32>, fields: &[&str]) -> Derived {
+        let mut d = Derived::over(rows);
+        d.push("row", DerivedColumn::RowIndex);
+        for field in fields {
+            d.push(field, DerivedColumn::Source((*field).to_string()));
+        }
+        d
+    }
+
     /// Add a column.
     pub fn push(&mut self, name: &str, column: DerivedColumn) {
         self.columns.push((name.to_string(), column));

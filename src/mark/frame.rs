@@ -5,7 +5,8 @@ use super::{DEFAULT_SIZE, MarkError};
 use crate::guide::Theme;
 use crate::guide::layout::{self, Frame, FrameSpec, PositionAxis};
 use crate::guide::legend::Legend;
-use crate::scene::{Item, Role, Scene};
+use crate::guide::legend::truncate_to_width;
+use crate::scene::{Anchor, Baseline, Item, PathCmd, Point, Role, Scene, Text};
 use crate::spec::Chart;
 
 /// Lay out the frame of chart `index` around its axes and legends.
@@ -39,4 +40,53 @@ pub fn scene(chart: &Chart, frame: Frame, theme: &Theme, marks: Vec<Item>) -> Sc
     items.push(Item::group(Role::DataMark, marks, Some(frame.plot)));
     items.extend(frame.over);
     Scene { width, height, background: theme.background, title: chart.title.clone(), items }
+}
+
+/// The chart title (top left, `top` from the canvas edge) and caption (bottom left), for kinds
+/// that lay out their own panels instead of one cartesian frame. `caption` overrides the spec's.
+pub fn title_and_caption(chart: &Chart, theme: &Theme, top: f64, caption: Option<&str>) -> Vec<Item> {
+    let [width, height] = chart.size.unwrap_or(DEFAULT_SIZE);
+    let m = theme.margin;
+    let line = |role, at, content: &str, size, baseline, color| {
+        Item::text(
+            role,
+            Text {
+                at,
+                content: truncate_to_width(content, width - 2.0 * m, size),
+                size,
+                anchor: Anchor::Start,
+                baseline,
+                angle: 0.0,
+                color,
+            },
+        )
+    };
+    let mut items = Vec::new();
+    if let Some(t) = &chart.title {
+        items.push(line(Role::Title, Point::new(m, top), t, theme.title_size, Baseline::Top, theme.text));
+    }
+    if let Some(c) = caption.or(chart.caption.as_deref()) {
+        items.push(line(
+            Role::Caption,
+            Point::new(m, height - top),
+            c,
+            theme.caption_size,
+            Baseline::Bottom,
+            theme.muted_text,
+        ));
+    }
+    items
+}
+
+/// A polyline (closed with `Close` when `closed`) through data points mapped by `to_px`.
+pub fn polyline(points: &[(f64, f64)], closed: bool, to_px: &impl Fn((f64, f64)) -> Point) -> Vec<PathCmd> {
+    let mut cmds: Vec<PathCmd> = points
+        .iter()
+        .enumerate()
+        .map(|(k, &p)| if k == 0 { PathCmd::MoveTo(to_px(p)) } else { PathCmd::LineTo(to_px(p)) })
+        .collect();
+    if closed && !cmds.is_empty() {
+        cmds.push(PathCmd::Close);
+    }
+    cmds
 }

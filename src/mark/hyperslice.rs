@@ -4,15 +4,15 @@
 
 use super::derived::{Derived, DerivedColumn};
 use super::image::{image_extent, raster_for};
-use super::{ChartOutput, DEFAULT_SIZE, MarkError, encode};
+use super::{ChartOutput, DEFAULT_SIZE, MarkError, encode, frame};
 use crate::data::Table;
 use crate::enrich::hyperslice::{NdGrid, slice_matrix};
 use crate::guide::Theme;
 use crate::guide::axis::{self, Side, title_with_unit};
 use crate::guide::format::format_value;
-use crate::guide::legend::{Legend, truncate_to_width};
+use crate::guide::legend::Legend;
 use crate::guide::scale::{LinearScale, Scale};
-use crate::scene::{Anchor, Baseline, Color, Item, PathCmd, Point, Rect, Role, Scene, Shape, Stroke, Style, Text};
+use crate::scene::{Color, Item, PathCmd, Point, Rect, Role, Scene, Shape, Stroke, Style};
 use crate::spec::{Chart, HypersliceOptions, Resample};
 
 /// Draw a hyperslice matrix.
@@ -166,23 +166,6 @@ pub fn draw(chart: &Chart, options: &HypersliceOptions, index: usize, table: &Ta
             items.extend(axis::draw(&y, Side::Left, plot, Some(&options.axes[*b]), &theme));
         }
     }
-    let text = |role, at, content: &str, size, baseline, color| {
-        Item::text(
-            role,
-            Text {
-                at,
-                content: truncate_to_width(content, width - 2.0 * m, size),
-                size,
-                anchor: Anchor::Start,
-                baseline,
-                angle: 0.0,
-                color,
-            },
-        )
-    };
-    if let Some(t) = &chart.title {
-        items.push(text(Role::Title, Point::new(m, m), t, theme.title_size, Baseline::Top, theme.text));
-    }
     let focus_note: Vec<String> = options
         .axes
         .iter()
@@ -196,14 +179,7 @@ pub fn draw(chart: &Chart, options: &HypersliceOptions, index: usize, table: &Ta
         Some(c) => format!("{c} — focus: {}", focus_note.join(", ")),
         None => format!("Focus: {}", focus_note.join(", ")),
     };
-    items.push(text(
-        Role::Caption,
-        Point::new(m, height - m),
-        &caption,
-        theme.caption_size,
-        Baseline::Bottom,
-        theme.muted_text,
-    ));
+    items.extend(frame::title_and_caption(chart, &theme, m, Some(&caption)));
     items.extend(legend.draw(Point::new(width - m - legend_w, m + title_h), &theme, room));
     let scene = Scene { width, height, background: theme.background, title: chart.title.clone(), items };
 

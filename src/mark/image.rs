@@ -3,7 +3,7 @@
 
 use std::sync::Arc;
 
-use super::derived::{Derived, DerivedColumn};
+use super::derived::Derived;
 use super::gridded::{self, GridInput};
 use super::{ChartOutput, MarkError, encode, frame};
 use crate::data::Table;
@@ -71,11 +71,7 @@ pub fn draw(chart: &Chart, options: &ImageOptions, index: usize, table: &Table) 
     ];
     let scene = frame::scene(chart, frame, &theme, marks);
 
-    let mut derived = Derived::over(rows);
-    derived.push("row", DerivedColumn::RowIndex);
-    derived.push(&x_opts.field, DerivedColumn::Source(x_opts.field.clone()));
-    derived.push(&y_opts.field, DerivedColumn::Source(y_opts.field.clone()));
-    derived.push(&z_opts.field, DerivedColumn::Source(z_opts.field.clone()));
+    let derived = Derived::of_rows(rows, &[&x_opts.field, &y_opts.field, &z_opts.field]);
     Ok(ChartOutput { scene, derived, warnings, geojson: None })
 }
 

@@ -5,7 +5,7 @@
 use std::sync::Arc;
 
 use super::contour::level_labels;
-use super::derived::{Derived, DerivedColumn};
+use super::derived::Derived;
 use super::{ChartOutput, MarkError, encode, frame};
 use crate::data::Table;
 use crate::enrich::contour::{clean_levels, nice_levels};
@@ -162,15 +162,7 @@ pub fn draw(chart: &Chart, options: &ScatteredOptions, index: usize, table: &Tab
             MarkError::at(index, &["levels"], format!("chart \"{}\": {e}", chart.name), "give fewer levels")
         })?;
         for line in &lines {
-            let mut cmds: Vec<PathCmd> = line
-                .points
-                .iter()
-                .enumerate()
-                .map(|(k, &p)| if k == 0 { PathCmd::MoveTo(to_px(p)) } else { PathCmd::LineTo(to_px(p)) })
-                .collect();
-            if line.closed {
-                cmds.push(PathCmd::Close);
-            }
+            let cmds = frame::polyline(&line.points, line.closed, &to_px);
             marks.push(
                 Item::new(
                     Role::DataMark,
@@ -203,11 +195,7 @@ pub fn draw(chart: &Chart, options: &ScatteredOptions, index: usize, table: &Tab
         );
     }
     let scene = frame::scene(chart, frame, &theme, marks);
-    let mut derived = Derived::over(rows);
-    derived.push("row", DerivedColumn::RowIndex);
-    derived.push(&x_opts.field, DerivedColumn::Source(x_opts.field.clone()));
-    derived.push(&y_opts.field, DerivedColumn::Source(y_opts.field.clone()));
-    derived.push(&z_opts.field, DerivedColumn::Source(z_opts.field.clone()));
+    let derived = Derived::of_rows(rows, &[&x_opts.field, &y_opts.field, &z_opts.field]);
     Ok(ChartOutput { scene, derived, warnings, geojson: None })
 }
 

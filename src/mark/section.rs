@@ -9,9 +9,8 @@ use crate::guide::Theme;
 use crate::guide::axis::title_with_unit;
 use crate::guide::format::format_value;
 use crate::guide::layout::{self, Domain, FrameSpec, PositionAxis};
-use crate::guide::legend::truncate_to_width;
 use crate::guide::legend::{Legend, Symbol};
-use crate::scene::{Anchor, Baseline, Color, Item, PathCmd, Point, Rect, Role, Scene, Shape, Style, Text};
+use crate::scene::{Color, Item, PathCmd, Point, Rect, Role, Scene, Shape, Style};
 use crate::spec::{Chart, ScaleKind, SectionLayout, SectionOptions};
 
 /// One cross-section: where it is cut and its (position, z) samples at the grid's nodes.
@@ -214,32 +213,6 @@ fn multiples(
         }));
         items.extend(panel.into_iter().map(|i| i.translated(0.0, dy)));
     }
-    let text = |role, at, content: &str, size, baseline, color| {
-        Item::text(
-            role,
-            Text {
-                at,
-                content: truncate_to_width(content, width - 2.0 * m, size),
-                size,
-                anchor: Anchor::Start,
-                baseline,
-                angle: 0.0,
-                color,
-            },
-        )
-    };
-    if let Some(t) = &chart.title {
-        items.push(text(Role::Title, Point::new(m, m / 2.0), t, theme.title_size, Baseline::Top, theme.text));
-    }
-    if let Some(c) = &chart.caption {
-        items.push(text(
-            Role::Caption,
-            Point::new(m, height - m / 2.0),
-            c,
-            theme.caption_size,
-            Baseline::Bottom,
-            theme.muted_text,
-        ));
-    }
+    items.extend(frame::title_and_caption(chart, &theme, m / 2.0, None));
     Ok(Scene { width, height, background: theme.background, title: chart.title.clone(), items })
 }

@@ -1,15 +1,15 @@
 //! `surface`: a gridded field drawn as a shaded 3D heightfield — orthographic projection,
 //! painter's-order hidden-surface removal, Lambert shading — with projected axes and a colour bar.
 
-use super::derived::{Derived, DerivedColumn};
+use super::derived::Derived;
 use super::gridded::{self, GridInput};
-use super::{ChartOutput, DEFAULT_SIZE, MarkError, encode};
+use super::{ChartOutput, DEFAULT_SIZE, MarkError, encode, frame};
 use crate::data::Table;
 use crate::enrich::surface::{self, AxisLine, Light, SurfaceProjection, View};
 use crate::guide::Theme;
 use crate::guide::axis::title_with_unit;
 use crate::guide::format::format_ticks;
-use crate::guide::legend::{Legend, truncate_to_width};
+use crate::guide::legend::Legend;
 use crate::guide::ticks::extended;
 use crate::scene::{Anchor, Baseline, Color, Item, PathCmd, Point, Rect, Role, Scene, Shape, Stroke, Style, Text};
 use crate::spec::{Chart, SurfaceOptions};
@@ -106,41 +106,11 @@ pub fn draw(chart: &Chart, options: &SurfaceOptions, index: usize, table: &Table
     for ((line, title), range) in projection.axes.iter().zip(&titles).zip(ranges) {
         items.extend(axis_items(&projection, line, title, range, &to_px, &theme));
     }
-    let text = |role, at, content: &str, size, baseline, color| {
-        Item::text(
-            role,
-            Text {
-                at,
-                content: truncate_to_width(content, width - 2.0 * m, size),
-                size,
-                anchor: Anchor::Start,
-                baseline,
-                angle: 0.0,
-                color,
-            },
-        )
-    };
-    if let Some(t) = &chart.title {
-        items.push(text(Role::Title, Point::new(m, m), t, theme.title_size, Baseline::Top, theme.text));
-    }
-    if let Some(c) = &chart.caption {
-        items.push(text(
-            Role::Caption,
-            Point::new(m, height - m),
-            c,
-            theme.caption_size,
-            Baseline::Bottom,
-            theme.muted_text,
-        ));
-    }
+    items.extend(frame::title_and_caption(chart, &theme, m, None));
     items.extend(legend.draw(Point::new(width - m - legend_w, m + title_h), &theme, room));
     let scene = Scene { width, height, background: theme.background, title: chart.title.clone(), items };
 
-    let mut derived = Derived::over(rows);
-    derived.push("row", DerivedColumn::RowIndex);
-    derived.push(&x_opts.field, DerivedColumn::Source(x_opts.field.clone()));
-    derived.push(&y_opts.field, DerivedColumn::Source(y_opts.field.clone()));
-    derived.push(&z_opts.field, DerivedColumn::Source(z_opts.field.clone()));
+    let derived = Derived::of_rows(rows, &[&x_opts.field, &y_opts.field, &z_opts.field]);
     Ok(ChartOutput { scene, derived, warnings, geojson: None })
 }
 
