@@ -16,6 +16,37 @@
 //!    valid scene cannot fail: sizes are checked before anything is allocated.
 //!
 //! [`pipeline`] strings the stages together for the command-line tool.
+//!
+//! Used as a library, the stages run one by one:
+//!
+//! ```
+//! use std::path::Path;
+//! use dataink::data::{PathPolicy, load_source};
+//! use dataink::spec::{SourceFile, parse_spec};
+//!
+//! let source = SourceFile::new(
+//!     "inline.toml",
+//!     r#"
+//! [data.d]
+//! values = [{ x = 1, y = 2.0 }, { x = 2, y = 3.5 }, { x = 3, y = 3.0 }]
+//!
+//! [[chart]]
+//! name = "c"
+//! kind = "line"
+//! data = "d"
+//! x = { field = "x", unit = "s" }
+//! y = { field = "y", unit = "m" }
+//! "#,
+//! );
+//! let parsed = parse_spec(&source).expect("a valid spec");
+//! let table = load_source(&parsed.spec.data["d"], Path::new("."), PathPolicy::InsideSpecFolder, None)
+//!     .expect("inline rows load");
+//! let chart = dataink::mark::draw(&parsed.spec.chart[0], 0, &table).expect("the chart draws");
+//! let svg = dataink::render::svg::to_svg(&chart.scene);
+//! assert!(svg.contains("<svg") && svg.contains("y (m)"));
+//! let png = dataink::render::png::to_png(&chart.scene, 2.0).expect("a PNG");
+//! assert_eq!(&png[1..4], b"PNG");
+//! ```
 
 pub mod data;
 pub mod enrich;
