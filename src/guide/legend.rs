@@ -168,21 +168,7 @@ impl Legend {
                 if let Some(scale) = self.color_bar_scale(theme, available_height) {
                     let mut ticks = Vec::new();
                     for t in scale.ticks() {
-                        let y = bar.y + t.position;
-                        ticks.push(PathCmd::MoveTo(Point::new(bar.right(), y)));
-                        ticks.push(PathCmd::LineTo(Point::new(bar.right() + theme.tick_length, y)));
-                        items.push(Item::text(
-                            Role::Legend,
-                            Text {
-                                at: Point::new(bar.right() + theme.tick_length + 3.0, y),
-                                content: t.label.clone(),
-                                size: theme.font_size,
-                                anchor: Anchor::Start,
-                                baseline: Baseline::Middle,
-                                angle: 0.0,
-                                color: theme.muted_text,
-                            },
-                        ));
+                        bar_tick(&mut ticks, &mut items, bar, bar.y + t.position, &t.label, theme);
                     }
                     items.push(Item::new(Role::Legend, Shape::Path(ticks), Style::stroke(theme.axis, 1.0)));
                 }
@@ -204,21 +190,7 @@ impl Legend {
                 // The outer edges are the data's extremes, not levels: they stay unlabelled.
                 let last = labels.len().saturating_sub(1);
                 for (i, label) in labels.iter().enumerate().step_by(every).filter(|(i, _)| *i != 0 && *i != last) {
-                    let y = bar.bottom() - step * i as f64;
-                    ticks.push(PathCmd::MoveTo(Point::new(bar.right(), y)));
-                    ticks.push(PathCmd::LineTo(Point::new(bar.right() + theme.tick_length, y)));
-                    items.push(Item::text(
-                        Role::Legend,
-                        Text {
-                            at: Point::new(bar.right() + theme.tick_length + 3.0, y),
-                            content: label.clone(),
-                            size: theme.font_size,
-                            anchor: Anchor::Start,
-                            baseline: Baseline::Middle,
-                            angle: 0.0,
-                            color: theme.muted_text,
-                        },
-                    ));
+                    bar_tick(&mut ticks, &mut items, bar, bar.bottom() - step * i as f64, label, theme);
                 }
                 items.push(Item::new(Role::Legend, Shape::Path(ticks), Style::stroke(theme.axis, 1.0)));
             }
@@ -256,6 +228,24 @@ fn step_labels(edges: &[f64]) -> Vec<String> {
         labels.push(String::new());
     }
     labels
+}
+
+/// A tick mark on the right of a colour bar at height `y`, and its label.
+fn bar_tick(ticks: &mut Vec<PathCmd>, items: &mut Vec<Item>, bar: Rect, y: f64, label: &str, theme: &Theme) {
+    ticks.push(PathCmd::MoveTo(Point::new(bar.right(), y)));
+    ticks.push(PathCmd::LineTo(Point::new(bar.right() + theme.tick_length, y)));
+    items.push(Item::text(
+        Role::Legend,
+        Text {
+            at: Point::new(bar.right() + theme.tick_length + 3.0, y),
+            content: label.to_string(),
+            size: theme.font_size,
+            anchor: Anchor::Start,
+            baseline: Baseline::Middle,
+            angle: 0.0,
+            color: theme.muted_text,
+        },
+    ));
 }
 
 fn row_height(theme: &Theme) -> f64 {

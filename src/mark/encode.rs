@@ -109,6 +109,12 @@ pub fn no_rows(chart: &crate::spec::Chart, index: usize, table: &Table, dropped:
     )
 }
 
+/// A numeric column's values at `rows` (NaN for text columns or rows out of range).
+pub fn values_at(column: &Column, rows: &[u32]) -> Vec<f64> {
+    let v = column.numbers().unwrap_or(&[]);
+    rows.iter().map(|&r| v.get(r as usize).copied().unwrap_or(f64::NAN)).collect()
+}
+
 /// The extent of `values` over `rows` (finite values only).
 pub fn extent(values: &[f64], rows: &[u32]) -> Option<(f64, f64)> {
     let mut lo = f64::INFINITY;

@@ -51,10 +51,7 @@ pub fn draw(chart: &Chart, options: &HypersliceOptions, index: usize, table: &Ta
     if rows.is_empty() {
         return Err(encode::no_rows(chart, index, table, warnings.first().map(String::as_str)));
     }
-    let pick = |col: &crate::data::Column| -> Vec<f64> {
-        let v = col.numbers().unwrap_or(&[]);
-        rows.iter().map(|&r| v.get(r as usize).copied().unwrap_or(f64::NAN)).collect()
-    };
+    let pick = |col: &crate::data::Column| encode::values_at(col, &rows);
     let coords: Vec<Vec<f64>> = columns.iter().map(|(_, c)| pick(c)).collect();
     let coord_refs: Vec<&[f64]> = coords.iter().map(Vec::as_slice).collect();
     let values = pick(z_col);

@@ -91,10 +91,7 @@ pub fn draw(chart: &Chart, options: &Interp1dOptions, index: usize, table: &Tabl
     if rows.is_empty() {
         return Err(encode::no_rows(chart, index, table, warnings.first().map(String::as_str)));
     }
-    let pick = |col: &crate::data::Column| -> Vec<f64> {
-        let v = col.numbers().unwrap_or(&[]);
-        rows.iter().map(|&r| v.get(r as usize).copied().unwrap_or(f64::NAN)).collect()
-    };
+    let pick = |col: &crate::data::Column| encode::values_at(col, &rows);
     let xs = pick(x_col);
     let ys = pick(y_col);
     let given = slope_col.map(pick);

@@ -50,10 +50,7 @@ pub fn draw(chart: &Chart, options: &ScatteredOptions, index: usize, table: &Tab
     if rows.is_empty() {
         return Err(encode::no_rows(chart, index, table, warnings.first().map(String::as_str)));
     }
-    let pick = |col: &crate::data::Column| -> Vec<f64> {
-        let v = col.numbers().unwrap_or(&[]);
-        rows.iter().map(|&r| v.get(r as usize).copied().unwrap_or(f64::NAN)).collect()
-    };
+    let pick = |col: &crate::data::Column| encode::values_at(col, &rows);
     let (xs, ys, zs) = (pick(x_col), pick(y_col), pick(z_col));
     let points: Vec<(f64, f64)> = xs.iter().copied().zip(ys.iter().copied()).collect();
     let tin = Triangulation::new(&points, &zs).map_err(|e| {
