@@ -1,6 +1,6 @@
 // d3-contour peer of `cargo bench --bench contour` (filled bands): the same 2000x2000 field and
 // levels. d3-contour returns filled MultiPolygons (each the region above a threshold).
-// Usage: (cd benches && npm install --no-save d3-contour && node peer_d3_contour.mjs)
+// Usage: (cd benches && npm install --no-save d3-contour d3-delaunay && node peer_d3_contour.mjs)
 import { contours } from "d3-contour";
 
 const n = 2000;

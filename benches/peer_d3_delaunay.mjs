@@ -1,5 +1,5 @@
 // d3-delaunay peer of `cargo bench --bench delaunay`: 1,000,000 uniformly random points.
-// Usage: (cd benches && npm install --no-save d3-delaunay && node peer_d3_delaunay.mjs)
+// Usage: (cd benches && npm install --no-save d3-contour d3-delaunay && node peer_d3_delaunay.mjs)
 import { Delaunay } from "d3-delaunay";
 
 const n = 1_000_000;
