@@ -3,7 +3,6 @@
 use std::fmt::Write as _;
 
 use crate::data::{Column, Table};
-use crate::guide::format::format_value;
 use crate::guide::time::format_timestamp;
 
 /// One column of derived output.
@@ -140,11 +139,6 @@ fn csv_field(s: &str) -> String {
     let risky = s.starts_with(['=', '+', '-', '@']) && s.parse::<f64>().is_err();
     let body = if risky { format!("'{s}") } else { s.to_string() };
     if body.contains([',', '"', '\n', '\r']) { format!("\"{}\"", body.replace('"', "\"\"")) } else { body }
-}
-
-/// A readable number for messages (re-exported for marks).
-pub fn readable(v: f64) -> String {
-    format_value(v)
 }
 
 #[cfg(test)]

@@ -10,17 +10,17 @@
 //! neighbour table alone (edges are identified by the triangles sharing them, never by
 //! comparing coordinates).
 
-use super::{MAX_CROSSINGS, MAX_LEVELS, ScatteredError, TinLine, Triangulation};
+use super::{MAX_CROSSINGS, ScatteredError, TinLine, Triangulation};
+use crate::enrich::contour::ContourError;
 use crate::enrich::grid::fraction;
 
 /// Cleans the levels, counts crossings, and traces every level.
 pub(super) fn contour_lines(tin: &Triangulation, levels: &[f64]) -> Result<Vec<TinLine>, ScatteredError> {
-    let mut levels: Vec<f64> = levels.iter().copied().filter(|l| l.is_finite()).collect();
-    levels.sort_by(f64::total_cmp);
-    levels.dedup_by(|a, b| a == b);
-    if levels.len() > MAX_LEVELS {
-        return Err(ScatteredError::TooManyLevels { count: levels.len(), max: MAX_LEVELS });
-    }
+    // The same level cleaning as grid contours: finite, sorted, distinct, at most MAX_LEVELS.
+    let levels = crate::enrich::contour::clean_levels(levels).map_err(|e| match e {
+        ContourError::TooManyLevels { count, max } => ScatteredError::TooManyLevels { count, max },
+        ContourError::TooManyCrossings { count, max } => ScatteredError::TooManyCrossings { count, max },
+    })?;
     if levels.is_empty() || tin.triangles.is_empty() {
         return Ok(Vec::new());
     }

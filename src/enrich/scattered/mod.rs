@@ -58,7 +58,7 @@ use crate::enrich::grid::{Grid, GridError};
 pub const MAX_POINTS: usize = 1 << 24;
 
 /// Most distinct finite levels one [`Triangulation::contour_lines`] call traces.
-pub const MAX_LEVELS: usize = 1000;
+pub const MAX_LEVELS: usize = crate::enrich::contour::MAX_LEVELS;
 
 /// Most (triangle, level) crossings one [`Triangulation::contour_lines`] call traces (2²⁶ ≈ 67
 /// million); each yields one output point.
@@ -614,13 +614,14 @@ fn build(sites: Vec<Site>) -> Result<Option<DelaunayTriangulation<Site>>, Scatte
     if sites.len() < 3 {
         return Ok(None);
     }
-    let Some((ia, ib, prefix)) = seed_prefix(&sites) else {
+    let centre = centroid(&sites);
+    let Some((ia, ib, prefix)) = seed_prefix(&sites, centre) else {
         // At most two distinct positions: nothing to triangulate.
         return Ok(None);
     };
     if prefix <= SEED_LIMIT {
         // Presorting pays off only for large inputs (it runs on two threads).
-        let sites = if sites.len() >= 1 << 16 { sweep_sorted(&sites) } else { sites };
+        let sites = if sites.len() >= 1 << 16 { sweep_sorted(&sites, centre) } else { sites };
         return Ok(Some(DelaunayTriangulation::<Site>::bulk_load(sites).map_err(spade_err)?));
     }
     // Many points nearest the centre (the bulk loader's seed) may be collinear: find, exactly,
@@ -654,19 +655,24 @@ fn build(sites: Vec<Site>) -> Result<Option<DelaunayTriangulation<Site>>, Scatte
     Ok(Some(dt))
 }
 
-/// The sites in the order spade's bulk loader sorts them into (decreasing distance from their
-/// mean, ties by increasing x, then y). spade sorts again, but finds a sorted input in one linear
-/// pass; sorting plain integer keys here, on two threads, is faster than its comparison sort.
-/// spade recomputes the mean in this order, which can differ in the last bits from the mean
-/// used here; a pair that swaps because of that only costs spade a full sort.
-fn sweep_sorted(sites: &[Site]) -> Vec<Site> {
+/// The mean position of the sites, computed the way spade's bulk loader does (one pass, shared
+/// by [`seed_prefix`] and [`sweep_sorted`]).
+fn centroid(sites: &[Site]) -> (f64, f64) {
     let (mut sx, mut sy) = (0.0f64, 0.0f64);
     for s in sites {
         sx += s.pos.x;
         sy += s.pos.y;
     }
-    let inv = 1.0 / sites.len() as f64;
-    let (cx, cy) = (sx * inv, sy * inv);
+    let inv = 1.0 / sites.len().max(1) as f64;
+    (sx * inv, sy * inv)
+}
+
+/// The sites in the order spade's bulk loader sorts them into (decreasing distance from their
+/// mean, ties by increasing x, then y). spade sorts again, but finds a sorted input in one linear
+/// pass; sorting plain integer keys here, on two threads, is faster than its comparison sort.
+/// spade recomputes the mean in this order, which can differ in the last bits from the mean
+/// used here; a pair that swaps because of that only costs spade a full sort.
+fn sweep_sorted(sites: &[Site], (cx, cy): (f64, f64)) -> Vec<Site> {
     // Same arithmetic as spade's `distance_2`; the complement of the (non-negative) distance's
     // bits sorts by decreasing distance.
     let key = |p: Point2<f64>| !((cx - p.x) * (cx - p.x) + (cy - p.y) * (cy - p.y)).to_bits();
@@ -743,14 +749,7 @@ fn sweep_sorted(sites: &[Site]) -> Vec<Site> {
 /// nearest distinct points and a bound on the seed's length: the number of points no farther
 /// than the nearest one that is certainly off the line through those two (float orientation
 /// with a conservative error bound). `None` when there are not two distinct positions.
-fn seed_prefix(sites: &[Site]) -> Option<(usize, usize, usize)> {
-    let (mut sx, mut sy) = (0.0f64, 0.0f64);
-    for s in sites {
-        sx += s.pos.x;
-        sy += s.pos.y;
-    }
-    let inv = 1.0 / sites.len() as f64;
-    let (cx, cy) = (sx * inv, sy * inv);
+fn seed_prefix(sites: &[Site], (cx, cy): (f64, f64)) -> Option<(usize, usize, usize)> {
     let dist = |p: Point2<f64>| (cx - p.x) * (cx - p.x) + (cy - p.y) * (cy - p.y);
     let nearest = |skip: Option<Point2<f64>>| {
         sites

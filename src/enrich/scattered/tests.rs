@@ -732,12 +732,12 @@ fn presort_matches_spades_bulk_load_order() {
     // Mean (7/6, 0): decreasing distance, ties by x then y; identical points stay, in row order.
     let pts = [(0.0, 0.0), (2.0, 0.0), (1.0, 1.0), (1.0, -1.0), (1.0, 0.0), (2.0, 0.0)];
     let sites: Vec<Site> = pts.iter().enumerate().map(|(i, &p)| site(p, i as u32)).collect();
-    assert_eq!(rows(sweep_sorted(&sites)), vec![0, 3, 2, 1, 5, 4]);
+    assert_eq!(rows(sweep_sorted(&sites, centroid(&sites))), vec![0, 3, 2, 1, 5, 4]);
     // Distances that differ only in the last bit.
     let b = 1.0 + f64::EPSILON;
     let pts = [(1.0, 0.0), (-1.0, 0.0), (0.0, b), (0.0, -b)];
     let sites: Vec<Site> = pts.iter().enumerate().map(|(i, &p)| site(p, i as u32)).collect();
-    assert_eq!(rows(sweep_sorted(&sites)), vec![3, 2, 1, 0]);
+    assert_eq!(rows(sweep_sorted(&sites, centroid(&sites))), vec![3, 2, 1, 0]);
     // Random points: sorted under spade's key, with the mean spade computes from this order.
     let mut rng = Rng::new(14);
     let sites: Vec<Site> = random_points(&mut rng, 20_000, 1.0, (0.0, 0.0))
@@ -745,7 +745,7 @@ fn presort_matches_spades_bulk_load_order() {
         .enumerate()
         .map(|(i, p)| site(p, i as u32))
         .collect();
-    let sorted = sweep_sorted(&sites);
+    let sorted = sweep_sorted(&sites, centroid(&sites));
     let mut kept = rows(sorted.clone());
     kept.sort_unstable();
     assert_eq!(kept, (0..20_000).collect::<Vec<u32>>());
