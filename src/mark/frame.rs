@@ -6,7 +6,7 @@ use crate::guide::Theme;
 use crate::guide::layout::{self, Frame, FrameSpec, PositionAxis};
 use crate::guide::legend::Legend;
 use crate::guide::legend::truncate_to_width;
-use crate::scene::{Anchor, Baseline, Item, PathCmd, Point, Role, Scene, Text};
+use crate::scene::{Anchor, Baseline, Item, PathCmd, Point, Rect, Role, Scene, Shape, Style, Text};
 use crate::spec::Chart;
 
 /// Lay out the frame of chart `index` around its axes and legends.
@@ -89,4 +89,65 @@ pub fn polyline(points: &[(f64, f64)], closed: bool, to_px: &impl Fn((f64, f64))
         cmds.push(PathCmd::Close);
     }
     cmds
+}
+
+/// The canvas of a kind that lays out its own panels (surface, hyperslice): size, theme, the room
+/// left between title and caption, and a colour bar on the right.
+pub struct PanelCanvas {
+    /// Canvas width.
+    pub width: f64,
+    /// Canvas height.
+    pub height: f64,
+    /// Sizes and colours.
+    pub theme: Theme,
+    /// Height of the title block (0 without a title).
+    pub title_h: f64,
+    /// Height of the caption block (0 without a caption).
+    pub caption_h: f64,
+    /// Height available between title and caption.
+    pub room: f64,
+    /// The colour bar.
+    pub legend: Legend,
+    /// Width the colour bar needs.
+    pub legend_w: f64,
+}
+
+impl PanelCanvas {
+    /// Measure the canvas of `chart` with `legend` on the right.
+    pub fn new(chart: &Chart, legend: Legend) -> PanelCanvas {
+        let [width, height] = chart.size.unwrap_or(DEFAULT_SIZE);
+        let theme = Theme::with_font_size(chart.font_size.unwrap_or(12.0));
+        let title_h = chart.title.as_ref().map(|_| theme.title_size * 1.8).unwrap_or(0.0);
+        let caption_h = chart.caption.as_ref().map(|_| theme.caption_size * 1.8).unwrap_or(0.0);
+        let room = height - title_h - caption_h - 2.0 * theme.margin;
+        let (legend_w, _) = legend.extent(&theme, room);
+        PanelCanvas { width, height, theme, title_h, caption_h, room, legend, legend_w }
+    }
+
+    /// The canvas background, the first item of the scene.
+    pub fn background(&self) -> Item {
+        Item::new(
+            Role::Background,
+            Shape::Rect(Rect::new(0.0, 0.0, self.width, self.height)),
+            Style::fill(self.theme.background),
+        )
+    }
+
+    /// The finished scene: `items`, then title, caption (overridden by `caption`) and colour bar.
+    pub fn scene(self, chart: &Chart, mut items: Vec<Item>, caption: Option<&str>) -> Scene {
+        let m = self.theme.margin;
+        items.extend(title_and_caption(chart, &self.theme, m, caption));
+        items.extend(self.legend.draw(
+            Point::new(self.width - m - self.legend_w, m + self.title_h),
+            &self.theme,
+            self.room,
+        ));
+        Scene {
+            width: self.width,
+            height: self.height,
+            background: self.theme.background,
+            title: chart.title.clone(),
+            items,
+        }
+    }
 }

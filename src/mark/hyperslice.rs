@@ -4,15 +4,14 @@
 
 use super::derived::{Derived, DerivedColumn};
 use super::image::{image_extent, raster_for};
-use super::{ChartOutput, DEFAULT_SIZE, MarkError, encode, frame};
+use super::{ChartOutput, MarkError, encode, frame};
 use crate::data::Table;
 use crate::enrich::hyperslice::{NdGrid, slice_matrix};
-use crate::guide::Theme;
 use crate::guide::axis::{self, Side, title_with_unit};
 use crate::guide::format::format_value;
 use crate::guide::legend::Legend;
 use crate::guide::scale::{LinearScale, Scale};
-use crate::scene::{Color, Item, PathCmd, Point, Rect, Role, Scene, Shape, Stroke, Style};
+use crate::scene::{Color, Item, PathCmd, Point, Rect, Role, Shape, Stroke, Style};
 use crate::spec::{Chart, HypersliceOptions, Resample};
 
 /// Draw a hyperslice matrix.
@@ -91,15 +90,12 @@ pub fn draw(chart: &Chart, options: &HypersliceOptions, index: usize, table: &Ta
     let map = encode::continuous_map(index, &["z", "scheme"], z_opts.scheme.as_deref())?;
     let (lo, hi) = encode::color_domain(&map, zmin, zmax, z_opts.midpoint);
 
-    let [width, height] = chart.size.unwrap_or(DEFAULT_SIZE);
-    let theme = Theme::with_font_size(chart.font_size.unwrap_or(12.0));
-    let m = theme.margin;
-    let title_h = chart.title.as_ref().map(|_| theme.title_size * 1.8).unwrap_or(0.0);
-    let caption_h = chart.caption.as_ref().map(|_| theme.caption_size * 1.8).unwrap_or(0.0);
     let z_title = title_with_unit(z_opts.title.as_deref().unwrap_or(&z_opts.field), z_opts.unit.as_deref());
-    let legend = Legend::ColorBar { title: z_title, map: map.clone(), domain: (lo, hi) };
-    let room = height - title_h - caption_h - 2.0 * m;
-    let (legend_w, _) = legend.extent(&theme, room);
+    let canvas =
+        frame::PanelCanvas::new(chart, Legend::ColorBar { title: z_title, map: map.clone(), domain: (lo, hi) });
+    let (width, theme, title_h, caption_h, room, legend_w) =
+        (canvas.width, canvas.theme.clone(), canvas.title_h, canvas.caption_h, canvas.room, canvas.legend_w);
+    let m = theme.margin;
     let n = dims - 1;
     let (left, bottom) = (theme.font_size * 5.5, theme.font_size * 4.5 + caption_h.max(theme.caption_size * 1.8));
     let gap = theme.font_size * 0.8;
@@ -114,11 +110,7 @@ pub fn draw(chart: &Chart, options: &HypersliceOptions, index: usize, table: &Ta
         ));
     }
     let origin = Point::new(m + left, m + title_h);
-    let mut items = vec![Item::new(
-        Role::Background,
-        Shape::Rect(Rect::new(0.0, 0.0, width, height)),
-        Style::fill(theme.background),
-    )];
+    let mut items = vec![canvas.background()];
     let scale_for = |k: usize, range: (f64, f64)| -> Option<Scale> {
         let (_, c) = grid.axis(k)?;
         let extent = image_extent(c, Resample::Nearest)?;
@@ -176,9 +168,7 @@ pub fn draw(chart: &Chart, options: &HypersliceOptions, index: usize, table: &Ta
         Some(c) => format!("{c} — focus: {}", focus_note.join(", ")),
         None => format!("Focus: {}", focus_note.join(", ")),
     };
-    items.extend(frame::title_and_caption(chart, &theme, m, Some(&caption)));
-    items.extend(legend.draw(Point::new(width - m - legend_w, m + title_h), &theme, room));
-    let scene = Scene { width, height, background: theme.background, title: chart.title.clone(), items };
+    let scene = canvas.scene(chart, items, Some(&caption));
 
     let mut derived = Derived::over(rows);
     derived.push("row", DerivedColumn::RowIndex);

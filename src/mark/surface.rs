@@ -3,7 +3,7 @@
 
 use super::derived::Derived;
 use super::gridded::{self, GridInput};
-use super::{ChartOutput, DEFAULT_SIZE, MarkError, encode, frame};
+use super::{ChartOutput, MarkError, encode, frame};
 use crate::data::Table;
 use crate::enrich::surface::{self, AxisLine, Light, SurfaceProjection, View};
 use crate::guide::Theme;
@@ -11,7 +11,7 @@ use crate::guide::axis::title_with_unit;
 use crate::guide::format::format_ticks;
 use crate::guide::legend::Legend;
 use crate::guide::ticks::extended;
-use crate::scene::{Anchor, Baseline, Color, Item, PathCmd, Point, Rect, Role, Scene, Shape, Stroke, Style, Text};
+use crate::scene::{Anchor, Baseline, Color, Item, PathCmd, Point, Rect, Role, Shape, Stroke, Style, Text};
 use crate::spec::{Chart, SurfaceOptions};
 use crate::text::measure;
 
@@ -29,15 +29,12 @@ pub fn draw(chart: &Chart, options: &SurfaceOptions, index: usize, table: &Table
         MarkError::at(index, &["z"], format!("chart \"{}\": {e}", chart.name), "check the grid and the view")
     })?;
 
-    let [width, height] = chart.size.unwrap_or(DEFAULT_SIZE);
-    let theme = Theme::with_font_size(chart.font_size.unwrap_or(12.0));
-    let m = theme.margin;
-    let title_h = chart.title.as_ref().map(|_| theme.title_size * 1.8).unwrap_or(0.0);
-    let caption_h = chart.caption.as_ref().map(|_| theme.caption_size * 1.8).unwrap_or(0.0);
     let z_title = title_with_unit(z_opts.title.as_deref().unwrap_or(&z_opts.field), z_opts.unit.as_deref());
-    let legend = Legend::ColorBar { title: z_title.clone(), map: map.clone(), domain: (lo, hi) };
-    let room = height - title_h - caption_h - 2.0 * m;
-    let (legend_w, _) = legend.extent(&theme, room);
+    let canvas =
+        frame::PanelCanvas::new(chart, Legend::ColorBar { title: z_title.clone(), map: map.clone(), domain: (lo, hi) });
+    let (width, theme, title_h, _caption_h, room, legend_w) =
+        (canvas.width, canvas.theme.clone(), canvas.title_h, canvas.caption_h, canvas.room, canvas.legend_w);
+    let m = theme.margin;
     // Room around the box for tick labels and axis titles.
     let pad = theme.font_size * 5.0;
     let area = Rect::new(
@@ -57,11 +54,7 @@ pub fn draw(chart: &Chart, options: &SurfaceOptions, index: usize, table: &Table
     let (ox, oy) = (area.x + (area.w - side) / 2.0, area.y + (area.h - side) / 2.0);
     let to_px = |(u, v): (f64, f64)| Point::new(ox + u * side, oy + (1.0 - v) * side);
 
-    let mut items = vec![Item::new(
-        Role::Background,
-        Shape::Rect(Rect::new(0.0, 0.0, width, height)),
-        Style::fill(theme.background),
-    )];
+    let mut items = vec![canvas.background()];
     let edge = |e: &surface::BoxEdge, color: Color| {
         Item::new(
             Role::Axis,
@@ -106,9 +99,7 @@ pub fn draw(chart: &Chart, options: &SurfaceOptions, index: usize, table: &Table
     for ((line, title), range) in projection.axes.iter().zip(&titles).zip(ranges) {
         items.extend(axis_items(&projection, line, title, range, &to_px, &theme));
     }
-    items.extend(frame::title_and_caption(chart, &theme, m, None));
-    items.extend(legend.draw(Point::new(width - m - legend_w, m + title_h), &theme, room));
-    let scene = Scene { width, height, background: theme.background, title: chart.title.clone(), items };
+    let scene = canvas.scene(chart, items, None);
 
     let derived = Derived::of_rows(rows, &[&x_opts.field, &y_opts.field, &z_opts.field]);
     Ok(ChartOutput { scene, derived, warnings, geojson: None })
