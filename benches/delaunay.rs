@@ -1,19 +1,15 @@
 //! Delaunay benchmark (criterion): `cargo bench --bench delaunay`.
 //! 1,000,000 uniformly random points; the d3-delaunay peer is `benches/peer_d3_delaunay.mjs`.
 
+mod common;
+
 use criterion::{Criterion, criterion_group, criterion_main};
 use std::hint::black_box;
 
 use dataink::enrich::scattered::Triangulation;
 
 fn random_points(n: usize) -> (Vec<(f64, f64)>, Vec<f64>) {
-    let mut state = 0x9e37_79b9_7f4a_7c15u64;
-    let mut uniform = move || {
-        state ^= state << 13;
-        state ^= state >> 7;
-        state ^= state << 17;
-        (state >> 11) as f64 / (1u64 << 53) as f64
-    };
+    let mut uniform = common::uniform(0x9e37_79b9_7f4a_7c15);
     let points: Vec<(f64, f64)> = (0..n).map(|_| (uniform(), uniform())).collect();
     let values = points.iter().map(|p| p.0 + p.1).collect();
     (points, values)

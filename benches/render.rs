@@ -4,6 +4,8 @@
 //!   pixmap, and drawing plus PNG encoding.
 //! - `line_small/*`: a small line chart from spec text to SVG and PNG bytes, in process.
 
+mod common;
+
 use criterion::{Criterion, criterion_group, criterion_main};
 use std::hint::black_box;
 
@@ -14,13 +16,7 @@ use dataink::spec::{Channel, Chart, ChartKind, ScatterOptions, SourceFile};
 
 /// One million points in three Gaussian-ish clusters from a fixed-seed generator.
 fn points_table(n: usize) -> Table {
-    let mut state = 0x2545_f491_4f6c_dd1du64;
-    let mut uniform = move || {
-        state ^= state << 13;
-        state ^= state >> 7;
-        state ^= state << 17;
-        (state >> 11) as f64 / (1u64 << 53) as f64
-    };
+    let mut uniform = common::uniform(0x2545_f491_4f6c_dd1d);
     let mut x = Vec::with_capacity(n);
     let mut y = Vec::with_capacity(n);
     let centres = [(-2.0, -1.0, 0.9), (1.5, 2.0, 0.6), (3.0, -2.5, 1.2)];

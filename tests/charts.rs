@@ -27,22 +27,18 @@ methods = ["hermite", "linear"]
 samples = 301
 "#;
 
-/// Parse the derived CSV into (method, x, y) rows.
-fn derived_rows(spec: &str) -> Vec<(String, f64, f64)> {
+/// The first chart's derived CSV as rows of fields (header dropped).
+fn derived_csv(spec: &str) -> Vec<Vec<String>> {
     let fx = Fixture::new(spec, &[]);
     let loaded = fx.load().unwrap_or_else(|e| panic!("{e}"));
     let out = fx.draw().unwrap_or_else(|e| panic!("{e}"));
     let table = loaded.tables.values().next().expect("one table");
-    out[0]
-        .derived
-        .to_csv(table)
-        .lines()
-        .skip(1)
-        .map(|l| {
-            let f: Vec<&str> = l.split(',').collect();
-            (f[0].to_string(), f[1].parse().expect("x"), f[2].parse().expect("y"))
-        })
-        .collect()
+    out[0].derived.to_csv(table).lines().skip(1).map(|l| l.split(',').map(str::to_string).collect()).collect()
+}
+
+/// Parse the derived CSV into (method, x, y) rows.
+fn derived_rows(spec: &str) -> Vec<(String, f64, f64)> {
+    derived_csv(spec).into_iter().map(|f| (f[0].clone(), f[1].parse().expect("x"), f[2].parse().expect("y"))).collect()
 }
 
 #[test]
@@ -117,18 +113,11 @@ fn grid_spec(rows: &[(f64, f64, f64)], extra: &str) -> String {
 
 /// (level, line, x, y) rows of a contour chart's derived CSV.
 fn contour_rows(spec: &str) -> Vec<(f64, usize, f64, f64)> {
-    let fx = Fixture::new(spec, &[]);
-    let loaded = fx.load().unwrap_or_else(|e| panic!("{e}"));
-    let out = fx.draw().unwrap_or_else(|e| panic!("{e}"));
-    let table = loaded.tables.values().next().expect("one table");
-    out[0]
-        .derived
-        .to_csv(table)
-        .lines()
-        .skip(1)
-        .map(|l| {
-            let f: Vec<f64> = l.split(',').map(|v| v.parse().expect("number")).collect();
-            (f[0], f[1] as usize, f[2], f[3])
+    derived_csv(spec)
+        .into_iter()
+        .map(|f| {
+            let n: Vec<f64> = f.iter().map(|v| v.parse().expect("number")).collect();
+            (n[0], n[1] as usize, n[2], n[3])
         })
         .collect()
 }

@@ -8,7 +8,8 @@ use dataink::pipeline;
 use dataink::scene::{Rect, Role, Scene, Shape};
 use dataink::text::bounds;
 
-fn gallery_scenes() -> Vec<(String, Scene)> {
+/// Every gallery chart: its name, its kind and its scene.
+fn gallery_scenes() -> Vec<(String, &'static str, Scene)> {
     let loaded = pipeline::load(&common::root().join("examples/gallery.toml"), PathPolicy::InsideSpecFolder)
         .unwrap_or_else(|f| panic!("{}", f.render()));
     loaded
@@ -18,7 +19,7 @@ fn gallery_scenes() -> Vec<(String, Scene)> {
         .enumerate()
         .map(|(i, c)| {
             let out = pipeline::draw_chart(&loaded, i, c).unwrap_or_else(|e| panic!("{e}"));
-            (c.name.clone(), out.scene)
+            (c.name.clone(), c.kind.name(), out.scene)
         })
         .collect()
 }
@@ -35,7 +36,7 @@ fn texts(scene: &Scene) -> Vec<(Role, String, Rect)> {
 
 #[test]
 fn text_stays_inside_the_canvas() {
-    for (name, scene) in gallery_scenes() {
+    for (name, _, scene) in gallery_scenes() {
         let canvas = Rect::new(0.0, 0.0, scene.width, scene.height);
         for (role, content, b) in texts(&scene) {
             assert!(canvas.contains_rect(&b, 0.5), "{name}: {role:?} `{content}` at {b:?} leaves the canvas");
@@ -45,7 +46,7 @@ fn text_stays_inside_the_canvas() {
 
 #[test]
 fn no_two_texts_overlap() {
-    for (name, scene) in gallery_scenes() {
+    for (name, _, scene) in gallery_scenes() {
         let all = texts(&scene);
         for (i, (ra, a, ba)) in all.iter().enumerate() {
             for (rb, b, bb) in &all[i + 1..] {
@@ -62,7 +63,7 @@ fn no_two_texts_overlap() {
 
 #[test]
 fn every_chart_is_labelled() {
-    for (name, scene) in gallery_scenes() {
+    for (name, kind, scene) in gallery_scenes() {
         let all = texts(&scene);
         let count = |role: Role| all.iter().filter(|(r, _, _)| *r == role).count();
         assert_eq!(count(Role::Title), 1, "{name} has a title");
@@ -78,7 +79,7 @@ fn every_chart_is_labelled() {
         assert!(marks >= 1, "{name} has data marks");
         // Marks drawn one per row keep their rows; derived geometry (contour lines, sections,
         // surface quads, slices) is not one row per mark.
-        let derived = ["contour", "section", "surface", "hyperslice"].iter().any(|k| name.starts_with(k));
+        let derived = ["contour", "section", "surface", "hyperslice"].contains(&kind);
         if !derived {
             assert_eq!(with_rows, marks, "{name}: every data mark keeps its source rows");
         }
@@ -87,7 +88,7 @@ fn every_chart_is_labelled() {
 
 #[test]
 fn colour_encodings_have_a_legend() {
-    for (name, scene) in gallery_scenes() {
+    for (name, _, scene) in gallery_scenes() {
         let multi_colour = {
             let mut found = false;
             scene.walk(|item| {

@@ -6,6 +6,12 @@ import math
 import pathlib
 
 charges = [(-1.0, 0.0, 1.0), (1.0, 0.0, 1.0), (0.0, 1.5, -1.5)]
+
+
+def potential(x, y, z=0.0):
+    """Sum of q / r over the charges (all in the z = 0 plane), with r floored at 0.15."""
+    return sum(q / max(math.sqrt((x - cx) ** 2 + (y - cy) ** 2 + z * z), 0.15) for cx, cy, q in charges)
+
 out = pathlib.Path(__file__).with_name("potential.csv")
 with out.open("w") as f:
     f.write("x,y,potential\n")
@@ -13,8 +19,7 @@ with out.open("w") as f:
         y = -2.0 + 4.5 * j / 100
         for i in range(121):
             x = -3.0 + 6.0 * i / 120
-            v = sum(q / max(math.hypot(x - cx, y - cy), 0.15) for cx, cy, q in charges)
-            f.write(f"{x:.4f},{y:.4f},{v:.6f}\n")
+            f.write(f"{x:.4f},{y:.4f},{potential(x, y):.6f}\n")
 
 # The same charges in 3-D space on a 25 x 25 x 25 grid (x, y, z, potential), for the hyperslice.
 out3 = pathlib.Path(__file__).with_name("potential3d.csv")
@@ -26,5 +31,4 @@ with out3.open("w") as f:
             y = -2.0 + 4.5 * j / 24
             for i in range(25):
                 x = -3.0 + 6.0 * i / 24
-                v = sum(q / max(math.sqrt((x - cx) ** 2 + (y - cy) ** 2 + z * z), 0.15) for cx, cy, q in charges)
-                f.write(f"{x:.4f},{y:.4f},{z:.4f},{v:.6f}\n")
+                f.write(f"{x:.4f},{y:.4f},{z:.4f},{potential(x, y, z):.6f}\n")
