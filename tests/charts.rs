@@ -294,3 +294,35 @@ fn contours_need_cells() {
         assert!(out.contains("contours need at least 2 × 2 grid nodes, the grid has"), "{out}");
     }
 }
+
+#[test]
+fn a_missing_value_breaks_only_its_own_series() {
+    // Long form: series a has no value at t = 1, series b has all three.
+    let spec = r#"
+[data.d]
+values = [
+  { t = 0, v = 1.0, s = "a" }, { t = 1, v = nan, s = "a" }, { t = 2, v = 3.0, s = "a" },
+  { t = 0, v = 2.0, s = "b" }, { t = 1, v = 2.5, s = "b" }, { t = 2, v = 2.0, s = "b" },
+]
+
+[[chart]]
+name = "l"
+kind = "line"
+data = "d"
+x = "t"
+y = "v"
+series = "s"
+"#;
+    let out = Fixture::new(spec, &[]).draw().unwrap_or_else(|e| panic!("{e}"));
+    let mut moves = std::collections::BTreeMap::new();
+    out[0].scene.walk(|item| {
+        if let (dataink::scene::Shape::Path(cmds), Some(label)) = (&item.shape, &item.label) {
+            if item.role == dataink::scene::Role::DataMark {
+                let n = cmds.iter().filter(|c| matches!(c, dataink::scene::PathCmd::MoveTo(_))).count();
+                moves.insert(label.clone(), n);
+            }
+        }
+    });
+    assert_eq!(moves.get("a"), Some(&2), "a's gap at t = 1 starts a new subpath: {moves:?}");
+    assert_eq!(moves.get("b"), Some(&1), "b is drawn in one piece: {moves:?}");
+}

@@ -10,11 +10,13 @@ use crate::guide::legend::{Legend, Symbol};
 use crate::scene::{Color, Item, PathCmd, PerPoint, Point, PointBatch, Role, Shape, Stroke, Style};
 use crate::spec::{Chart, LineOptions};
 
-/// One series: its name, colour and the rows it draws (sorted by x; `None` marks a break).
+/// One series: its name, colour, the rows it draws (sorted by x) and all rows that belong to it
+/// (drawn or dropped), so that only its own missing values break its line.
 struct Series<'t> {
     name: String,
     y: &'t Column,
     rows: Vec<u32>,
+    members: Vec<u32>,
     color: Color,
 }
 
@@ -82,16 +84,28 @@ pub fn draw(chart: &Chart, options: &LineOptions, index: usize, table: &Table) -
         let title = channel.options().title.unwrap_or_else(|| channel.field().to_string());
         match series_col {
             Some(sc) => {
+                // One pass over the rows buckets them by series (rows with no series are left out).
                 let cats = sc.categories().cloned().unwrap_or_else(|| numeric_categories(sc));
-                for (code, level) in cats.levels.iter().enumerate() {
-                    let rows: Vec<u32> =
-                        kept.iter().copied().filter(|&r| cats.codes.get(r as usize) == Some(&(code as u32))).collect();
+                let bucket = |rows: &mut dyn Iterator<Item = u32>| {
+                    let mut by_code: Vec<Vec<u32>> = vec![Vec::new(); cats.levels.len()];
+                    for r in rows {
+                        if let Some(b) = cats.codes.get(r as usize).and_then(|&c| by_code.get_mut(c as usize)) {
+                            b.push(r);
+                        }
+                    }
+                    by_code
+                };
+                let members = bucket(&mut all_rows.iter().copied());
+                let drawn = bucket(&mut kept.iter().copied());
+                for ((level, rows), members) in cats.levels.iter().zip(drawn).zip(members) {
                     if !rows.is_empty() {
-                        series.push(Series { name: level.clone(), y: col, rows, color: Color::BLACK });
+                        series.push(Series { name: level.clone(), y: col, rows, members, color: Color::BLACK });
                     }
                 }
             }
-            None => series.push(Series { name: title, y: col, rows: kept, color: Color::BLACK }),
+            None => {
+                series.push(Series { name: title, y: col, rows: kept, members: all_rows.clone(), color: Color::BLACK })
+            }
         }
     }
     series.retain(|s| !s.rows.is_empty());
@@ -171,7 +185,7 @@ pub fn draw(chart: &Chart, options: &LineOptions, index: usize, table: &Table) -
     let mut derived_y = Vec::new();
     let mut derived_rows = Vec::new();
     for s in &series {
-        let dropped = dropped_between(&s.rows, &all_rows, x_numbers, s.y.numbers());
+        let dropped = dropped_between(&s.rows, &s.members, x_numbers, s.y.numbers());
         let mut cmds = Vec::with_capacity(s.rows.len() + 1);
         let mut centers = Vec::new();
         let mut pen_down = false;
