@@ -316,11 +316,11 @@ series = "s"
     let out = Fixture::new(spec, &[]).draw().unwrap_or_else(|e| panic!("{e}"));
     let mut moves = std::collections::BTreeMap::new();
     out[0].scene.walk(|item| {
-        if let (dataink::scene::Shape::Path(cmds), Some(label)) = (&item.shape, &item.label) {
-            if item.role == dataink::scene::Role::DataMark {
-                let n = cmds.iter().filter(|c| matches!(c, dataink::scene::PathCmd::MoveTo(_))).count();
-                moves.insert(label.clone(), n);
-            }
+        if let (dataink::scene::Shape::Path(cmds), Some(label)) = (&item.shape, &item.label)
+            && item.role == dataink::scene::Role::DataMark
+        {
+            let n = cmds.iter().filter(|c| matches!(c, dataink::scene::PathCmd::MoveTo(_))).count();
+            moves.insert(label.clone(), n);
         }
     });
     assert_eq!(moves.get("a"), Some(&2), "a's gap at t = 1 starts a new subpath: {moves:?}");
