@@ -59,10 +59,10 @@ fn scatter_chart() -> Chart {
 fn scatter_1m(c: &mut Criterion) {
     let table = points_table(1_000_000);
     let chart = scatter_chart();
-    let scene = mark::draw(&chart, 0, &table).expect("scatter draws").scene;
+    let scene = mark::draw(&chart, 0, &table, None).expect("scatter draws").scene;
     let mut group = c.benchmark_group("scatter_1m");
     group.sample_size(20);
-    group.bench_function("map_to_scene", |b| b.iter(|| mark::draw(black_box(&chart), 0, black_box(&table))));
+    group.bench_function("map_to_scene", |b| b.iter(|| mark::draw(black_box(&chart), 0, black_box(&table), None)));
     group.bench_function("png_render", |b| b.iter(|| render::png::to_pixmap(black_box(&scene), 1.0)));
     group.bench_function("png_render_and_encode", |b| b.iter(|| render::png::to_png(black_box(&scene), 1.0)));
     group.finish();
@@ -83,7 +83,7 @@ fn line_small(c: &mut Criterion) {
                 None,
             )
             .expect("inline data");
-            let out = mark::draw(&parsed.spec.chart[0], 0, &table).expect("line draws");
+            let out = mark::draw(&parsed.spec.chart[0], 0, &table, None).expect("line draws");
             let svg = render::svg::to_svg(&out.scene);
             let png = render::png::to_png(&out.scene, 1.0).expect("png");
             black_box((svg, png))

@@ -41,7 +41,7 @@
 //! let parsed = parse_spec(&source).expect("a valid spec");
 //! let table = load_source(&parsed.spec.data["d"], Path::new("."), PathPolicy::InsideSpecFolder, None)
 //!     .expect("inline rows load");
-//! let chart = dataink::mark::draw(&parsed.spec.chart[0], 0, &table).expect("the chart draws");
+//! let chart = dataink::mark::draw(&parsed.spec.chart[0], 0, &table, None).expect("the chart draws");
 //! let svg = dataink::render::svg::to_svg(&chart.scene);
 //! assert!(svg.contains("<svg") && svg.contains("y (m)"));
 //! let png = dataink::render::png::to_png(&chart.scene, 2.0).expect("a PNG");
@@ -55,5 +55,6 @@ pub mod mark;
 pub mod pipeline;
 pub mod render;
 pub mod scene;
+pub mod selection;
 pub mod spec;
 pub mod text;

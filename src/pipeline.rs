@@ -10,6 +10,7 @@ use serde_json::Value;
 use crate::data::{self, PathPolicy, Table};
 use crate::mark::{self, ChartOutput, MarkError};
 use crate::render;
+use crate::selection::{self, Highlight};
 use crate::spec::{self, Diagnostic, PathSeg, SourceFile, Spec, SpecDoc};
 
 /// A spec whose every check passed: ready to draw.
@@ -23,6 +24,8 @@ pub struct Loaded {
     pub doc: SpecDoc,
     /// Loaded tables by data source name.
     pub tables: BTreeMap<String, Table>,
+    /// Every selection, evaluated once against its data source (shared by the charts naming it).
+    pub highlights: BTreeMap<String, Highlight>,
     /// Warnings found while loading (printed, not fatal).
     pub warnings: Vec<Diagnostic>,
 }
@@ -105,12 +108,45 @@ pub fn load(spec_path: &Path, policy: PathPolicy) -> Result<Loaded, Failed> {
         }
     }
     diagnostics.extend(check_columns(&json, &doc, &tables));
+    let (highlights, selection_errors) = evaluate_selections(&sources, checked.spec.as_ref(), &doc, &tables);
+    diagnostics.extend(selection_errors);
 
     let has_errors = diagnostics.iter().any(Diagnostic::is_error);
     match checked.spec {
-        Some(spec) if !has_errors => Ok(Loaded { source, spec, doc, tables, warnings: diagnostics }),
+        Some(spec) if !has_errors => Ok(Loaded { source, spec, doc, tables, highlights, warnings: diagnostics }),
         _ => Err(Failed { source, diagnostics }),
     }
+}
+
+/// Evaluate every selection of a valid spec against its loaded table; problems (unknown columns,
+/// ranges on text) become diagnostics pointing into the spec.
+fn evaluate_selections(
+    sources: &BTreeMap<String, spec::DataSource>,
+    spec: Option<&Spec>,
+    doc: &SpecDoc,
+    tables: &BTreeMap<String, Table>,
+) -> (BTreeMap<String, Highlight>, Vec<Diagnostic>) {
+    let mut highlights = BTreeMap::new();
+    let mut diagnostics = Vec::new();
+    let Some(spec) = spec else { return (highlights, diagnostics) };
+    for (name, selection) in &spec.selection {
+        let Some(table) = tables.get(&selection.data).filter(|_| sources.contains_key(&selection.data)) else {
+            continue;
+        };
+        match selection::evaluate(name, selection, table) {
+            Ok(h) => {
+                highlights.insert(name.clone(), h);
+            }
+            Err(e) => {
+                let mut d = Diagnostic::error(e.message).with_hint(e.hint);
+                if let Some(span) = doc.key_span_of(&e.path).or_else(|| doc.span_of(&e.path)) {
+                    d = d.at(span);
+                }
+                diagnostics.push(d);
+            }
+        }
+    }
+    (highlights, diagnostics)
 }
 
 /// Run `work`; with the environment variable `DATAINK_TIMINGS` set, print how long it took.
@@ -142,9 +178,16 @@ fn chart_fields(index: usize, chart: &Value) -> Vec<(String, Vec<PathSeg>)> {
     let Some(kind) = chart.get("kind").and_then(Value::as_str) else { return Vec::new() };
     let mut out = Vec::new();
     for key in mark::column_keys(kind) {
-        if let Some(value) = chart.get(*key) {
-            let base = vec![PathSeg::Key("chart".into()), PathSeg::Index(index), PathSeg::Key(key.to_string())];
-            out.extend(field_refs(value, base));
+        let Some(value) = chart.get(*key) else { continue };
+        let base = vec![PathSeg::Key("chart".into()), PathSeg::Index(index), PathSeg::Key(key.to_string())];
+        match (*key, value) {
+            // A table of columns by name (faces' `features`).
+            ("features", Value::Object(map)) => out.extend(map.iter().filter_map(|(k, v)| {
+                let mut path = base.clone();
+                path.push(PathSeg::Key(k.clone()));
+                v.as_str().map(|s| (s.to_string(), path))
+            })),
+            _ => out.extend(field_refs(value, base)),
         }
     }
     out
@@ -158,6 +201,18 @@ fn needed_columns(doc: &Value) -> BTreeMap<String, std::collections::BTreeSet<St
     for (index, chart) in charts.iter().enumerate() {
         let Some(data_name) = chart.get("data").and_then(Value::as_str) else { continue };
         out.entry(data_name.to_string()).or_default().extend(chart_fields(index, chart).into_iter().map(|(f, _)| f));
+    }
+    // A selection reads its own columns, which its charts need not draw.
+    if let Some(Value::Object(selections)) = doc.get("selection") {
+        for selection in selections.values() {
+            let Some(data_name) = selection.get("data").and_then(Value::as_str) else { continue };
+            let Some(set) = out.get_mut(data_name) else { continue };
+            for key in ["range", "categories"] {
+                if let Some(Value::Object(columns)) = selection.get(key) {
+                    set.extend(columns.keys().cloned());
+                }
+            }
+        }
     }
     out
 }
@@ -274,7 +329,8 @@ pub fn draw_chart(loaded: &Loaded, index: usize, chart: &spec::Chart) -> Result<
     let table = loaded.tables.get(&chart.data).ok_or_else(|| {
         MarkError::at(index, &["data"], format!("chart \"{}\": data \"{}\" was not loaded", chart.name, chart.data), "")
     })?;
-    mark::draw(chart, index, table)
+    let highlight = chart.highlight.as_ref().and_then(|name| loaded.highlights.get(name));
+    mark::draw(chart, index, table, highlight)
 }
 
 /// A mark error as a diagnostic pointing into the spec.

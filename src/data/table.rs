@@ -135,6 +135,14 @@ pub struct Table {
 }
 
 impl Table {
+    /// A table of named columns, which must all have the same length.
+    pub fn from_columns(columns: impl IntoIterator<Item = (impl Into<String>, ColumnValues)>) -> Table {
+        let columns: Vec<Column> =
+            columns.into_iter().map(|(name, values)| Column { name: name.into(), values }).collect();
+        let rows = columns.first().map_or(0, Column::len);
+        debug_assert!(columns.iter().all(|c| c.len() == rows), "columns of different lengths");
+        Table { columns, rows }
+    }
     /// A column by exact name.
     pub fn column(&self, name: &str) -> Option<&Column> {
         self.columns.iter().find(|c| c.name == name)

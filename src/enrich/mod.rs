@@ -2,8 +2,10 @@
 //! interpolation and resampling, grids, contours.
 
 pub mod contour;
+pub mod distribution;
 pub mod grid;
 pub mod hyperslice;
 pub mod interp1d;
 pub mod scattered;
+pub mod segments;
 pub mod surface;

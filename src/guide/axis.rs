@@ -2,7 +2,7 @@
 
 use super::Theme;
 use super::scale::{Scale, Tick};
-use crate::scene::{Anchor, Baseline, Item, PathCmd, Point, Rect, Role, Style, Text};
+use crate::scene::{Anchor, Baseline, Item, PathCmd, Point, Rect, Role, Shape, Style, Text};
 use crate::text::measure;
 
 /// Which side of the plot area an axis is drawn on.
@@ -77,7 +77,7 @@ pub fn grid(scale: &Scale, side: Side, plot: Rect, theme: &Theme) -> Vec<Item> {
     if cmds.is_empty() {
         return Vec::new();
     }
-    vec![Item::new(Role::Grid, crate::scene::Shape::Path(cmds), Style::stroke(theme.grid, 1.0))]
+    vec![Item::new(Role::Grid, Shape::Path(cmds), Style::stroke(theme.grid, 1.0))]
 }
 
 /// Half-pixel snapping so 1-px lines are crisp in the PNG.
@@ -116,7 +116,7 @@ pub fn draw(scale: &Scale, side: Side, plot: Rect, title: Option<&str>, theme: &
             }
         }
     }
-    items.push(Item::new(Role::Axis, crate::scene::Shape::Path(marks), Style::stroke(theme.axis, 1.0)).labelled(name));
+    items.push(Item::new(Role::Axis, Shape::Path(marks), Style::stroke(theme.axis, 1.0)).labelled(name));
     let label_offset = theme.tick_length + gap(theme);
     for t in &ticks {
         let (at, anchor, baseline) = match side {
@@ -164,6 +164,26 @@ pub fn draw(scale: &Scale, side: Side, plot: Rect, title: Option<&str>, theme: &
         items.push(Item::text(Role::AxisTitle, text).labelled(name));
     }
     items
+}
+
+/// Drop the tick labels of `items` (from [`draw`]) that would stick out of `span`: along x for a
+/// bottom axis, along y for a left one. Small multiples use this so that the end labels of
+/// neighbouring panels never collide.
+pub fn keep_labels_within(items: Vec<Item>, side: Side, span: (f64, f64)) -> Vec<Item> {
+    items
+        .into_iter()
+        .filter(|item| {
+            let Shape::Text(text) = &item.shape else { return true };
+            if item.role != Role::TickLabel {
+                return true;
+            }
+            let b = crate::text::bounds(text);
+            match side {
+                Side::Bottom => b.x >= span.0 - 0.5 && b.right() <= span.1 + 0.5,
+                Side::Left => b.y >= span.0 - 0.5 && b.bottom() <= span.1 + 0.5,
+            }
+        })
+        .collect()
 }
 
 /// An axis title with its unit: "Petal length (cm)".

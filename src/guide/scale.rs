@@ -15,7 +15,7 @@ use std::collections::HashMap;
 use std::fmt;
 
 use super::format::{format_log_tick, format_ticks};
-use super::ticks::{MAX_TARGET, exact_decimal, extended, pad_degenerate};
+use super::ticks::{MAX_TARGET, TickSet, exact_decimal, extended, pad_degenerate};
 use super::time::{MAX_ABS_MS, nice_time_domain, time_ticks};
 
 /// Ticks a [`LogScale`] aims at unless told otherwise.
@@ -188,7 +188,7 @@ impl LinearScale {
             }
             set
         } else {
-            extended(lo, hi, tick_target, false)
+            within_domain_ticks(lo, hi, tick_target)
         };
         let mut scale = LinearScale { domain: (lo, hi), range, ticks: Vec::new() };
         if tick_target > 0 {
@@ -550,6 +550,25 @@ impl BandScale {
     }
 }
 
+/// Ticks inside a fixed domain: the extended search restricted to the domain, or when that
+/// labels fewer than two values (short domains with awkward ends), the nice ticks of a loose
+/// search that fall inside.
+fn within_domain_ticks(lo: f64, hi: f64, target: usize) -> TickSet {
+    let inside = |v: &f64| *v >= lo && *v <= hi;
+    let strict = extended(lo, hi, target, false);
+    if strict.values.iter().filter(|v| inside(v)).count() >= 2 || target < 2 {
+        return strict;
+    }
+    for t in target..target + 4 {
+        let mut loose = extended(lo, hi, t, true);
+        loose.values.retain(inside);
+        if loose.values.len() >= 2 {
+            return loose;
+        }
+    }
+    strict
+}
+
 /// Any scale.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Scale {
@@ -814,5 +833,16 @@ mod tests {
         assert_eq!(lin.invert(5.0), Some(0.5));
         assert_eq!(lin.range(), (0.0, 10.0));
         assert_eq!(labels(&lin.ticks()), ["0.0", "0.5", "1.0"]);
+    }
+
+    #[test]
+    fn fixed_domains_label_at_least_two_ticks() {
+        // The strict search alone labels only "4" on this padded iris extent.
+        for target in 2..=6 {
+            let s = LinearScale::new((0.764, 7.136), (0.0, 135.0), false, target).unwrap();
+            let values: Vec<f64> = s.ticks().iter().map(|t| t.value).collect();
+            assert!(values.len() >= 2, "target {target}: {values:?}");
+            assert!(values.iter().all(|v| (0.764..=7.136).contains(v)), "target {target}: {values:?}");
+        }
     }
 }

@@ -17,6 +17,9 @@ pub enum DerivedColumn {
     Source(String),
     /// The source row index of each output row.
     RowIndex,
+    /// A flag per table row (e.g. whether a selection holds it), read at [`Derived::rows`] and
+    /// written as `true` or `false`.
+    Selected(Vec<bool>),
 }
 
 /// A small table of derived geometry in data coordinates: one output row per entry of `rows`.
@@ -98,6 +101,9 @@ impl Derived {
                     DerivedColumn::Text(v) => out.push_str(&csv_field(v.get(k).map(String::as_str).unwrap_or(""))),
                     DerivedColumn::RowIndex => {
                         let _ = write!(out, "{row}");
+                    }
+                    DerivedColumn::Selected(flags) => {
+                        out.push_str(if flags.get(row as usize).copied().unwrap_or(false) { "true" } else { "false" });
                     }
                     DerivedColumn::Source(_) => {
                         if let Some(col) = sources.get(i).copied().flatten() {

@@ -44,6 +44,44 @@ pub fn column<'t>(
     })
 }
 
+/// The columns of a list-of-channels key (`columns` of splom, parallel, ...) with their options.
+pub fn columns<'t>(
+    chart: &crate::spec::Chart,
+    index: usize,
+    key: &str,
+    channels: &[crate::spec::Channel],
+    table: &'t Table,
+) -> Result<Vec<(ChannelOptions, &'t Column)>, MarkError> {
+    channels
+        .iter()
+        .map(|c| {
+            let options = c.options();
+            let col = column(chart, index, key, &options.field, table)?;
+            Ok((options, col))
+        })
+        .collect()
+}
+
+/// An error unless `column` is numeric; `what` names what needs the numbers.
+pub fn require_numeric(
+    chart: &crate::spec::Chart,
+    index: usize,
+    key: &str,
+    column: &Column,
+    what: &str,
+    hint: &str,
+) -> Result<(), MarkError> {
+    if column.numbers().is_some() {
+        return Ok(());
+    }
+    Err(MarkError::at(
+        index,
+        &[key],
+        format!("chart \"{}\": column `{}` holds text; {what} needs numbers", chart.name, column.name),
+        hint,
+    ))
+}
+
 /// Rows whose numeric channel values are all finite, plus the warning that counts the rest.
 ///
 /// This is the one non-finite policy of every chart kind: a row with a missing, NaN or infinite

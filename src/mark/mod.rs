@@ -4,17 +4,24 @@
 //! encodings — live in [`encode`] so that kinds only describe their own geometry.
 
 pub mod contour;
+pub mod daisy;
 pub mod derived;
 pub mod encode;
+pub mod face;
+pub mod faces;
 pub mod frame;
 pub mod gridded;
+pub mod highlight;
 pub mod hyperslice;
 pub mod image;
 pub mod interp1d;
 pub mod line;
+pub mod parallel;
 pub mod scatter;
 pub mod scattered;
 pub mod section;
+pub mod segments;
+pub mod splom;
 pub mod surface;
 
 use std::fmt;
@@ -24,6 +31,7 @@ pub use derived::{Derived, DerivedColumn};
 use crate::data::Table;
 use crate::guide::layout::LayoutError;
 use crate::scene::Scene;
+use crate::selection::Highlight;
 use crate::spec::{Chart, ChartKind, PathSeg};
 
 /// A chart drawn: its scene, its derived geometry and the warnings raised on the way.
@@ -79,10 +87,16 @@ impl MarkError {
     }
 }
 
-/// Draw chart number `index` of a spec from its table.
-pub fn draw(chart: &Chart, index: usize, table: &Table) -> Result<ChartOutput, MarkError> {
+/// Draw chart number `index` of a spec from its table, with the rows of `highlight` (the
+/// chart's evaluated selection, if it names one) drawn in full colour.
+pub fn draw(
+    chart: &Chart,
+    index: usize,
+    table: &Table,
+    highlight: Option<&Highlight>,
+) -> Result<ChartOutput, MarkError> {
     match &chart.kind {
-        ChartKind::Scatter(options) => scatter::draw(chart, options, index, table),
+        ChartKind::Scatter(options) => scatter::draw(chart, options, index, table, highlight),
         ChartKind::Line(options) => line::draw(chart, options, index, table),
         ChartKind::Interp1d(options) => interp1d::draw(chart, options, index, table),
         ChartKind::Contour(options) => contour::draw(chart, options, index, table),
@@ -91,6 +105,11 @@ pub fn draw(chart: &Chart, index: usize, table: &Table) -> Result<ChartOutput, M
         ChartKind::Surface(options) => surface::draw(chart, options, index, table),
         ChartKind::Scattered(options) => scattered::draw(chart, options, index, table),
         ChartKind::Hyperslice(options) => hyperslice::draw(chart, options, index, table),
+        ChartKind::Splom(options) => splom::draw(chart, options, index, table, highlight),
+        ChartKind::Parallel(options) => parallel::draw(chart, options, index, table, highlight),
+        ChartKind::Daisy(options) => daisy::draw(chart, options, index, table, highlight),
+        ChartKind::Faces(options) => faces::draw(chart, options, index, table, highlight),
+        ChartKind::Segments(options) => segments::draw(chart, options, index, table, highlight),
     }
 }
 
@@ -103,8 +122,18 @@ pub fn column_keys(kind: &str) -> &'static [&'static str] {
         "interp1d" => &["x", "y", "slopes"],
         "contour" | "image" | "section" | "surface" | "scattered" => &["x", "y", "z"],
         "hyperslice" => &["axes", "z"],
+        "splom" | "parallel" | "daisy" => &["columns", "color"],
+        "faces" => &["columns", "features", "label", "color"],
+        "segments" => &["columns", "order_by"],
         _ => &[],
     }
+}
+
+/// The chart with `size` filled in by a kind's own default when the spec gives none.
+pub fn with_default_size(chart: &Chart, size: [f64; 2]) -> Chart {
+    let mut chart = chart.clone();
+    chart.size.get_or_insert(size);
+    chart
 }
 
 /// Default canvas size when the spec gives none.

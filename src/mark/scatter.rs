@@ -2,12 +2,13 @@
 
 use super::derived::{Derived, DerivedColumn};
 use super::encode::{self, ColorEncoding};
-use super::{ChartOutput, MarkError, frame};
+use super::{ChartOutput, MarkError, frame, highlight};
 use crate::data::Table;
 use crate::guide::format::format_value;
 use crate::guide::legend::{Legend, Symbol};
 use crate::guide::ticks::extended;
-use crate::scene::{Color, Item, PerPoint, PointBatch, Role, Shape, Stroke, Style};
+use crate::scene::{Color, Item, PerPoint, PointBatch, Rect, Role, Shape, Stroke, Style};
+use crate::selection::Highlight;
 use crate::spec::{Chart, ScatterOptions};
 
 /// Default marker radius for `n` points: smaller as the plot fills up.
@@ -31,7 +32,13 @@ pub fn default_opacity(n: usize) -> f64 {
 }
 
 /// Draw a scatter chart.
-pub fn draw(chart: &Chart, options: &ScatterOptions, index: usize, table: &Table) -> Result<ChartOutput, MarkError> {
+pub fn draw(
+    chart: &Chart,
+    options: &ScatterOptions,
+    index: usize,
+    table: &Table,
+    highlight: Option<&Highlight>,
+) -> Result<ChartOutput, MarkError> {
     let x_opts = options.x.options();
     let y_opts = options.y.options();
     let x_col = encode::column(chart, index, "x", &x_opts.field, table)?;
@@ -102,6 +109,9 @@ pub fn draw(chart: &Chart, options: &ScatterOptions, index: usize, table: &Table
     )?;
     let max_radius = size_opts.as_ref().and_then(|o| o.max_radius).unwrap_or(12.0);
     let mut legends: Vec<Legend> = color_legend.into_iter().collect();
+    if let Some(h) = highlight {
+        legends.push(highlight::legend(h, rows.iter().filter(|&&r| h.contains(r)).count(), n, Symbol::Circle));
+    }
     if let (Some(o), true) = (&size_opts, max_size > 0.0) {
         legends.push(size_legend(&o.title.clone().unwrap_or(o.field.clone()), o.unit.as_deref(), max_size, max_radius));
     }
@@ -114,29 +124,58 @@ pub fn draw(chart: &Chart, options: &ScatterOptions, index: usize, table: &Table
     y_axis.inset = largest_radius + 1.0;
     let (frame, theme) = frame::cartesian(chart, index, x_axis, y_axis, legends)?;
 
-    let centers =
-        encode::centers(&encode::Positioner::new(&frame.x, x_col), &encode::Positioner::new(&frame.y, y_col), &rows);
-    let fill = match &colors {
-        ColorEncoding::Fixed(c) => PerPoint::Uniform(c.with_opacity(opacity)),
-        other => PerPoint::Each(rows.iter().map(|&r| other.color_of(r).with_opacity(opacity)).collect()),
-    };
-    let radius = match size_col.and_then(|c| c.numbers()) {
-        Some(values) if max_size > 0.0 => PerPoint::Each(
-            rows.iter()
-                .map(|&r| area_radius(values.get(r as usize).copied().unwrap_or(0.0), max_size, max_radius))
-                .collect(),
-        ),
-        _ => PerPoint::Uniform(base_radius),
-    };
+    let x_pos = encode::Positioner::new(&frame.x, x_col);
+    let y_pos = encode::Positioner::new(&frame.y, y_col);
     // Large markers get a thin outline so overlapping ones stay distinguishable.
     let stroke = (size_col.is_some() || (n <= 2_000 && base_radius >= 3.0))
         .then(|| Stroke::solid(Color::WHITE.with_opacity(0.8), 0.6));
-    let batch =
-        Item::new(Role::DataMark, Shape::Points(PointBatch { centers, radius, fill, stroke }), Style::default())
-            .with_rows(rows.clone())
-            .labelled(chart.name.clone());
-
-    let scene = frame::scene(chart, frame, &theme, vec![batch]);
+    let sizes = size_col.and_then(|c| c.numbers()).filter(|_| max_size > 0.0);
+    let batch = |rows: Vec<u32>, context: bool| {
+        let centers = encode::centers(&x_pos, &y_pos, &rows);
+        let fill = match (&colors, context) {
+            (_, true) => PerPoint::Uniform(highlight::CONTEXT.with_opacity(opacity)),
+            (ColorEncoding::Fixed(c), false) => PerPoint::Uniform(c.with_opacity(opacity)),
+            (other, false) => PerPoint::Each(rows.iter().map(|&r| other.color_of(r).with_opacity(opacity)).collect()),
+        };
+        let radius = match sizes {
+            Some(values) => PerPoint::Each(
+                rows.iter()
+                    .map(|&r| area_radius(values.get(r as usize).copied().unwrap_or(0.0), max_size, max_radius))
+                    .collect(),
+            ),
+            None => PerPoint::Uniform(base_radius),
+        };
+        let label = if context { format!("{} (not selected)", chart.name) } else { chart.name.clone() };
+        Item::new(
+            Role::DataMark,
+            Shape::Points(PointBatch { centers, radius, fill, stroke: stroke.clone() }),
+            Style::default(),
+        )
+        .with_rows(rows)
+        .labelled(label)
+    };
+    let mut marks = Vec::new();
+    match highlight {
+        Some(h) => {
+            let (context, selected) = h.split(&rows);
+            let plot = frame.plot;
+            let x_span = h
+                .range_on(&x_opts.field)
+                .and_then(|r| highlight::pixel_span(r, |v| frame.x.map(v), (plot.x, plot.right())));
+            let y_span = h
+                .range_on(&y_opts.field)
+                .and_then(|r| highlight::pixel_span(r, |v| frame.y.map(v), (plot.y, plot.bottom())));
+            if x_span.is_some() || y_span.is_some() {
+                let (x0, x1) = x_span.unwrap_or((plot.x, plot.right()));
+                let (y0, y1) = y_span.unwrap_or((plot.y, plot.bottom()));
+                marks.push(highlight::brush_band(Rect::new(x0, y0, x1 - x0, y1 - y0)));
+            }
+            marks.push(batch(context, true));
+            marks.push(batch(selected, false));
+        }
+        None => marks.push(batch(rows.clone(), false)),
+    }
+    let scene = frame::scene(chart, frame, &theme, marks);
 
     let mut derived = Derived::over(rows);
     derived.push("row", DerivedColumn::RowIndex);
@@ -147,6 +186,9 @@ pub fn draw(chart: &Chart, options: &ScatterOptions, index: usize, table: &Table
     }
     if let Some(o) = &size_opts {
         derived.push(&o.field, DerivedColumn::Source(o.field.clone()));
+    }
+    if let Some(h) = highlight {
+        derived.push("selected", DerivedColumn::Selected(h.selected.clone()));
     }
     Ok(ChartOutput { scene, derived, warnings, geojson: None })
 }

@@ -176,7 +176,7 @@ y = "petal_width"
         assert_eq!(
             diags[0].hint.as_deref(),
             Some(
-                "keys allowed here: name, data, kind, x, y, caption, color, font_size, mark_color, opacity, point_size, radius, size, title"
+                "keys allowed here: name, data, kind, x, y, caption, color, font_size, highlight, mark_color, opacity, point_size, radius, size, title"
             )
         );
         assert_eq!(
@@ -195,7 +195,7 @@ y = "petal_width"
    |
 12 | colour = "species"
    | ^^^^^^ did you mean `color`?
-   = hint: keys allowed here: name, data, kind, x, y, caption, color, font_size, mark_color, opacity, point_size, radius, size, title
+   = hint: keys allowed here: name, data, kind, x, y, caption, color, font_size, highlight, mark_color, opacity, point_size, radius, size, title
 
 error: `size` must be an array of 2 numbers, found a string
   --> spec.toml:13:8
@@ -405,6 +405,13 @@ delimiter = ";"
 [data.rows]
 values = [{ x = 1, y = 2.5, when = 1979-05-27 }, { x = 2, y = 3.0, label = "b" }]
 
+[selection.short]
+data = "iris"
+range = { petal_length = [1, 2.5] }
+categories = { species = ["setosa", 3] }
+combine = "or"
+invert = true
+
 [[chart]]
 name = "iris-scatter"
 data = "iris"
@@ -412,6 +419,7 @@ title = "Petals"
 caption = "Source: Fisher (1936)"
 size = [800, 600.5]
 font_size = 12
+highlight = "short"
 kind = "scatter"
 x = { field = "sepal_length", title = "Sepal length", unit = "cm", scale = "linear", domain = [4, 8], zero = false, nice = true, ticks = 5, grid = true }
 y = "petal_length"
@@ -488,11 +496,25 @@ point_size = "d"
         Spec {
             title: Some("Iris".to_owned()),
             data,
+            selection: BTreeMap::from([(
+                "short".to_owned(),
+                Selection {
+                    data: "iris".to_owned(),
+                    range: Some(BTreeMap::from([("petal_length".to_owned(), [1.0, 2.5])])),
+                    categories: Some(BTreeMap::from([(
+                        "species".to_owned(),
+                        vec![CategoryValue::Text("setosa".to_owned()), CategoryValue::Number(3.0)],
+                    )])),
+                    combine: Some(Combine::Or),
+                    invert: Some(true),
+                },
+            )]),
             chart: vec![
                 Chart {
                     name: "iris-scatter".to_owned(),
                     data: "iris".to_owned(),
                     title: Some("Petals".to_owned()),
+                    highlight: Some("short".to_owned()),
                     caption: Some("Source: Fisher (1936)".to_owned()),
                     size: Some([800.0, 600.5]),
                     font_size: Some(12.0),
@@ -535,6 +557,7 @@ point_size = "d"
                     caption: None,
                     size: None,
                     font_size: None,
+                    highlight: None,
                     kind: ChartKind::Line(LineOptions {
                         x: field("x"),
                         y: OneOrMany::Many(vec![
@@ -560,6 +583,7 @@ point_size = "d"
                     caption: None,
                     size: None,
                     font_size: None,
+                    highlight: None,
                     kind: ChartKind::Line(LineOptions {
                         x: Channel::Detailed(ChannelOptions {
                             field: "x".to_owned(),
@@ -586,6 +610,7 @@ point_size = "d"
                     caption: None,
                     size: None,
                     font_size: None,
+                    highlight: None,
                     kind: ChartKind::Scatter(ScatterOptions {
                         x: field("a"),
                         y: field("b"),
@@ -631,6 +656,10 @@ point_size = "d"
         for (name, source) in json.get("data").and_then(Value::as_object).into_iter().flatten() {
             out.push_str(&format!("[data.{name:?}]\n"));
             out.push_str(&entries(source.as_object().unwrap_or(&serde_json::Map::new())));
+        }
+        for (name, selection) in json.get("selection").and_then(Value::as_object).into_iter().flatten() {
+            out.push_str(&format!("[selection.{name:?}]\n"));
+            out.push_str(&entries(selection.as_object().unwrap_or(&serde_json::Map::new())));
         }
         for chart in json.get("chart").and_then(Value::as_array).into_iter().flatten() {
             out.push_str("[[chart]]\n");

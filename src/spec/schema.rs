@@ -237,6 +237,8 @@ mod tests {
             assert_eq!(required[..3], ["name", "data", "kind"], "{kind}");
             let own: &[&str] = match *kind {
                 "hyperslice" => &["axes", "z"],
+                "splom" | "parallel" | "daisy" | "segments" => &["columns"],
+                "faces" => &[],
                 "contour" | "image" | "section" | "scattered" | "surface" => &["x", "y", "z"],
                 _ => &["x", "y"],
             };
@@ -273,8 +275,9 @@ mod tests {
         let schema = spec_schema();
         let mut count = 0;
         walk(&schema, &mut count);
-        // Spec, DataSource, ChannelOptions, ColorOptions, SizeOptions and one branch per kind.
-        assert_eq!(count, 5 + crate::spec::ChartKind::NAMES.len());
+        // Spec, DataSource, Selection, ChannelOptions, ColorOptions, SizeOptions, FaceFeatures
+        // and one branch per kind.
+        assert_eq!(count, 7 + crate::spec::ChartKind::NAMES.len());
         // Maps stay open: any data source name, any column in inline rows.
         assert_eq!(schema["properties"]["data"]["additionalProperties"]["$ref"], "#/$defs/DataSource");
         assert_eq!(def(&schema, "DataSource")["properties"]["values"]["items"]["additionalProperties"], true);

@@ -17,9 +17,53 @@ pub struct Spec {
     /// Data sources by name, e.g. `[data.iris]`.
     #[serde(default)]
     pub data: BTreeMap<String, DataSource>,
+    /// Named brushes by name, e.g. `[selection.small]`: rows that charts naming them in
+    /// `highlight` draw in full colour.
+    #[serde(default)]
+    pub selection: BTreeMap<String, Selection>,
     /// Charts, each a `[[chart]]` table.
     #[serde(default)]
     pub chart: Vec<Chart>,
+}
+
+/// A named brush over one data source: numeric ranges and category sets that select rows.
+#[derive(Clone, Debug, Deserialize, Serialize, JsonSchema, PartialEq)]
+pub struct Selection {
+    /// Name of the data source whose rows are selected (a key of `[data]`).
+    #[schemars(example = &"iris")]
+    pub data: String,
+    /// Numeric ranges, inclusive: `{ petal_length = [1.0, 2.5] }`.
+    #[serde(default)]
+    pub range: Option<BTreeMap<String, [f64; 2]>>,
+    /// Category sets: `{ species = ["setosa", "virginica"] }` (numbers match numeric columns).
+    #[serde(default)]
+    pub categories: Option<BTreeMap<String, Vec<CategoryValue>>>,
+    /// How the conditions combine: `and` (default: a row meets all of them) or `or` (any).
+    #[serde(default)]
+    pub combine: Option<Combine>,
+    /// Select the rows that do *not* meet the conditions.
+    #[serde(default)]
+    pub invert: Option<bool>,
+}
+
+/// One member of a category set: text, or a number for numeric codes.
+#[derive(Clone, Debug, Deserialize, Serialize, JsonSchema, PartialEq)]
+#[serde(untagged)]
+pub enum CategoryValue {
+    /// A category name.
+    Text(String),
+    /// A numeric code (matches a numeric column's value exactly).
+    Number(f64),
+}
+
+/// How a selection's conditions combine.
+#[derive(Clone, Copy, Debug, Deserialize, Serialize, JsonSchema, PartialEq, Eq)]
+#[serde(rename_all = "lowercase")]
+pub enum Combine {
+    /// A row is selected when it meets every condition.
+    And,
+    /// A row is selected when it meets any condition.
+    Or,
 }
 
 /// Where a table comes from: a file next to the spec, or rows written inline.
@@ -85,6 +129,12 @@ pub struct Chart {
     #[serde(default)]
     #[schemars(range(min = 1, max = 200), example = 12)]
     pub font_size: Option<f64>,
+    /// Name of a selection (`[selection.NAME]`) over the same data: its rows are drawn in full
+    /// colour, the rest as grey context, and its ranges are marked on the axes
+    /// (scatter, splom, parallel, daisy, faces, segments).
+    #[serde(default)]
+    #[schemars(example = &"small")]
+    pub highlight: Option<String>,
     /// What to draw and how.
     #[serde(flatten)]
     pub kind: ChartKind,
@@ -113,12 +163,36 @@ pub enum ChartKind {
     Surface(SurfaceOptions),
     /// A matrix of 2D slices through gridded data of more than two dimensions, around a focus point.
     Hyperslice(HypersliceOptions),
+    /// Scatter-plot matrix: every pair of columns, sharing one scale per column.
+    Splom(SplomOptions),
+    /// Parallel coordinates: one vertical axis per column, one polyline per row.
+    Parallel(ParallelOptions),
+    /// Daisy chart: columns on arcs around a circle, each row a closed curve through its values.
+    Daisy(DaisyOptions),
+    /// Chernoff faces: one face per row, columns driving facial features.
+    Faces(FacesOptions),
+    /// Circle segments: one wedge per column, rows as pixels from the centre outward.
+    Segments(SegmentsOptions),
 }
 
 impl ChartKind {
     /// Every kind's name as written in the spec, in declaration order.
-    pub const NAMES: &'static [&'static str] =
-        &["scatter", "line", "interp1d", "contour", "image", "section", "scattered", "surface", "hyperslice"];
+    pub const NAMES: &'static [&'static str] = &[
+        "scatter",
+        "line",
+        "interp1d",
+        "contour",
+        "image",
+        "section",
+        "scattered",
+        "surface",
+        "hyperslice",
+        "splom",
+        "parallel",
+        "daisy",
+        "faces",
+        "segments",
+    ];
 
     /// The kind's name as written in the spec.
     pub fn name(&self) -> &'static str {
@@ -132,6 +206,11 @@ impl ChartKind {
             ChartKind::Scattered(_) => "scattered",
             ChartKind::Surface(_) => "surface",
             ChartKind::Hyperslice(_) => "hyperslice",
+            ChartKind::Splom(_) => "splom",
+            ChartKind::Parallel(_) => "parallel",
+            ChartKind::Daisy(_) => "daisy",
+            ChartKind::Faces(_) => "faces",
+            ChartKind::Segments(_) => "segments",
         }
     }
 }
@@ -400,6 +479,257 @@ pub struct HypersliceOptions {
     pub focus: Option<Vec<f64>>,
 }
 
+/// Options of `kind = "splom"`.
+#[derive(Clone, Debug, Deserialize, Serialize, JsonSchema, PartialEq)]
+pub struct SplomOptions {
+    /// The columns, 2 to 12: names, or tables with `field`, `title`, `unit`, `scale`, `domain`, ...
+    #[schemars(length(min = 2, max = 12), example = example_columns())]
+    pub columns: Vec<Channel>,
+    /// Colour points by a column (categories get a legend, numbers a colour bar).
+    #[serde(default)]
+    pub color: Option<ColorChannel>,
+    /// Which cells to draw: `full` (default), `lower` or `upper` triangle.
+    #[serde(default)]
+    pub layout: Option<MatrixLayout>,
+    /// The diagonal cells: `histogram` (default), `density` (kernel density) or `label`.
+    #[serde(default)]
+    pub diagonal: Option<Diagonal>,
+    /// Histogram bins on the diagonal, 2 to 200 (default: Freedman–Diaconis, at most 50).
+    #[serde(default)]
+    #[schemars(range(min = 2, max = 200))]
+    pub bins: Option<u32>,
+    /// `points` (one marker per row), `density` (counts per small bin, for large tables) or
+    /// `auto` (default: density above 200,000 rows).
+    #[serde(default)]
+    pub mode: Option<SplomMode>,
+    /// Marker radius in pixels (default: from the row count).
+    #[serde(default)]
+    #[schemars(extend("exclusiveMinimum" = 0))]
+    pub radius: Option<f64>,
+    /// Marker opacity in 0..=1 (default: from the row count).
+    #[serde(default)]
+    #[schemars(range(min = 0, max = 1))]
+    pub opacity: Option<f64>,
+    /// Marker colour when `color` is not given (CSS name or `#rrggbb`).
+    #[serde(default)]
+    pub mark_color: Option<String>,
+}
+
+/// Which cells of a matrix are drawn.
+#[derive(Clone, Copy, Debug, Deserialize, Serialize, JsonSchema, PartialEq, Eq)]
+#[serde(rename_all = "lowercase")]
+pub enum MatrixLayout {
+    /// Every cell.
+    Full,
+    /// The diagonal and the cells below it.
+    Lower,
+    /// The diagonal and the cells above it.
+    Upper,
+}
+
+/// What the diagonal cells of a scatter-plot matrix show.
+#[derive(Clone, Copy, Debug, Deserialize, Serialize, JsonSchema, PartialEq, Eq)]
+#[serde(rename_all = "lowercase")]
+pub enum Diagonal {
+    /// A histogram of the column.
+    Histogram,
+    /// A Gaussian kernel density estimate of the column (Silverman's bandwidth).
+    Density,
+    /// The column's name only.
+    Label,
+}
+
+/// How a scatter-plot matrix draws its rows.
+#[derive(Clone, Copy, Debug, Deserialize, Serialize, JsonSchema, PartialEq, Eq)]
+#[serde(rename_all = "lowercase")]
+pub enum SplomMode {
+    /// One marker per row.
+    Points,
+    /// Rows counted in small bins, drawn as a shaded raster.
+    Density,
+    /// Points up to 200,000 rows, density above.
+    Auto,
+}
+
+/// Options of `kind = "parallel"`.
+#[derive(Clone, Debug, Deserialize, Serialize, JsonSchema, PartialEq)]
+pub struct ParallelOptions {
+    /// The axes' columns, 2 to 64: numeric columns get nice-ticked scales, text columns one
+    /// position per category.
+    #[schemars(length(min = 2, max = 64), example = example_columns())]
+    pub columns: Vec<Channel>,
+    /// Colour lines by a column (categories get a legend, numbers a colour bar).
+    #[serde(default)]
+    pub color: Option<ColorChannel>,
+    /// `given` (default: as listed) or `correlation` (neighbouring axes strongly correlated,
+    /// starting from the first column).
+    #[serde(default)]
+    pub order: Option<AxisOrder>,
+    /// Columns whose axes run top to bottom (high values at the bottom).
+    #[serde(default)]
+    pub invert: Option<Vec<String>>,
+    /// One scale shared by every numeric axis (default false: each axis its own).
+    #[serde(default)]
+    pub shared_scale: Option<bool>,
+    /// Line opacity in 0..=1 (default: from the row count).
+    #[serde(default)]
+    #[schemars(range(min = 0, max = 1))]
+    pub opacity: Option<f64>,
+    /// Line width in pixels (default: from the row count).
+    #[serde(default)]
+    #[schemars(extend("exclusiveMinimum" = 0))]
+    pub stroke_width: Option<f64>,
+    /// Line colour when `color` is not given (CSS name or `#rrggbb`).
+    #[serde(default)]
+    pub mark_color: Option<String>,
+}
+
+/// How the axes of parallel coordinates are ordered.
+#[derive(Clone, Copy, Debug, Deserialize, Serialize, JsonSchema, PartialEq, Eq)]
+#[serde(rename_all = "lowercase")]
+pub enum AxisOrder {
+    /// As listed in `columns`.
+    Given,
+    /// Greedy: each next axis is the remaining column most correlated (|Pearson r|) with the
+    /// previous one.
+    Correlation,
+}
+
+/// Options of `kind = "daisy"`.
+#[derive(Clone, Debug, Deserialize, Serialize, JsonSchema, PartialEq)]
+pub struct DaisyOptions {
+    /// The columns, 3 to 24, placed clockwise from the top, each on its own arc and scale.
+    #[schemars(length(min = 3, max = 24), example = example_columns())]
+    pub columns: Vec<Channel>,
+    /// Colour curves by a column (categories get a legend, numbers a colour bar).
+    #[serde(default)]
+    pub color: Option<ColorChannel>,
+    /// Curve opacity in 0..=1 (default: from the row count).
+    #[serde(default)]
+    #[schemars(range(min = 0, max = 1))]
+    pub opacity: Option<f64>,
+    /// Curve width in pixels (default: from the row count).
+    #[serde(default)]
+    #[schemars(extend("exclusiveMinimum" = 0))]
+    pub stroke_width: Option<f64>,
+    /// Curve colour when `color` is not given (CSS name or `#rrggbb`).
+    #[serde(default)]
+    pub mark_color: Option<String>,
+}
+
+/// Options of `kind = "faces"`.
+#[derive(Clone, Debug, Deserialize, Serialize, JsonSchema, PartialEq)]
+pub struct FacesOptions {
+    /// Up to 15 numeric columns, assigned to features in the order face width, face height,
+    /// face shape, eye size, eye spacing, eye slant, pupil position, brow slant, brow height,
+    /// nose length, nose width, mouth curvature, mouth width, mouth openness, ear size
+    /// (give this or `features`).
+    #[serde(default)]
+    #[schemars(example = example_columns())]
+    pub columns: Option<Vec<String>>,
+    /// Columns by feature, e.g. `{ mouth_curvature = "mpg", hair = "hp" }` (up to 15).
+    #[serde(default)]
+    pub features: Option<FaceFeatures>,
+    /// Column whose values label the faces (default: the row number).
+    #[serde(default)]
+    pub label: Option<String>,
+    /// Colour the faces by a column (categories get a legend).
+    #[serde(default)]
+    pub color: Option<ColorChannel>,
+    /// Faces per row of the grid (default: from the canvas' aspect ratio).
+    #[serde(default)]
+    #[schemars(range(min = 1, max = 100))]
+    pub per_row: Option<u32>,
+}
+
+/// Columns driving facial features; a feature without a column stays neutral.
+#[derive(Clone, Debug, Default, Deserialize, Serialize, JsonSchema, PartialEq)]
+pub struct FaceFeatures {
+    /// Narrow to wide face.
+    #[serde(default)]
+    pub face_width: Option<String>,
+    /// Short to tall face.
+    #[serde(default)]
+    pub face_height: Option<String>,
+    /// Round to pointed chin.
+    #[serde(default)]
+    pub face_shape: Option<String>,
+    /// Small to large eyes.
+    #[serde(default)]
+    pub eye_size: Option<String>,
+    /// Close-set to wide-set eyes.
+    #[serde(default)]
+    pub eye_spacing: Option<String>,
+    /// Eyes slanting down to up at the outer corners.
+    #[serde(default)]
+    pub eye_slant: Option<String>,
+    /// Pupils looking left to right.
+    #[serde(default)]
+    pub pupil_position: Option<String>,
+    /// Brows slanting down to up at the outer ends.
+    #[serde(default)]
+    pub brow_slant: Option<String>,
+    /// Low to high brows.
+    #[serde(default)]
+    pub brow_height: Option<String>,
+    /// Short to long nose.
+    #[serde(default)]
+    pub nose_length: Option<String>,
+    /// Narrow to wide nose.
+    #[serde(default)]
+    pub nose_width: Option<String>,
+    /// Frown to smile.
+    #[serde(default)]
+    pub mouth_curvature: Option<String>,
+    /// Narrow to wide mouth.
+    #[serde(default)]
+    pub mouth_width: Option<String>,
+    /// Closed to open mouth.
+    #[serde(default)]
+    pub mouth_openness: Option<String>,
+    /// Small to large ears.
+    #[serde(default)]
+    pub ear_size: Option<String>,
+    /// No hair to full hair.
+    #[serde(default)]
+    pub hair: Option<String>,
+}
+
+/// Options of `kind = "segments"`.
+#[derive(Clone, Debug, Deserialize, Serialize, JsonSchema, PartialEq)]
+pub struct SegmentsOptions {
+    /// The numeric columns, 2 to 64, one segment each, clockwise from the top.
+    #[schemars(length(min = 2, max = 64), example = example_columns())]
+    pub columns: Vec<Channel>,
+    /// Column the rows are sorted by before they are laid out from the centre outward
+    /// (default: the rows' order in the data).
+    #[serde(default)]
+    pub order_by: Option<String>,
+    /// Sort `order_by` from high to low (default false).
+    #[serde(default)]
+    pub descending: Option<bool>,
+    /// Continuous colour map (default `viridis`; append `_r` to reverse).
+    #[serde(default)]
+    pub scheme: Option<String>,
+    /// `column` (default: each column scaled from its own minimum to maximum) or `shared` (one
+    /// scale over all columns, for columns in the same unit).
+    #[serde(default)]
+    pub scale: Option<SegmentScale>,
+    /// Colour of pixels whose rows are all missing (default light grey, `#d9d9d9`).
+    #[serde(default)]
+    pub nan_color: Option<String>,
+}
+
+/// How circle-segment colours are scaled.
+#[derive(Clone, Copy, Debug, Deserialize, Serialize, JsonSchema, PartialEq, Eq)]
+#[serde(rename_all = "lowercase")]
+pub enum SegmentScale {
+    /// Each column from its own minimum (bottom of the colour bar) to its maximum (top).
+    Column,
+    /// One domain over all columns.
+    Shared,
+}
+
 /// Contour levels: how many, or which.
 #[derive(Clone, Debug, Deserialize, Serialize, JsonSchema, PartialEq)]
 #[serde(untagged)]
@@ -609,6 +939,11 @@ fn positive_items(schema: &mut schemars::Schema) {
 /// Schema example of `size`.
 fn example_size() -> [u32; 2] {
     [800, 600]
+}
+
+/// Schema example of `columns`.
+fn example_columns() -> [&'static str; 3] {
+    ["sepal_length", "sepal_width", "petal_length"]
 }
 
 /// Schema example of `domain`.

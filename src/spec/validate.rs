@@ -796,6 +796,17 @@ impl<'s> Walker<'s> {
         for e in data.map(SpannedValue::entries).unwrap_or(&[]) {
             self.check_data_source(e);
         }
+        let selections: Vec<(&str, &SpannedValue)> = root
+            .get("selection")
+            .map(SpannedValue::entries)
+            .unwrap_or(&[])
+            .iter()
+            .filter(|e| e.value.is_table())
+            .map(|e| (e.key.as_str(), &e.value))
+            .collect();
+        for (name, selection) in &selections {
+            self.check_selection(name, selection, data_names.as_deref());
+        }
         match root.get("chart") {
             None => self.no_charts(None),
             Some(c) => match c.as_array() {
@@ -804,7 +815,7 @@ impl<'s> Walker<'s> {
                     let mut seen = SeenNames::default();
                     for (i, chart) in charts.iter().enumerate() {
                         if chart.is_table() {
-                            self.check_chart(i, chart, data_names.as_deref(), &mut seen);
+                            self.check_chart(i, chart, data_names.as_deref(), &selections, &mut seen);
                         }
                     }
                 }
@@ -858,6 +869,7 @@ impl<'s> Walker<'s> {
         i: usize,
         chart: &'v SpannedValue,
         data_names: Option<&[&str]>,
+        selections: &[(&str, &SpannedValue)],
         seen: &mut SeenNames<'v>,
     ) {
         let name_hint = "use ASCII letters, digits, `-`, `_` and `.` (the name is the output file stem)";
@@ -910,24 +922,11 @@ impl<'s> Walker<'s> {
                 }
             }
         }
-        if let (Some(names), Some(data)) = (data_names, chart.get("data"))
-            && let Some(wanted) = data.as_str()
-            && !names.contains(&wanted)
-        {
-            let mut message = format!("unknown data source `{}`", shorten(wanted));
-            if let Some(best) = did_you_mean(wanted, names.iter().copied()) {
-                message.push_str(&format!("; did you mean `{best}`?"));
-            }
-            let hint = if names.is_empty() {
-                format!(
-                    "no data sources are defined; add a `[data.{}]` table with `path` or `values`",
-                    shorten(&display_key(wanted))
-                )
-            } else {
-                let listed: Vec<String> = names.iter().map(|n| format!("`{}`", shorten(n))).collect();
-                format!("data sources defined: {}", listed.join(", "))
-            };
-            self.diags.push(Diagnostic::error(message).at(data.span.clone()).with_hint(hint));
+        if let (Some(names), Some(data)) = (data_names, chart.get("data")) {
+            self.check_reference(data, names, Reference::Data);
+        }
+        if let Some(highlight) = chart.get("highlight") {
+            self.check_highlight(chart, highlight, selections);
         }
         for e in chart.entries() {
             let tables: Vec<(String, &SpannedValue)> = match &e.value.kind {
@@ -943,6 +942,113 @@ impl<'s> Walker<'s> {
             for (local, t) in tables {
                 self.check_domain(&local, t);
             }
+        }
+    }
+
+    /// A reference by name to a data source or a selection that must exist.
+    fn check_reference(&mut self, value: &SpannedValue, names: &[&str], what: Reference) {
+        let Some(wanted) = value.as_str() else { return };
+        if names.contains(&wanted) {
+            return;
+        }
+        let noun = match what {
+            Reference::Data => "data source",
+            Reference::Selection => "selection",
+        };
+        let mut message = format!("unknown {noun} `{}`", shorten(wanted));
+        if let Some(best) = did_you_mean(wanted, names.iter().copied()) {
+            message.push_str(&format!("; did you mean `{best}`?"));
+        }
+        let hint = if names.is_empty() {
+            match what {
+                Reference::Data => format!(
+                    "no data sources are defined; add a `[data.{}]` table with `path` or `values`",
+                    shorten(&display_key(wanted))
+                ),
+                Reference::Selection => format!(
+                    "no selections are defined; add a `[selection.{}]` table with `data` and `range` or `categories`",
+                    shorten(&display_key(wanted))
+                ),
+            }
+        } else {
+            let listed: Vec<String> = names.iter().map(|n| format!("`{}`", shorten(n))).collect();
+            format!("{noun}s defined: {}", listed.join(", "))
+        };
+        self.diags.push(Diagnostic::error(message).at(value.span.clone()).with_hint(hint));
+    }
+
+    fn check_selection(&mut self, name: &str, selection: &SpannedValue, data_names: Option<&[&str]>) {
+        let label = format!("`selection.{}`", shorten(&display_key(name)));
+        if let (Some(names), Some(data)) = (data_names, selection.get("data")) {
+            self.check_reference(data, names, Reference::Data);
+        }
+        if selection.get("range").is_none() && selection.get("categories").is_none() {
+            self.diags.push(
+                Diagnostic::error(format!("{label} selects nothing: it has neither `range` nor `categories`"))
+                    .at(selection.span.clone())
+                    .with_hint(
+                        "add e.g. `range = { petal_length = [1.0, 2.5] }` or `categories = { species = [\"setosa\"] }`",
+                    ),
+            );
+        }
+        for e in selection.get("range").map(SpannedValue::entries).unwrap_or(&[]) {
+            let Some([a, b]) = e.value.as_array() else { continue };
+            let (Some(lo), Some(hi)) = (a.as_f64(), b.as_f64()) else { continue };
+            if lo.is_finite() && hi.is_finite() && lo > hi {
+                self.diags.push(
+                    Diagnostic::error(format!(
+                        "{label}: range of `{}` must be `[min, max]` with min ≤ max, found `[{}, {}]`",
+                        shorten(&display_key(&e.key)),
+                        fmt_f64(lo),
+                        fmt_f64(hi)
+                    ))
+                    .at(e.value.span.clone())
+                    .with_hint("swap the two numbers"),
+                );
+            }
+        }
+    }
+
+    /// `highlight` must name a selection over the chart's own data, on a kind that draws it.
+    fn check_highlight(
+        &mut self,
+        chart: &SpannedValue,
+        highlight: &SpannedValue,
+        selections: &[(&str, &SpannedValue)],
+    ) {
+        let names: Vec<&str> = selections.iter().map(|(n, _)| *n).collect();
+        let Some(wanted) = highlight.as_str() else { return };
+        let key_span = chart.entry("highlight").map_or(highlight.span.clone(), |e| e.key_span.clone());
+        if let Some(kind) = chart.get("kind").and_then(SpannedValue::as_str)
+            && !HIGHLIGHT_KINDS.contains(&kind)
+        {
+            self.diags.push(
+                Diagnostic::error(format!("`highlight` is not drawn by `{kind}` charts"))
+                    .at(key_span)
+                    .with_hint(format!("charts that draw selections: {}", HIGHLIGHT_KINDS.join(", "))),
+            );
+            return;
+        }
+        if !names.contains(&wanted) {
+            self.check_reference(highlight, &names, Reference::Selection);
+            return;
+        }
+        let selection_data = selections.iter().find(|(n, _)| *n == wanted).and_then(|(_, s)| s.get("data"));
+        let chart_data = chart.get("data").and_then(SpannedValue::as_str);
+        if let (Some(sel_data), Some(chart_data)) = (selection_data.and_then(SpannedValue::as_str), chart_data)
+            && sel_data != chart_data
+        {
+            self.diags.push(
+                Diagnostic::error(format!(
+                    "selection `{}` is over data `{}`, but this chart draws `{}`",
+                    shorten(wanted),
+                    shorten(sel_data),
+                    shorten(chart_data)
+                ))
+                .at(highlight.span.clone())
+                .with_label("rows are linked only within one data source")
+                .with_hint("highlight a selection made over the chart's own data source"),
+            );
         }
     }
 
@@ -964,6 +1070,18 @@ impl<'s> Walker<'s> {
         }
     }
 }
+
+/// What a name refers to.
+#[derive(Clone, Copy)]
+enum Reference {
+    /// A `[data.NAME]` table.
+    Data,
+    /// A `[selection.NAME]` table.
+    Selection,
+}
+
+/// Chart kinds that draw a `highlight` selection.
+pub const HIGHLIGHT_KINDS: &[&str] = &["scatter", "splom", "parallel", "daisy", "faces", "segments"];
 
 fn alternatives(s: &Value) -> Option<&[Value]> {
     s.get("oneOf").or_else(|| s.get("anyOf")).and_then(Value::as_array).map(Vec::as_slice)
