@@ -44,6 +44,7 @@ fn scatter_chart() -> Chart {
         caption: None,
         size: Some([1000.0, 1000.0]),
         font_size: None,
+        highlight: None,
         kind: ChartKind::Scatter(ScatterOptions {
             x: Channel::Field("x".into()),
             y: Channel::Field("y".into()),

@@ -30,3 +30,8 @@ weather = local_data.seattle_weather()
 weather = weather[weather["date"].dt.year == 2015].copy()
 weather["date"] = weather["date"].dt.strftime("%Y-%m-%d")
 weather.to_csv(here / "seattle-2015.csv", index=False)
+
+# The 1982 models with complete records, for the Chernoff faces (a face per car stays legible).
+cars82 = pd.DataFrame(cars)
+cars82 = cars82[(cars82["Year"] == 1982)].dropna().head(40)
+cars82.to_csv(here / "cars-1982.csv", index=False)

@@ -241,6 +241,20 @@ pub fn position_axis(
     })
 }
 
+/// For a column of few distinct whole numbers (counts, codes, years) on a linear axis without a
+/// requested tick count: one tick per whole number, so no tick claims a value like 3.5.
+pub fn integer_ticks(mut axis: PositionAxis, column: &Column, rows: &[u32]) -> PositionAxis {
+    let (Domain::Continuous(lo, hi), ScaleKind::Linear, None) = (&axis.domain, axis.kind, axis.ticks) else {
+        return axis;
+    };
+    let values = column.numbers().unwrap_or(&[]);
+    let whole = rows.iter().all(|&r| values.get(r as usize).is_some_and(|v| v.fract() == 0.0));
+    if whole && hi - lo >= 1.0 && hi - lo <= 12.0 {
+        axis.ticks = Some((hi - lo) as u32 + 1);
+    }
+    axis
+}
+
 fn scale_name(kind: ScaleKind) -> &'static str {
     match kind {
         ScaleKind::Linear => "linear",
@@ -269,6 +283,16 @@ pub fn used_levels(cats: &Categories, rows: &[u32]) -> Vec<String> {
         levels.push(MISSING_LABEL.to_string());
     }
     levels
+}
+
+/// A cell as text for derived output: a number in its shortest round-trip form, or the
+/// category (`(missing)` for a missing one).
+pub fn cell_text(column: &Column, row: u32) -> String {
+    match (column.numbers(), column.categories()) {
+        (Some(v), _) => v.get(row as usize).map(|x| x.to_string()).unwrap_or_default(),
+        (_, Some(c)) => c.value(row as usize).unwrap_or(MISSING_LABEL).to_string(),
+        _ => String::new(),
+    }
 }
 
 /// Label of the category of missing text cells.

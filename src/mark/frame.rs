@@ -6,7 +6,7 @@ use crate::guide::Theme;
 use crate::guide::layout::{self, Frame, FrameSpec, PositionAxis};
 use crate::guide::legend::Legend;
 use crate::guide::legend::truncate_to_width;
-use crate::scene::{Anchor, Baseline, Item, PathCmd, Point, Rect, Role, Scene, Shape, Style, Text};
+use crate::scene::{Anchor, Baseline, Color, Item, PathCmd, Point, Rect, Role, Scene, Shape, Style, Text};
 use crate::spec::Chart;
 
 /// Lay out the frame of chart `index` around its axes and legends.
@@ -89,6 +89,32 @@ pub fn polyline(points: &[(f64, f64)], closed: bool, to_px: &impl Fn((f64, f64))
         cmds.push(PathCmd::Close);
     }
     cmds
+}
+
+/// Polylines of `stride` vertices each, one per row of `rows` (in order), stroked `width` wide
+/// in the row's colour. A non-finite vertex breaks its polyline.
+pub fn polylines(
+    vertices: Vec<Point>,
+    stride: usize,
+    rows: &[u32],
+    color: impl Fn(u32) -> Color,
+    width: f64,
+) -> Vec<Item> {
+    let mut items = Vec::with_capacity(rows.len());
+    for (line, &row) in vertices.chunks(stride.max(1)).zip(rows) {
+        let mut cmds = Vec::with_capacity(line.len());
+        let mut pen_down = false;
+        for p in line {
+            if !(p.x.is_finite() && p.y.is_finite()) {
+                pen_down = false;
+                continue;
+            }
+            cmds.push(if pen_down { PathCmd::LineTo(*p) } else { PathCmd::MoveTo(*p) });
+            pen_down = true;
+        }
+        items.push(Item::new(Role::DataMark, Shape::Path(cmds), Style::stroke(color(row), width)).with_rows(vec![row]));
+    }
+    items
 }
 
 /// The canvas of a kind that lays out its own panels (surface, hyperslice): size, theme, the room

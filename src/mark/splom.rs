@@ -2,6 +2,8 @@
 //! column has one scale shared by its whole row and column, with ticks only on the outer edges.
 //! The diagonal shows each column's distribution; a selection greys the other rows everywhere.
 
+use rayon::prelude::*;
+
 use super::derived::{Derived, DerivedColumn};
 use super::encode::{self, ColorEncoding};
 use super::{ChartOutput, MarkError, frame, highlight, scatter, with_default_size};
@@ -118,6 +120,13 @@ pub fn draw(
         Shape::Rect(Rect::new(0.0, 0.0, grid.width, grid.height)),
         Style::fill(theme.background),
     )];
+    // The point cells are independent and the bulk of the work: compute them in parallel.
+    let pairs: Vec<(usize, usize)> = (0..columns.len())
+        .flat_map(|i| (0..columns.len()).map(move |j| (i, j)))
+        .filter(|&(i, j)| i != j && shown(i, j) && !density)
+        .collect();
+    let mut point_cells: std::collections::HashMap<(usize, usize), Vec<Item>> =
+        pairs.par_iter().map(|&(i, j)| ((i, j), paint.points(&grid.x[j], &grid.y[i], values[j], values[i]))).collect();
     let mut density_max = 0.0f64;
     let mut density_cells = Vec::new();
     for i in 0..columns.len() {
@@ -147,7 +156,7 @@ pub fn draw(
                 density_cells.push((items.len(), counts));
                 continue;
             }
-            let marks = paint.points(&grid.x[j], &grid.y[i], values[j], values[i]);
+            let marks = point_cells.remove(&(i, j)).unwrap_or_default();
             items.push(
                 Item::group(Role::DataMark, marks, Some(cell))
                     .labelled(format!("{} × {}", columns[j].0.field, columns[i].0.field)),
@@ -271,13 +280,13 @@ impl Grid {
     fn axes(&self, axes: &[PositionAxis], layout: MatrixLayout, theme: &Theme) -> Vec<Item> {
         let k = axes.len();
         let mut items = Vec::new();
-        for c in 0..k {
+        for (c, axis) in axes.iter().enumerate() {
             let (bottom_row, left_col) = match layout {
                 MatrixLayout::Upper => (c, c),
                 _ => (k - 1, 0),
             };
             let cell = self.cell(bottom_row, c);
-            let title = truncate_to_width(&axes[c].title, self.cell_w + self.gap, theme.label_size);
+            let title = truncate_to_width(&axis.title, self.cell_w + self.gap, theme.label_size);
             // Labels may reach past the outer edges, but never into a neighbouring cell's labels.
             let slack = |outer: bool| if outer { f64::INFINITY } else { self.gap * 0.3 };
             let span = (cell.x - slack(c == 0), cell.right() + slack(c == k - 1));
@@ -287,7 +296,7 @@ impl Grid {
                 span,
             ));
             let cell = self.cell(c, left_col);
-            let title = truncate_to_width(&axes[c].title, self.cell_h + self.gap, theme.label_size);
+            let title = truncate_to_width(&axis.title, self.cell_h + self.gap, theme.label_size);
             let span = (cell.y - slack(c == 0), cell.bottom() + slack(c == k - 1));
             items.extend(axis::keep_labels_within(
                 axis::draw(&self.y[c], Side::Left, cell, Some(&title), theme),
@@ -414,7 +423,8 @@ fn diagonal_cell(
             };
             if !context.is_empty() {
                 let rects: Vec<[f64; 4]> = total.iter().enumerate().map(|(k, &c)| bar(k, 0.0, c)).collect();
-                items.push(rect_path(&rects, highlight::CONTEXT, "histogram (all rows)"));
+                items
+                    .push(rect_path(&rects, highlight::CONTEXT, "histogram (all rows)").with_rows(paint.rows.to_vec()));
             }
             let mut stacked = vec![0.0; bins];
             for (color, rows) in &groups {
@@ -458,7 +468,8 @@ fn diagonal_cell(
             if !context.is_empty() {
                 items.push(
                     Item::new(Role::DataMark, Shape::Path(area(&all_curve)), Style::fill(highlight::CONTEXT))
-                        .labelled("density (all rows)"),
+                        .labelled("density (all rows)")
+                        .with_rows(paint.rows.to_vec()),
                 );
             }
             for (color, curve, rows) in curves {

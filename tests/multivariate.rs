@@ -1,0 +1,349 @@
+//! Multivariate kinds (splom, parallel, daisy, faces, segments) and selections: linking by row
+//! identity, geometric invariants, and bad input giving the documented results.
+
+mod common;
+
+use common::Fixture;
+use dataink::mark::ChartOutput;
+use dataink::scene::{Item, Shape};
+
+/// A small iris-like table with a text column, a constant column and one NaN cell (row 5).
+const DATA: &str = "a,b,c,k,kind\n\
+1,10,5,7,x\n\
+2,8,6,7,y\n\
+3,9,4,7,x\n\
+4,4,7,7,z\n\
+5,5,3,7,y\n\
+6,NaN,2,7,x\n\
+7,2,1,7,z\n\
+8,1,8,7,x\n";
+
+fn spec(charts: &str) -> String {
+    format!(
+        r#"
+[data.t]
+path = "t.csv"
+
+[selection.low]
+data = "t"
+range = {{ a = [2, 4.5] }}
+
+{charts}
+"#
+    )
+}
+
+fn draw(charts: &str) -> Result<Vec<ChartOutput>, String> {
+    Fixture::new(&spec(charts), &[("t.csv", DATA.as_bytes())]).draw()
+}
+
+fn draw_ok(charts: &str) -> Vec<ChartOutput> {
+    draw(charts).unwrap_or_else(|e| panic!("{e}"))
+}
+
+fn draw_err(charts: &str) -> String {
+    match draw(charts) {
+        Ok(_) => panic!("expected an error"),
+        Err(e) => e,
+    }
+}
+
+/// Every data-mark leaf item of a scene, depth first.
+fn leaves(out: &ChartOutput) -> Vec<&Item> {
+    let mut found = Vec::new();
+    out.scene.walk(|item| {
+        if item.role == dataink::scene::Role::DataMark && !matches!(item.shape, Shape::Group { .. }) {
+            found.push(item);
+        }
+    });
+    found
+}
+
+/// Rows drawn in colour (not grey context) by point batches.
+fn batches(out: &ChartOutput) -> Vec<(bool, Vec<u32>)> {
+    leaves(out)
+        .into_iter()
+        .filter_map(|i| match &i.shape {
+            Shape::Points(_) => Some((i.label.as_deref().is_some_and(|l| l.contains("not selected")), i.rows.clone())),
+            _ => None,
+        })
+        .collect()
+}
+
+#[test]
+fn a_selection_links_every_cell_of_a_splom_by_row() {
+    let out = draw_ok(
+        r#"[[chart]]
+name = "m"
+kind = "splom"
+data = "t"
+columns = ["a", "b", "c"]
+highlight = "low""#,
+    );
+    // Row 5 has a NaN and is dropped; rows 1, 2, 3 have a in [2, 4.5].
+    let cells: Vec<Vec<u32>> = out[0]
+        .scene
+        .items
+        .iter()
+        .filter(|i| matches!(i.shape, Shape::Group { .. }) && i.label.as_deref().is_some_and(|l| l.contains('×')))
+        .map(|g| match &g.shape {
+            Shape::Group { items, .. } => items.last().map(|b| b.rows.clone()).unwrap_or_default(),
+            _ => unreachable!(),
+        })
+        .collect();
+    assert_eq!(cells.len(), 6, "3 × 3 full matrix has 6 point cells");
+    for selected in cells {
+        assert_eq!(selected, vec![1, 2, 3]);
+    }
+    let csv = out[0].derived.to_csv(&Default::default());
+    assert!(csv.starts_with("row,a,b,c,selected\n"), "{csv}");
+}
+
+#[test]
+fn scatter_and_parallel_highlight_the_same_rows() {
+    let out = draw_ok(
+        r#"[[chart]]
+name = "s"
+kind = "scatter"
+data = "t"
+x = "a"
+y = "c"
+highlight = "low"
+
+[[chart]]
+name = "p"
+kind = "parallel"
+data = "t"
+columns = ["a", "b", "kind"]
+highlight = "low""#,
+    );
+    let scatter_selected: Vec<u32> =
+        batches(&out[0]).into_iter().filter(|(grey, _)| !grey).flat_map(|(_, r)| r).collect();
+    assert_eq!(scatter_selected, vec![1, 2, 3]);
+    // Parallel: one polyline per row; the last three drawn are the selected ones, on top.
+    let lines = leaves(&out[1]);
+    let rows: Vec<u32> = lines.iter().flat_map(|i| i.rows.clone()).collect();
+    assert_eq!(rows.len(), 7, "row 5 has a NaN in b and is dropped");
+    assert_eq!(rows[rows.len() - 3..], [1, 2, 3]);
+}
+
+#[test]
+fn parallel_positions_are_on_their_axes_and_inversion_flips_them() {
+    let charts = |invert: &str| {
+        format!(
+            r#"[[chart]]
+name = "p"
+kind = "parallel"
+data = "t"
+columns = ["a", "c", "kind"]
+invert = [{invert}]"#
+        )
+    };
+    let position = |out: &ChartOutput, row: &str, column: usize| -> f64 {
+        let csv = out.derived.to_csv(&Default::default());
+        let header: Vec<&str> = csv.lines().next().unwrap().split(',').collect();
+        let col = header.iter().position(|h| *h == format!("pos_{}", ["a", "c", "kind"][column])).unwrap();
+        let line = csv.lines().find(|l| l.split(',').next() == Some(row)).unwrap();
+        line.split(',').nth(col).unwrap().parse().unwrap()
+    };
+    let plain = draw_ok(&charts(""));
+    let flipped = draw_ok(&charts("\"a\""));
+    for row in ["0", "3", "7"] {
+        let p = position(&plain[0], row, 0);
+        assert!((0.0..=1.0).contains(&p), "{p}");
+        assert!((p + position(&flipped[0], row, 0) - 1.0).abs() < 1e-9, "inverting mirrors the position");
+    }
+    // Larger a sits higher on a normal axis.
+    assert!(position(&plain[0], "7", 0) > position(&plain[0], "0", 0));
+    let e = draw_err(&charts("\"aa\""));
+    assert!(e.contains("`invert` names `aa`") && e.contains("did you mean `a`"), "{e}");
+}
+
+#[test]
+fn daisy_vertices_lie_on_the_circle_inside_their_arcs() {
+    let out = draw_ok(
+        r#"[[chart]]
+name = "d"
+kind = "daisy"
+data = "t"
+columns = ["a", "b", "c", "kind"]"#,
+    );
+    let csv = out[0].derived.to_csv(&Default::default());
+    let mut lines = csv.lines();
+    assert_eq!(lines.next(), Some("row,column,value,angle_deg,x,y"));
+    for line in lines {
+        let f: Vec<&str> = line.split(',').collect();
+        let (angle, x, y): (f64, f64, f64) = (f[3].parse().unwrap(), f[4].parse().unwrap(), f[5].parse().unwrap());
+        assert!((x * x + y * y - 1.0).abs() < 1e-9);
+        let arc = ["a", "b", "c", "kind"].iter().position(|c| *c == f[1]).unwrap() as f64;
+        assert!(angle > arc * 90.0 && angle < (arc + 1.0) * 90.0, "{line}: outside its quarter");
+    }
+}
+
+#[test]
+fn faces_map_columns_in_feature_order_and_refuse_more_than_fifteen() {
+    let out = draw_ok(
+        r#"[[chart]]
+name = "f"
+kind = "faces"
+data = "t"
+columns = ["a", "c"]
+label = "kind""#,
+    );
+    let csv = out[0].derived.to_csv(&Default::default());
+    let header = csv.lines().next().unwrap();
+    assert_eq!(header, "row,label,x,y,face_width,face_height");
+    // a runs 1..8 over the drawn rows: row 0 is the narrowest face, row 7 the widest.
+    let width = |row: &str| -> f64 {
+        csv.lines().find(|l| l.starts_with(&format!("{row},"))).unwrap().split(',').nth(4).unwrap().parse().unwrap()
+    };
+    assert_eq!((width("0"), width("7")), (0.0, 1.0));
+    let many = (0..16).map(|_| "\"a\"").collect::<Vec<_>>().join(", ");
+    let e = draw_err(&format!("[[chart]]\nname = \"f\"\nkind = \"faces\"\ndata = \"t\"\ncolumns = [{many}]"));
+    assert!(e.contains("16 columns given; faces show at most 15"), "{e}");
+    let e = draw_err("[[chart]]\nname = \"f\"\nkind = \"faces\"\ndata = \"t\"\ncolumns = [\"kind\"]");
+    assert!(e.contains("holds text"), "{e}");
+}
+
+#[test]
+fn segments_fill_every_disk_pixel_and_order_rows_by_a_column() {
+    let out = draw_ok(
+        r#"[[chart]]
+name = "g"
+kind = "segments"
+data = "t"
+columns = ["a", "b", "c"]
+order_by = "c"
+descending = true"#,
+    );
+    let raster = leaves(&out[0])
+        .into_iter()
+        .find_map(|i| match &i.shape {
+            Shape::Image(r) => Some(r.clone()),
+            _ => None,
+        })
+        .expect("one raster");
+    let d = raster.width as f64;
+    let mut inside = 0;
+    for y in 0..raster.height {
+        for x in 0..raster.width {
+            let (dx, dy) = (x as f64 + 0.5 - d / 2.0, y as f64 + 0.5 - d / 2.0);
+            let alpha = raster.rgba[((y * raster.width + x) * 4 + 3) as usize];
+            if dx * dx + dy * dy <= (d / 2.0) * (d / 2.0) {
+                assert_eq!(alpha, 255, "disk pixel ({x}, {y}) left empty");
+                inside += 1;
+            } else {
+                assert_eq!(alpha, 0, "pixel ({x}, {y}) outside the disk painted");
+            }
+        }
+    }
+    assert!(inside > 1000);
+    // Descending c: 8, 7, 6, 5, 4, 3, 2, 1 → rows 7, 3, 1, 0, 2, 4, 5, 6. NaN cells keep their row.
+    let csv = out[0].derived.to_csv(&Default::default());
+    let order: Vec<&str> = csv.lines().skip(1).map(|l| l.split(',').next().unwrap()).collect();
+    assert_eq!(order, ["7", "3", "1", "0", "2", "4", "5", "6"]);
+}
+
+#[test]
+fn constant_columns_and_single_rows_draw_with_warnings() {
+    let charts = r#"[[chart]]
+name = "m"
+kind = "splom"
+data = "t"
+columns = ["a", "k"]
+
+[[chart]]
+name = "p"
+kind = "parallel"
+data = "t"
+columns = ["k", "a"]
+
+[[chart]]
+name = "d"
+kind = "daisy"
+data = "t"
+columns = ["k", "a", "c"]
+
+[[chart]]
+name = "f"
+kind = "faces"
+data = "t"
+columns = ["a", "k"]
+
+[[chart]]
+name = "g"
+kind = "segments"
+data = "t"
+columns = ["a", "k"]"#;
+    let out = draw_ok(charts);
+    assert!(out[3].warnings.iter().any(|w| w.contains("`k` is constant")), "{:?}", out[3].warnings);
+    assert!(out[4].warnings.iter().any(|w| w.contains("`k` is constant")), "{:?}", out[4].warnings);
+    let one_row = "[data.t]\nvalues = [{ a = 1, b = 2, c = 3 }]\n\n[[chart]]\nname = \"m\"\nkind = \"splom\"\ndata = \"t\"\ncolumns = [\"a\", \"b\", \"c\"]\n\n[[chart]]\nname = \"p\"\nkind = \"parallel\"\ndata = \"t\"\ncolumns = [\"a\", \"b\"]\n\n[[chart]]\nname = \"d\"\nkind = \"daisy\"\ndata = \"t\"\ncolumns = [\"a\", \"b\", \"c\"]\n\n[[chart]]\nname = \"f\"\nkind = \"faces\"\ndata = \"t\"\ncolumns = [\"a\", \"b\"]\n\n[[chart]]\nname = \"g\"\nkind = \"segments\"\ndata = \"t\"\ncolumns = [\"a\", \"b\"]\n";
+    let out = Fixture::new(one_row, &[]).draw().unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(out.len(), 5);
+    for o in &out {
+        assert!(!leaves(o).is_empty(), "{} drew nothing", o.scene.title.clone().unwrap_or_default());
+    }
+}
+
+#[test]
+fn selection_mistakes_are_reported_where_they_are() {
+    let text = r#"
+[data.t]
+path = "t.csv"
+
+[data.u]
+values = [{ a = 1 }]
+
+[selection.low]
+data = "t"
+range = { aa = [2, 4] }
+
+[selection.empty]
+data = "t"
+
+[selection.backwards]
+data = "t"
+range = { a = [5, 1] }
+
+[[chart]]
+name = "s"
+kind = "scatter"
+data = "t"
+x = "a"
+y = "c"
+highlight = "lwo"
+
+[[chart]]
+name = "u"
+kind = "scatter"
+data = "u"
+x = "a"
+y = "a"
+highlight = "backwards"
+
+[[chart]]
+name = "c"
+kind = "line"
+data = "t"
+x = "a"
+y = "c"
+highlight = "low"
+"#;
+    let e = Fixture::new(text, &[("t.csv", DATA.as_bytes())]).load().map(|_| ()).unwrap_err();
+    assert!(e.contains("unknown selection `lwo`; did you mean `low`?"), "{e}");
+    assert!(e.contains("`selection.empty` selects nothing"), "{e}");
+    assert!(e.contains("range of `a` must be `[min, max]`"), "{e}");
+    assert!(e.contains("selection `backwards` is over data `t`, but this chart draws `u`"), "{e}");
+    assert!(e.contains("`highlight` is not drawn by `line` charts"), "{e}");
+    // The unknown column is found once the spec is otherwise valid.
+    let text = "[data.t]\npath = \"t.csv\"\n\n[selection.low]\ndata = \"t\"\nrange = { aa = [2, 4] }\n\n[[chart]]\nname = \"s\"\nkind = \"scatter\"\ndata = \"t\"\nx = \"a\"\ny = \"c\"\nhighlight = \"low\"\n";
+    let e = Fixture::new(text, &[("t.csv", DATA.as_bytes())]).load().map(|_| ()).unwrap_err();
+    assert!(e.contains("selection \"low\": data \"t\" has no column `aa`") && e.contains("did you mean `a`"), "{e}");
+}
+
+#[test]
+fn splom_of_text_columns_explains_itself() {
+    let e = draw_err("[[chart]]\nname = \"m\"\nkind = \"splom\"\ndata = \"t\"\ncolumns = [\"a\", \"kind\"]");
+    assert!(e.contains("column `kind` holds text; a scatter-plot matrix needs numbers"), "{e}");
+}
