@@ -17,3 +17,22 @@ python3 benches/peer_matplotlib.py benches/data/points.csv target/bench/out/peer
 echo "== small line chart to SVG + PNG, whole cold process"
 hyperfine -N --warmup 5 --runs 50 --export-markdown target/bench/line_small.md \
   -n dataink 'target/release/dataink render benches/line_small.toml --format svg,png --out target/bench/out --quiet'
+
+for spec in "table_50k 50000 6" "table_20k 20000 8" "table_1m 1000000 8"; do
+  set -- $spec
+  [ -f benches/data/$1.csv ] || python3 benches/make_table.py benches/data/$1.csv $2 $3
+done
+
+echo "== splom, 6 columns x 50,000 rows to PNG, whole process"
+hyperfine --warmup 1 --runs 5 --export-markdown target/bench/splom_50k.md \
+  -n dataink 'target/release/dataink render benches/splom_50k.toml --format png --out target/bench/out --quiet' \
+  -n pandas-scatter_matrix 'python3 benches/peer_pandas_splom.py benches/data/table_50k.csv target/bench/out/peer_splom.png'
+
+echo "== parallel coordinates, 8 columns x 20,000 rows to PNG, whole process"
+hyperfine --warmup 1 --runs 5 --export-markdown target/bench/parallel_20k.md \
+  -n dataink 'target/release/dataink render benches/parallel_20k.toml --format png --out target/bench/out --quiet' \
+  -n pandas-parallel_coordinates 'python3 benches/peer_pandas_parallel.py benches/data/table_20k.csv target/bench/out/peer_parallel.png'
+
+echo "== circle segments, 8 columns x 1,000,000 rows to PNG, whole process (no peer)"
+hyperfine --warmup 1 --runs 5 --export-markdown target/bench/segments_1m.md \
+  -n dataink 'target/release/dataink render benches/segments_1m.toml --format png --out target/bench/out --quiet'

@@ -178,7 +178,7 @@ impl Wheel {
         // Room outside the circle for tick labels and column names.
         let outer = theme.font_size * 3.2 + theme.label_size * 1.6;
         let label_w = axes.iter().map(|a| crate::text::measure(&a.title, theme.label_size).width).fold(0.0, f64::max);
-        let side = theme.font_size * 2.0 + label_w.min(theme.font_size * 10.0);
+        let side = theme.font_size * 1.5 + (0.75 * label_w).min(theme.font_size * 8.0);
         let radius = (area_w / 2.0 - side).min(room / 2.0 - outer);
         if radius < MIN_PLOT_SIDE {
             return Err(LayoutError::TooSmall { plot_width: area_w.max(0.0), plot_height: room.max(0.0) });
@@ -233,7 +233,13 @@ impl Wheel {
             }
             items.push(Item::new(Role::Axis, Shape::Path(ticks), Style::stroke(theme.axis, 1.0)));
             let mid = (a0 + a1) / 2.0;
-            let at = polar(self.center, self.radius + theme.font_size * 2.6, mid);
+            // Clear of the tick labels: their width counts sideways, their height up and down.
+            let label_w = axis::visible_ticks(scale, Side::Bottom, theme)
+                .iter()
+                .map(|t| crate::text::measure(&t.label, theme.font_size * 0.9).width)
+                .fold(0.0, f64::max);
+            let clearance = mid.sin().abs() * label_w + mid.cos().abs() * theme.font_size;
+            let at = polar(self.center, self.radius + theme.tick_length + theme.font_size * 0.9 + clearance, mid);
             let (anchor, baseline) = outward_anchor(mid);
             let title = truncate_to_width(&axis.title, theme.font_size * 12.0, theme.label_size);
             items.push(Item::text(
