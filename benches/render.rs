@@ -3,6 +3,9 @@
 //! - `scatter_1m/*`: one million points to a 1000×1000 canvas — mapping to a scene, drawing the
 //!   pixmap, and drawing plus PNG encoding.
 //! - `line_small/*`: a small line chart from spec text to SVG and PNG bytes, in process.
+//! - `lines/*`: 20,000 polylines × 8 vertices (parallel coordinates) on an 800×440 canvas — one
+//!   line batch drawn to a pixmap and to PNG bytes, against the same polylines as 20,000 stroked
+//!   path items through tiny-skia.
 
 mod common;
 
@@ -12,6 +15,7 @@ use std::hint::black_box;
 use dataink::data::{Column, ColumnValues, Table};
 use dataink::mark;
 use dataink::render;
+use dataink::scene::{Color, Item, LineBatch, PathCmd, PerPoint, Point, Role, Scene, Shape, Style};
 use dataink::spec::{Channel, Chart, ChartKind, ScatterOptions, SourceFile};
 
 /// One million points in three Gaussian-ish clusters from a fixed-seed generator.
@@ -93,5 +97,42 @@ fn line_small(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, scatter_1m, line_small);
+/// Parallel-coordinates-like polylines: `rows` rows across `axes` evenly spaced vertical axes
+/// of an 800×440 canvas, each vertex anywhere along its axis.
+fn polylines(rows: usize, axes: usize) -> Vec<Point> {
+    let mut uniform = common::uniform(0x9e37_79b9_7f4a_7c15);
+    let step = 720.0 / (axes - 1) as f64;
+    (0..rows * axes).map(|k| Point::new(40.0 + (k % axes) as f64 * step, 20.0 + 400.0 * uniform())).collect()
+}
+
+fn lines(c: &mut Criterion) {
+    let (rows, axes) = (20_000, 8);
+    let points = polylines(rows, axes);
+    let color = Color::rgb(30, 90, 200).with_opacity(0.2);
+    let scene = |items| Scene { width: 800.0, height: 440.0, background: Color::WHITE, title: None, items };
+    let batch = LineBatch { points: points.clone(), stride: axes, color: PerPoint::Uniform(color), width: 1.0 };
+    let batch_scene = scene(vec![Item::new(Role::DataMark, Shape::Lines(batch), Style::default())]);
+    let path_items = points
+        .chunks_exact(axes)
+        .map(|line| {
+            let cmds = line
+                .iter()
+                .enumerate()
+                .map(|(k, p)| if k == 0 { PathCmd::MoveTo(*p) } else { PathCmd::LineTo(*p) })
+                .collect();
+            Item::new(Role::DataMark, Shape::Path(cmds), Style::stroke(color, 1.0))
+        })
+        .collect();
+    let paths_scene = scene(path_items);
+    let mut group = c.benchmark_group("lines");
+    group.sample_size(10);
+    group.bench_function("batch_png_render", |b| b.iter(|| render::png::to_pixmap(black_box(&batch_scene), 1.0)));
+    group.bench_function("batch_png_render_and_encode", |b| {
+        b.iter(|| render::png::to_png(black_box(&batch_scene), 1.0))
+    });
+    group.bench_function("paths_png_render", |b| b.iter(|| render::png::to_pixmap(black_box(&paths_scene), 1.0)));
+    group.finish();
+}
+
+criterion_group!(benches, scatter_1m, line_small, lines);
 criterion_main!(benches);

@@ -4,6 +4,7 @@
 //! coordinates are not finite, and never fail on a valid scene — the only error is a PNG canvas
 //! that is non-finite, empty or over [`MAX_CANVAS_PIXELS`], caught before any allocation.
 
+mod lines;
 pub mod png;
 mod points;
 pub mod svg;

@@ -153,7 +153,7 @@ fn stamp_coverage(size: usize, cx: f64, cy: f64, r: f64, ring: Option<f64>) -> O
 /// `x * c / 255` on all four 8-bit lanes of `x`, with tiny-skia's rounding (`(v + 255) >> 8`),
 /// which is exact for `c` = 0 and `c` = 255.
 #[inline(always)]
-fn mul_lanes(x: u32, c: u32) -> u32 {
+pub(super) fn mul_lanes(x: u32, c: u32) -> u32 {
     let rb = (((x & 0x00FF_00FF) * c + 0x00FF_00FF) >> 8) & 0x00FF_00FF;
     let ga = (((x >> 8) & 0x00FF_00FF) * c + 0x00FF_00FF) & 0xFF00_FF00;
     rb | ga
@@ -161,12 +161,12 @@ fn mul_lanes(x: u32, c: u32) -> u32 {
 
 /// Source-over of an already coverage-scaled premultiplied `s` onto premultiplied `dst`.
 #[inline(always)]
-fn over(dst: u32, s: u32) -> u32 {
+pub(super) fn over(dst: u32, s: u32) -> u32 {
     s + mul_lanes(dst, 255 - (s >> 24))
 }
 
 /// A straight-alpha colour as packed premultiplied RGBA (little-endian byte order R, G, B, A).
-fn premultiplied(c: Color) -> u32 {
+pub(super) fn premultiplied(c: Color) -> u32 {
     let a = u32::from(c.a);
     let pm = |v: u8| (u32::from(v) * a + 127) / 255;
     pm(c.r) | (pm(c.g) << 8) | (pm(c.b) << 16) | (a << 24)
@@ -181,7 +181,7 @@ enum Source<'a> {
 }
 
 /// Coverage-scaled values of a premultiplied colour for every coverage 0..=255.
-fn coverage_table(src: u32) -> Box<[u32; 256]> {
+pub(super) fn coverage_table(src: u32) -> Box<[u32; 256]> {
     let mut t = Box::new([0u32; 256]);
     for (c, v) in (0u32..).zip(t.iter_mut()) {
         *v = mul_lanes(src, c);
@@ -630,7 +630,7 @@ fn draw_batch_on(pixmap: &mut Pixmap, batch: &PointBatch, scale: f64, clip: &Cli
 
 /// Runs `work` on every item: on the calling thread when `threads` is 1, otherwise on rayon's
 /// shared pool (so charts rendered in parallel do not oversubscribe the cores).
-fn in_parallel<T: Send>(threads: usize, items: Vec<T>, work: impl Fn(T) + Sync + Send) {
+pub(super) fn in_parallel<T: Send>(threads: usize, items: Vec<T>, work: impl Fn(T) + Sync + Send) {
     use rayon::prelude::*;
     if threads <= 1 || items.len() <= 1 {
         items.into_iter().for_each(work);

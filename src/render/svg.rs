@@ -8,7 +8,9 @@
 
 use std::fmt::Write as _;
 
-use crate::scene::{Anchor, Color, Item, PathCmd, PerPoint, PointBatch, Raster, Scene, Shape, Style, Text};
+use crate::scene::{
+    Anchor, Color, Item, LineBatch, PathCmd, PerPoint, Point, PointBatch, Raster, Scene, Shape, Style, Text,
+};
 use crate::text::{FONT_FAMILY, FONT_WEIGHT, baseline_shift, sanitize};
 
 use super::{clean_path, dash_pattern, finite_point, normalized_rect, role_name, visible_stroke};
@@ -87,6 +89,7 @@ impl Writer {
             Shape::Text(text) => self.text(&common, text),
             Shape::Image(raster) => self.image(&common, raster),
             Shape::Points(batch) => self.points(item, &common, batch),
+            Shape::Lines(batch) => self.lines(item, &common, batch),
             Shape::Group { items, clip } => {
                 let clip = match clip {
                     Some(c) => match normalized_rect(*c) {
@@ -205,6 +208,41 @@ impl Writer {
         }
         self.out.push_str("</g>\n");
     }
+
+    /// Writes a line batch as one `<g>` carrying the shared style and one `<path>` per polyline
+    /// (with `data-row` when the item has one row per polyline). A non-finite vertex ends its
+    /// subpath; polylines with nothing to draw are left out.
+    fn lines(&mut self, item: &Item, common: &str, batch: &LineBatch) {
+        let visible_width = batch.width.is_finite() && batch.width > 0.0;
+        let stroke_color = |c: Option<Color>| match c {
+            Some(c) if visible_width => stroke_color_attrs(c),
+            _ => String::new(),
+        };
+        let shared_color = match &batch.color {
+            PerPoint::Uniform(c) => stroke_color(Some(*c)),
+            PerPoint::Each(_) => String::new(),
+        };
+        let width = if visible_width { format!(" stroke-width=\"{}\"", num(batch.width)) } else { String::new() };
+        let _ = writeln!(self.out, "<g{common} fill=\"none\"{shared_color}{width} stroke-linejoin=\"round\">");
+        let per_line_rows = item.rows.len() == batch.len() && item.rows.len() > 1;
+        for k in 0..batch.len() {
+            let Some(line) = batch.polyline(k) else { break };
+            let d = polyline_data(line);
+            if d.is_empty() {
+                continue;
+            }
+            let color = match &batch.color {
+                PerPoint::Uniform(_) => String::new(),
+                PerPoint::Each(_) => stroke_color(batch.color.at(k)),
+            };
+            let row = match item.rows.get(k) {
+                Some(row) if per_line_rows => format!(" data-row=\"{row}\""),
+                _ => String::new(),
+            };
+            let _ = writeln!(self.out, "<path d=\"{d}\"{color}{row}/>");
+        }
+        self.out.push_str("</g>\n");
+    }
 }
 
 /// `data-role`, `data-row` (single-row items) and `data-label` attributes.
@@ -245,6 +283,16 @@ fn stroke_attrs(stroke: &Option<crate::scene::Stroke>) -> String {
         let _ = write!(out, " stroke-dasharray=\"{}\"", list.join(" "));
     }
     out
+}
+
+/// `stroke` and `stroke-opacity` attributes of a colour (nothing when it is fully transparent:
+/// SVG's default is no stroke).
+fn stroke_color_attrs(c: Color) -> String {
+    match c.a {
+        0 => String::new(),
+        255 => format!(" stroke=\"{}\"", c.hex()),
+        _ => format!(" stroke=\"{}\" stroke-opacity=\"{}\"", c.hex(), opacity(c)),
+    }
 }
 
 /// Fill and stroke attributes of a shape.
@@ -299,6 +347,26 @@ fn path_data(cmds: &[PathCmd]) -> String {
             }
             PathCmd::Close => write!(d, "Z"),
         };
+    }
+    d
+}
+
+/// SVG path data of a polyline: one `M…L…` subpath per run of at least two finite vertices.
+fn polyline_data(line: &[Point]) -> String {
+    let mut d = String::with_capacity(line.len() * 16);
+    for (k, p) in line.iter().enumerate() {
+        if !finite_point(*p) {
+            continue;
+        }
+        let prev = k > 0 && line.get(k - 1).is_some_and(|q| finite_point(*q));
+        let next = line.get(k + 1).is_some_and(|q| finite_point(*q));
+        if !prev && !next {
+            continue;
+        }
+        if !d.is_empty() {
+            d.push(' ');
+        }
+        let _ = write!(d, "{}{} {}", if prev { 'L' } else { 'M' }, num(p.x), num(p.y));
     }
     d
 }
@@ -434,6 +502,24 @@ pub(crate) mod tests {
                     ],
                     Some(Rect::new(200.0, 100.0, 190.0, 190.0)),
                 ),
+                Item::new(
+                    Role::DataMark,
+                    Shape::Lines(LineBatch {
+                        points: vec![
+                            Point::new(20.0, 60.0),
+                            Point::new(60.0, 90.0),
+                            Point::new(100.0, 70.0),
+                            Point::new(20.0, 80.0),
+                            Point::new(f64::NAN, 90.0),
+                            Point::new(100.0, 95.0),
+                        ],
+                        stride: 3,
+                        color: PerPoint::Uniform(Color::rgb(120, 0, 160).with_opacity(0.3)),
+                        width: 1.5,
+                    }),
+                    Style::default(),
+                )
+                .with_rows(vec![4, 5]),
                 Item::text(Role::Title, t(Point::new(200.0, 10.0), hostile, Anchor::Middle, Baseline::Top, 0.0)),
                 Item::text(
                     Role::AxisTitle,
@@ -489,6 +575,59 @@ pub(crate) mod tests {
         assert_eq!(num(1.005e3), "1005");
         assert_eq!(num(2.5), "2.5");
         assert_eq!(num(-12.34567), "-12.35");
+    }
+
+    #[test]
+    fn line_batches_write_one_path_per_polyline() {
+        let p = Point::new;
+        let lines = |color, rows: Vec<u32>| {
+            let batch = LineBatch {
+                points: vec![
+                    p(10.0, 10.0),
+                    p(20.0, 15.555),
+                    p(30.0, 10.0),
+                    p(40.0, 12.0),
+                    p(10.0, 30.0),
+                    p(20.0, 35.0),
+                    p(f64::NAN, 1.0),
+                    p(40.0, 30.0),
+                ],
+                stride: 4,
+                color,
+                width: 1.25,
+            };
+            let item = Item::new(Role::DataMark, Shape::Lines(batch), Style::default()).with_rows(rows);
+            to_svg(&Scene { width: 50.0, height: 50.0, background: Color::WHITE, title: None, items: vec![item] })
+        };
+        let svg = lines(PerPoint::Uniform(Color::rgb(0, 0, 255).with_opacity(0.2)), vec![3, 8]);
+        assert!(usvg::Tree::from_str(&svg, &usvg::Options::default()).is_ok(), "{svg}");
+        assert!(
+            svg.contains(
+                "<g data-role=\"data-mark\" fill=\"none\" stroke=\"#0000ff\" stroke-opacity=\"0.2\" \
+                 stroke-width=\"1.25\" stroke-linejoin=\"round\">"
+            ),
+            "{svg}"
+        );
+        assert_eq!(svg.matches("<path").count(), 2, "{svg}");
+        assert!(svg.contains("<path d=\"M10 10 L20 15.56 L30 10 L40 12\" data-row=\"3\"/>"), "{svg}");
+        // The NaN vertex splits the second polyline: two subpaths, and the lone vertex after it
+        // (a run of one) is dropped.
+        let second = svg.lines().find(|l| l.contains("data-row=\"8\"")).unwrap_or_default();
+        assert_eq!(second.matches('M').count(), 1, "{second}");
+        let svg = lines(PerPoint::Uniform(Color::BLACK), vec![]);
+        assert!(svg.contains("<path d=\"M10 30 L20 35\"/>"), "{svg}");
+        // A vertex that is finite on both sides of a break starts a second subpath.
+        let batch = LineBatch {
+            points: vec![p(1.0, 1.0), p(2.0, 2.0), p(f64::NAN, 3.0), p(4.0, 4.0), p(5.0, 5.0)],
+            stride: 5,
+            color: PerPoint::Each(vec![Color::rgb(255, 0, 0)]),
+            width: 1.0,
+        };
+        let item = Item::new(Role::DataMark, Shape::Lines(batch), Style::default());
+        let svg =
+            to_svg(&Scene { width: 10.0, height: 10.0, background: Color::WHITE, title: None, items: vec![item] });
+        assert!(svg.contains("<path d=\"M1 1 L2 2 M4 4 L5 5\" stroke=\"#ff0000\"/>"), "{svg}");
+        assert_eq!(svg.matches('M').count(), 2, "{svg}");
     }
 
     #[test]

@@ -257,6 +257,42 @@ pub struct PointBatch {
     pub stroke: Option<Stroke>,
 }
 
+/// Many open polylines with the same number of vertices, drawn the same way: one per data row
+/// (parallel coordinates, daisy charts), kept compact for tens of thousands of rows.
+#[derive(Clone, Debug, PartialEq)]
+pub struct LineBatch {
+    /// Vertices, `stride` per polyline, polylines in drawing order. A non-finite vertex breaks its polyline (the
+    /// segments touching it are skipped).
+    pub points: Vec<Point>,
+    /// Vertices per polyline (at least 2).
+    pub stride: usize,
+    /// Stroke colour (alpha included), once or per polyline.
+    pub color: PerPoint<Color>,
+    /// Stroke width in canvas units.
+    pub width: f64,
+}
+
+impl LineBatch {
+    /// Number of whole polylines (`points.len() / stride`; trailing vertices that do not make a whole polyline
+    /// are ignored, and a stride below 2 gives none).
+    pub fn len(&self) -> usize {
+        if self.stride < 2 { 0 } else { self.points.len() / self.stride }
+    }
+
+    /// Whether the batch has no whole polyline.
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// The vertices of polyline `i` (`None` past the last whole polyline).
+    pub fn polyline(&self, i: usize) -> Option<&[Point]> {
+        if i >= self.len() {
+            return None;
+        }
+        self.points.get(i * self.stride..(i + 1) * self.stride)
+    }
+}
+
 /// An RGBA raster placed into a rectangle of the canvas (heatmaps, LIC, pixel displays).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Raster {
@@ -292,6 +328,8 @@ pub enum Shape {
     Image(Raster),
     /// Many circles at once.
     Points(PointBatch),
+    /// Many polylines at once.
+    Lines(LineBatch),
     /// A group of items, optionally clipped to a rectangle.
     Group {
         /// Children, drawn in order.
@@ -311,7 +349,7 @@ pub struct Item {
     /// How it is painted (ignored for text, images and groups).
     pub style: Style,
     /// Source rows: for a data mark the rows it encodes (for a point batch, one per point, in
-    /// order); empty for everything else.
+    /// order; for a line batch, one per polyline, in order); empty for everything else.
     pub rows: Vec<u32>,
     /// An optional human-readable name (e.g. the series or axis), used by lint messages and SVG ids.
     pub label: Option<String>,
@@ -419,6 +457,12 @@ impl Item {
                     *c = c.offset(dx, dy);
                 }
                 Shape::Points(b)
+            }
+            Shape::Lines(mut b) => {
+                for p in &mut b.points {
+                    *p = p.offset(dx, dy);
+                }
+                Shape::Lines(b)
             }
             Shape::Group { items, clip } => Shape::Group {
                 items: items.into_iter().map(|i| i.translated(dx, dy)).collect(),
