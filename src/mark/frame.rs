@@ -6,7 +6,9 @@ use crate::guide::Theme;
 use crate::guide::layout::{self, Frame, FrameSpec, PositionAxis};
 use crate::guide::legend::Legend;
 use crate::guide::legend::truncate_to_width;
-use crate::scene::{Anchor, Baseline, Color, Item, PathCmd, Point, Rect, Role, Scene, Shape, Style, Text};
+use crate::scene::{
+    Anchor, Baseline, Color, Item, LineBatch, PathCmd, PerPoint, Point, Rect, Role, Scene, Shape, Style, Text,
+};
 use crate::spec::Chart;
 
 /// Lay out the frame of chart `index` around its axes and legends.
@@ -92,7 +94,7 @@ pub fn polyline(points: &[(f64, f64)], closed: bool, to_px: &impl Fn((f64, f64))
 }
 
 /// Polylines of `stride` vertices each, one per row of `rows` (in order), stroked `width` wide
-/// in the row's colour. A non-finite vertex breaks its polyline.
+/// in the row's colour, as one compact batch. A non-finite vertex breaks its polyline.
 pub fn polylines(
     vertices: Vec<Point>,
     stride: usize,
@@ -100,21 +102,14 @@ pub fn polylines(
     color: impl Fn(u32) -> Color,
     width: f64,
 ) -> Vec<Item> {
-    let mut items = Vec::with_capacity(rows.len());
-    for (line, &row) in vertices.chunks(stride.max(1)).zip(rows) {
-        let mut cmds = Vec::with_capacity(line.len());
-        let mut pen_down = false;
-        for p in line {
-            if !(p.x.is_finite() && p.y.is_finite()) {
-                pen_down = false;
-                continue;
-            }
-            cmds.push(if pen_down { PathCmd::LineTo(*p) } else { PathCmd::MoveTo(*p) });
-            pen_down = true;
-        }
-        items.push(Item::new(Role::DataMark, Shape::Path(cmds), Style::stroke(color(row), width)).with_rows(vec![row]));
+    if rows.is_empty() {
+        return Vec::new();
     }
-    items
+    let colors: Vec<Color> = rows.iter().map(|&r| color(r)).collect();
+    let color =
+        if colors.windows(2).all(|w| w[0] == w[1]) { PerPoint::Uniform(colors[0]) } else { PerPoint::Each(colors) };
+    let batch = LineBatch { points: vertices, stride, color, width };
+    vec![Item::new(Role::DataMark, Shape::Lines(batch), Style::default()).with_rows(rows.to_vec())]
 }
 
 /// The canvas of a kind that lays out its own panels (surface, hyperslice): size, theme, the room
