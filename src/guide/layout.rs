@@ -5,7 +5,7 @@ use std::fmt;
 
 use super::Theme;
 use super::axis::{self, Side};
-use super::legend::{Legend, truncate_to_width};
+use super::legend::{self, Legend, truncate_to_width};
 use super::scale::{BandScale, LinearScale, LogScale, Scale, ScaleError, TimeScale};
 use crate::scene::{Anchor, Baseline, Item, Point, Rect, Role, Shape, Style, Text};
 use crate::spec::ScaleKind;
@@ -151,9 +151,8 @@ pub fn cartesian(spec: &FrameSpec) -> Result<Frame, LayoutError> {
     let top = m + title.map(|_| line_block(theme.title_size) + theme.font_size * 0.4).unwrap_or(theme.font_size * 0.5);
     let bottom_reserved = m + caption.map(|_| line_block(theme.caption_size)).unwrap_or(0.0);
     let legend_room = (spec.height - top - bottom_reserved).max(0.0);
-    let legend_sizes: Vec<(f64, f64)> = spec.legends.iter().map(|l| l.extent(theme, legend_room)).collect();
-    let legend_width = legend_sizes.iter().map(|s| s.0).fold(0.0, f64::max);
-    let right = m + if legend_width > 0.0 { legend_width + theme.font_size * 1.5 } else { 0.0 };
+    let legend_width = legend::stack_width(&spec.legends, theme, legend_room);
+    let right = m + legend::stack_room(&spec.legends, theme, legend_room);
 
     let x_title = Some(spec.x.title.as_str());
     let y_title = Some(spec.y.title.as_str());
@@ -242,11 +241,6 @@ pub fn cartesian(spec: &FrameSpec) -> Result<Frame, LayoutError> {
             },
         ));
     }
-    let mut legend_y = top;
-    let legend_x = spec.width - m - legend_width;
-    for (legend, (_, h)) in spec.legends.iter().zip(&legend_sizes) {
-        over.extend(legend.draw(Point::new(legend_x, legend_y), theme, legend_room));
-        legend_y += h + theme.font_size * 1.5;
-    }
+    over.extend(legend::draw_stack(&spec.legends, Point::new(spec.width - m - legend_width, top), theme, legend_room));
     Ok(Frame { plot, x, y, under, over })
 }

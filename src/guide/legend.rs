@@ -52,6 +52,14 @@ pub enum Legend {
         /// Colour of each interval, bottom to top.
         colors: Vec<Color>,
     },
+    /// Lines of text under a title: a key that is not a colour or size (e.g. which column
+    /// drives which facial feature).
+    Notes {
+        /// Legend title.
+        title: String,
+        /// The lines, top to bottom.
+        lines: Vec<String>,
+    },
     /// Reference circles for a size (area) encoding.
     Size {
         /// Legend title.
@@ -96,6 +104,10 @@ impl Legend {
                     (COLOR_BAR_WIDTH + theme.tick_length + 3.0 + label_w).max(measure(title, theme.label_size).width);
                 (w, h + theme.font_size * 0.5)
             }
+            Legend::Notes { title, lines } => {
+                let w = lines.iter().map(|l| measure(l, theme.font_size).width).fold(0.0, f64::max);
+                (w.max(measure(title, theme.label_size).width), title_h + row * lines.len() as f64)
+            }
             Legend::Size { title, entries, .. } => {
                 let max_r = entries.iter().map(|e| e.1).fold(0.0, f64::max);
                 let label_w = entries.iter().map(|(l, _)| measure(l, theme.font_size).width).fold(0.0, f64::max);
@@ -111,6 +123,7 @@ impl Legend {
             Legend::Categorical { title, .. }
             | Legend::ColorBar { title, .. }
             | Legend::Steps { title, .. }
+            | Legend::Notes { title, .. }
             | Legend::Size { title, .. } => title,
         }
     }
@@ -194,6 +207,11 @@ impl Legend {
                 }
                 items.push(Item::new(Role::Legend, Shape::Path(ticks), Style::stroke(theme.axis, 1.0)));
             }
+            Legend::Notes { lines, .. } => {
+                for (i, line) in lines.iter().enumerate() {
+                    items.push(entry_label(Point::new(at.x, top + row * (i as f64 + 0.5)), line, theme));
+                }
+            }
             Legend::Size { entries, color, .. } => {
                 let max_r = entries.iter().map(|e| e.1).fold(0.0, f64::max);
                 let mut y = top;
@@ -215,6 +233,33 @@ impl Legend {
         }
         items
     }
+}
+
+/// Vertical gap between stacked legends.
+fn stack_gap(theme: &Theme) -> f64 {
+    theme.font_size * 1.5
+}
+
+/// Width of a column of legends stacked top to bottom (0 for none).
+pub fn stack_width(legends: &[Legend], theme: &Theme, available_height: f64) -> f64 {
+    legends.iter().map(|l| l.extent(theme, available_height).0).fold(0.0, f64::max)
+}
+
+/// Room a legend column takes beside a plot: its width plus a gap, or 0 without legends.
+pub fn stack_room(legends: &[Legend], theme: &Theme, available_height: f64) -> f64 {
+    let w = stack_width(legends, theme, available_height);
+    if w > 0.0 { w + theme.font_size * 1.5 } else { 0.0 }
+}
+
+/// Draw legends top to bottom from `at` (the column's top-left corner).
+pub fn draw_stack(legends: &[Legend], at: Point, theme: &Theme, available_height: f64) -> Vec<Item> {
+    let mut items = Vec::new();
+    let mut y = at.y;
+    for legend in legends {
+        items.extend(legend.draw(Point::new(at.x, y), theme, available_height));
+        y += legend.extent(theme, available_height).1 + stack_gap(theme);
+    }
+    items
 }
 
 /// Labels of the step edges: the interior edges formatted consistently (as tick labels of their

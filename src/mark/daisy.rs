@@ -6,7 +6,7 @@ use std::f64::consts::TAU;
 
 use super::derived::{Derived, DerivedColumn};
 use super::encode::{self, Positioner};
-use super::frame::{self, polylines};
+use super::frame::{self, polar, polylines};
 use super::{ChartOutput, MarkError, highlight, with_default_size};
 use crate::data::{Column, Table};
 use crate::guide::Theme;
@@ -14,7 +14,7 @@ use crate::guide::axis::{self, Side};
 use crate::guide::layout::{LayoutError, MIN_PLOT_SIDE, PositionAxis, build_scale};
 use crate::guide::legend::{Legend, Symbol, truncate_to_width};
 use crate::guide::scale::Scale;
-use crate::scene::{Anchor, Baseline, Item, PathCmd, Point, Rect, Role, Scene, Shape, Stroke, Style, Text};
+use crate::scene::{Anchor, Baseline, Item, PathCmd, Point, Role, Shape, Stroke, Style, Text};
 use crate::selection::Highlight;
 use crate::spec::{ChannelOptions, Chart, DaisyOptions};
 
@@ -26,11 +26,6 @@ const ARC_GAP: f64 = 0.22;
 const CURVE_STEPS: usize = 10;
 /// How far towards the centre the curves between arcs bend (0: straight chords).
 const BEND: f64 = 0.55;
-
-/// A point at `radius` from `center`, `angle` radians clockwise from 12 o'clock.
-pub fn polar(center: Point, radius: f64, angle: f64) -> Point {
-    Point::new(center.x + radius * angle.sin(), center.y - radius * angle.cos())
-}
 
 /// The angular extent `(start, end)` of column `i`'s arc out of `k`, clockwise from the top.
 pub fn arc_span(i: usize, k: usize) -> (f64, f64) {
@@ -49,17 +44,8 @@ pub fn draw(
 ) -> Result<ChartOutput, MarkError> {
     let chart = &with_default_size(chart, DEFAULT_SIZE);
     let columns = encode::columns(chart, index, "columns", &options.columns, table)?;
-    let color_col = options.color.as_ref().and_then(|c| table.column(c.field())).filter(|c| c.numbers().is_some());
-    let mut numeric: Vec<(&str, &Column)> =
-        columns.iter().filter(|(_, c)| c.numbers().is_some()).map(|(o, c)| (o.field.as_str(), *c)).collect();
-    if let (Some(col), Some(c)) = (color_col, &options.color) {
-        numeric.push((c.field(), col));
-    }
-    let (rows, warning) = encode::finite_rows(&chart.name, table.rows, &numeric);
-    let warnings: Vec<String> = warning.into_iter().collect();
-    if rows.is_empty() {
-        return Err(encode::no_rows(chart, index, table, warnings.first().map(String::as_str)));
-    }
+    let fields: Vec<(&str, &Column)> = columns.iter().map(|(o, c)| (o.field.as_str(), *c)).collect();
+    let (rows, warnings) = encode::drawn_rows(chart, index, table, fields, options.color.as_ref())?;
     let n = rows.len();
     let (colors, color_legend) = encode::color_encoding(
         chart,
@@ -76,18 +62,17 @@ pub fn draw(
         axes.push(encode::integer_ticks(axis, col, &rows));
     }
     let mut legends: Vec<Legend> = color_legend.into_iter().collect();
-    if let Some(h) = highlight {
-        legends.push(highlight::legend(h, rows.iter().filter(|&&r| h.contains(r)).count(), n, Symbol::Line));
-    }
-    let theme = Theme::with_font_size(chart.font_size.unwrap_or(12.0));
-    let wheel = Wheel::lay_out(chart, &theme, &axes, &legends).map_err(|e| MarkError::layout(index, &chart.name, e))?;
+    legends.extend(highlight.map(|h| highlight::legend(h, &rows, Symbol::Line)));
+    let canvas = frame::PanelCanvas::new(chart, legends);
+    let theme = &canvas.theme;
+    let wheel = Wheel::lay_out(&canvas, &axes).map_err(|e| MarkError::layout(index, &chart.name, e))?;
 
     let k = columns.len();
     let positioners: Vec<Positioner> =
         wheel.scales.iter().zip(&columns).map(|(s, (_, c))| Positioner::new(s, c)).collect();
     let opacity = options.opacity.unwrap_or_else(|| super::parallel::default_opacity(n));
     let width = options.stroke_width.unwrap_or(if n > 1_000 { 1.0 } else { 1.3 });
-    let curves = |rows: &[u32], context: bool| {
+    let marks = highlight::layers(&rows, highlight, |rows, context| {
         let mut vertices = Vec::with_capacity(rows.len() * (k * CURVE_STEPS + 1));
         for &r in rows {
             let points: Vec<Point> =
@@ -107,83 +92,43 @@ pub fn draw(
             }
             vertices.push(points[0]);
         }
-        let color = |r: u32| match (&colors, context) {
-            (_, true) => highlight::CONTEXT.with_opacity(opacity),
-            (c, false) => c.color_of(r).with_opacity(opacity),
-        };
+        let color = |r| highlight::row_color(&colors, r, context, opacity);
         polylines(vertices, k * CURVE_STEPS + 1, rows, color, width)
-    };
+    });
 
-    let mut items = vec![Item::new(
-        Role::Background,
-        Shape::Rect(Rect::new(0.0, 0.0, wheel.width, wheel.height)),
-        Style::fill(theme.background),
-    )];
-    let mut marks = Vec::new();
-    match highlight {
-        Some(h) => {
-            let (context, selected) = h.split(&rows);
-            marks.extend(curves(&context, true));
-            marks.extend(curves(&selected, false));
-        }
-        None => marks.extend(curves(&rows, false)),
-    }
+    let mut items = vec![canvas.background()];
     items.push(Item::group(Role::DataMark, marks, None).labelled(chart.name.clone()));
-    items.extend(wheel.arcs(&axes, &theme));
+    items.extend(wheel.arcs(&axes, theme));
     if let Some(h) = highlight {
         items.extend(wheel.brushes(h, &columns));
     }
-    items.extend(frame::title_and_caption(chart, &theme, theme.margin, None));
-    let mut y = wheel.top;
-    for legend in &legends {
-        let (_, h) = legend.extent(&theme, wheel.room);
-        items.extend(legend.draw(Point::new(wheel.width - theme.margin - wheel.legend_w, y), &theme, wheel.room));
-        y += h + theme.font_size * 1.5;
-    }
-
     let derived = derived_vertices(&rows, &columns, &positioners, &wheel, highlight);
-    let scene = Scene {
-        width: wheel.width,
-        height: wheel.height,
-        background: theme.background,
-        title: chart.title.clone(),
-        items,
-    };
-    Ok(ChartOutput { scene, derived, warnings, geojson: None })
+    Ok(ChartOutput { scene: canvas.scene(chart, items, None), derived, warnings, geojson: None })
 }
 
 /// The circle and the arc scales. Each scale maps a value to a length along its arc (0 at the
 /// arc's start); [`Wheel::angle`] turns that into an angle.
 struct Wheel {
-    width: f64,
-    height: f64,
-    top: f64,
-    room: f64,
     center: Point,
     radius: f64,
     scales: Vec<Scale>,
-    legend_w: f64,
 }
 
 impl Wheel {
-    fn lay_out(chart: &Chart, theme: &Theme, axes: &[PositionAxis], legends: &[Legend]) -> Result<Wheel, LayoutError> {
-        let [width, height] = chart.size.unwrap_or(DEFAULT_SIZE);
+    /// The largest circle that leaves room for tick labels and column names in the canvas' room.
+    fn lay_out(canvas: &frame::PanelCanvas, axes: &[PositionAxis]) -> Result<Wheel, LayoutError> {
+        let theme = &canvas.theme;
         let m = theme.margin;
-        let top = m + chart.title.as_ref().map_or(theme.font_size * 0.5, |_| theme.title_size * 1.8);
-        let bottom = m + chart.caption.as_ref().map_or(0.0, |_| theme.caption_size * 1.8);
-        let room = height - top - bottom;
-        let legend_w = legends.iter().map(|l| l.extent(theme, room).0).fold(0.0, f64::max);
-        let right = m + if legend_w > 0.0 { legend_w + theme.font_size * 1.5 } else { 0.0 };
-        let area_w = width - m - right;
+        let area_w = canvas.width - m - m - canvas.legend_room();
         // Room outside the circle for tick labels and column names.
         let outer = theme.font_size * 3.2 + theme.label_size * 1.6;
         let label_w = axes.iter().map(|a| crate::text::measure(&a.title, theme.label_size).width).fold(0.0, f64::max);
         let side = theme.font_size * 1.5 + (0.75 * label_w).min(theme.font_size * 8.0);
-        let radius = (area_w / 2.0 - side).min(room / 2.0 - outer);
+        let radius = (area_w / 2.0 - side).min(canvas.room / 2.0 - outer);
         if radius < MIN_PLOT_SIDE {
-            return Err(LayoutError::TooSmall { plot_width: area_w.max(0.0), plot_height: room.max(0.0) });
+            return Err(LayoutError::TooSmall { plot_width: area_w.max(0.0), plot_height: canvas.room.max(0.0) });
         }
-        let center = Point::new(m + area_w / 2.0, top + room / 2.0);
+        let center = Point::new(m + area_w / 2.0, canvas.top() + canvas.room / 2.0);
         let k = axes.len();
         let mut scales = Vec::with_capacity(k);
         for (i, axis) in axes.iter().enumerate() {
@@ -193,7 +138,7 @@ impl Wheel {
             let range = (a0 * radius, a1 * radius);
             scales.push(build_scale(axis, range, target).map_err(|error| LayoutError::Scale { axis: "x", error })?);
         }
-        Ok(Wheel { width, height, top, room, center, radius, scales, legend_w })
+        Ok(Wheel { center, radius, scales })
     }
 
     /// The angle of a position from an arc's scale (which maps values to arc length from 12

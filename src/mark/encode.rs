@@ -125,6 +125,30 @@ pub fn finite_rows(chart: &str, rows: usize, numeric: &[(&str, &Column)]) -> (Ve
     (kept, Some(warning))
 }
 
+/// The rows a chart draws: the rows finite in every numeric column of `numeric` and in the
+/// colour column when it is numeric (the shared non-finite policy), with its warning; or the
+/// no-rows error when none is left.
+pub fn drawn_rows<'a>(
+    chart: &crate::spec::Chart,
+    index: usize,
+    table: &'a Table,
+    mut numeric: Vec<(&'a str, &'a Column)>,
+    color: Option<&'a ColorChannel>,
+) -> Result<(Vec<u32>, Vec<String>), MarkError> {
+    numeric.retain(|(_, c)| c.numbers().is_some());
+    if let Some(c) = color
+        && let Some(col) = table.column(c.field()).filter(|col| col.numbers().is_some())
+    {
+        numeric.push((c.field(), col));
+    }
+    let (rows, warning) = finite_rows(&chart.name, table.rows, &numeric);
+    let warnings: Vec<String> = warning.into_iter().collect();
+    if rows.is_empty() {
+        return Err(no_rows(chart, index, table, warnings.first().map(String::as_str)));
+    }
+    Ok((rows, warnings))
+}
+
 /// The error for a chart left with no rows: an empty table, or every row dropped by the
 /// non-finite policy (`dropped` is that warning, which names the columns).
 pub fn no_rows(chart: &crate::spec::Chart, index: usize, table: &Table, dropped: Option<&str>) -> MarkError {
@@ -155,26 +179,19 @@ pub fn values_at(column: &Column, rows: &[u32]) -> Vec<f64> {
 
 /// The extent of `values` over `rows` (finite values only).
 pub fn extent(values: &[f64], rows: &[u32]) -> Option<(f64, f64)> {
-    let mut lo = f64::INFINITY;
-    let mut hi = f64::NEG_INFINITY;
     if rows.len() == values.len() {
         // Rows are distinct and sorted, so this is every row: scan the values directly.
-        for &v in values {
-            if v.is_finite() {
-                lo = lo.min(v);
-                hi = hi.max(v);
-            }
-        }
-        return (lo <= hi).then_some((lo, hi));
+        return finite_extent(values.iter().copied());
     }
-    for &r in rows {
-        if let Some(&v) = values.get(r as usize)
-            && v.is_finite()
-        {
-            lo = lo.min(v);
-            hi = hi.max(v);
-        }
-    }
+    finite_extent(rows.iter().filter_map(|&r| values.get(r as usize).copied()))
+}
+
+/// The smallest and largest finite value (`None` when there is none).
+pub fn finite_extent(values: impl IntoIterator<Item = f64>) -> Option<(f64, f64)> {
+    let (lo, hi) = values
+        .into_iter()
+        .filter(|v| v.is_finite())
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| (lo.min(v), hi.max(v)));
     (lo <= hi).then_some((lo, hi))
 }
 

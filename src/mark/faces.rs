@@ -8,13 +8,11 @@ use super::face::{FacePaint, FaceParams, Feature, face_items};
 use super::frame;
 use super::{ChartOutput, MarkError, highlight, with_default_size};
 use crate::data::{Column, Table};
-use crate::guide::Theme;
 use crate::guide::layout::LayoutError;
 use crate::guide::legend::{Legend, Symbol, truncate_to_width};
-use crate::scene::{Anchor, Baseline, Color, Item, Point, Rect, Role, Scene, Shape, Style, Text};
+use crate::scene::{Anchor, Baseline, Color, Item, Point, Role, Text};
 use crate::selection::Highlight;
 use crate::spec::{Chart, FacesOptions};
-use crate::text::measure;
 
 /// Canvas size when the spec gives none.
 const DEFAULT_SIZE: [f64; 2] = [900.0, 620.0];
@@ -38,34 +36,25 @@ pub fn draw(
     highlight: Option<&Highlight>,
 ) -> Result<ChartOutput, MarkError> {
     let chart = &with_default_size(chart, DEFAULT_SIZE);
-    let mapping = feature_columns(chart, index, options)?;
+    let (key, mapping) = feature_columns(chart, index, options)?;
     let mut numeric: Vec<(&str, &Column)> = Vec::new();
-    for (key, field) in &mapping {
-        let root = key.split('.').next().unwrap_or(key);
-        let col = encode::column(chart, index, root, field, table)?;
-        encode::require_numeric(chart, index, root, col, "a facial feature", "map a numeric column to the feature")?;
+    for (_, field) in &mapping {
+        let col = encode::column(chart, index, key, field, table)?;
+        encode::require_numeric(chart, index, key, col, "a facial feature", "map a numeric column to the feature")?;
         numeric.push((field.as_str(), col));
-    }
-    if let Some(c) = options.color.as_ref().and_then(|c| table.column(c.field())).filter(|c| c.numbers().is_some()) {
-        numeric.push((options.color.as_ref().map_or("", |c| c.field()), c));
     }
     let label_col = match &options.label {
         Some(field) => Some(encode::column(chart, index, "label", field, table)?),
         None => None,
     };
-    let (rows, warning) = encode::finite_rows(&chart.name, table.rows, &numeric);
-    let mut warnings: Vec<String> = warning.into_iter().collect();
-    if rows.is_empty() {
-        return Err(encode::no_rows(chart, index, table, warnings.first().map(String::as_str)));
-    }
+    let (rows, mut warnings) = encode::drawn_rows(chart, index, table, numeric.clone(), options.color.as_ref())?;
 
     // Each column scaled over the drawn rows; a constant column leaves its feature neutral.
     let mut params = vec![FaceParams::neutral(); rows.len()];
-    let mut legend_lines = Vec::new();
-    for ((key, field), (_, col)) in mapping.iter().zip(&numeric) {
-        let feature = Feature::from_key(key_feature(key)).expect("keys come from Feature");
+    let mut key_lines = Vec::new();
+    for (&(feature, _), &(field, col)) in mapping.iter().zip(&numeric) {
         let values = encode::values_at(col, &rows);
-        let (lo, hi) = encode::extent(&values, &(0..values.len() as u32).collect::<Vec<_>>()).unwrap_or((0.0, 0.0));
+        let (lo, hi) = encode::finite_extent(values.iter().copied()).unwrap_or((0.0, 0.0));
         if hi <= lo {
             warnings.push(format!(
                 "chart \"{}\": column `{field}` is constant, so {} stays neutral",
@@ -77,37 +66,31 @@ pub fn draw(
             p.set(feature, if hi > lo { (v - lo) / (hi - lo) } else { 0.5 });
         }
         let (low, high) = feature.extremes();
-        legend_lines.push(format!("{}: {field} ({low} to {high})", feature.label()));
+        key_lines.push(format!("{}: {field} ({low} to {high})", feature.label()));
     }
 
     let (colors, color_legend) =
         encode::color_encoding(chart, index, options.color.as_ref(), None, table, &rows, Symbol::Circle)?;
     let mut legends: Vec<Legend> = color_legend.into_iter().collect();
-    if let Some(h) = highlight {
-        legends.push(highlight::legend(h, rows.iter().filter(|&&r| h.contains(r)).count(), rows.len(), Symbol::Circle));
-    }
-    let theme = Theme::with_font_size(chart.font_size.unwrap_or(12.0));
-    let grid = FaceGrid::lay_out(chart, &theme, rows.len(), options.per_row, &legend_lines, &legends).map_err(|e| {
-        match e {
-            LayoutError::TooSmall { plot_width, .. } if plot_width > 0.0 => MarkError::at(
-                index,
-                &["size"],
-                format!(
-                    "chart \"{}\": {} faces would be {plot_width:.0} px each, too small to read (at least {MIN_FACE} px)",
-                    chart.name,
-                    rows.len()
-                ),
-                "make `size` larger, or draw fewer rows (faces suit tens of rows, not hundreds)",
+    legends.extend(highlight.map(|h| highlight::legend(h, &rows, Symbol::Circle)));
+    legends.push(Legend::Notes { title: "Features".into(), lines: key_lines });
+    let canvas = frame::PanelCanvas::new(chart, legends);
+    let theme = canvas.theme.clone();
+    let grid = FaceGrid::lay_out(&canvas, rows.len(), options.per_row).map_err(|e| match e {
+        LayoutError::TooSmall { plot_width, .. } if plot_width > 0.0 => MarkError::at(
+            index,
+            &["size"],
+            format!(
+                "chart \"{}\": {} faces would be {plot_width:.0} px each, too small to read (at least {MIN_FACE} px)",
+                chart.name,
+                rows.len()
             ),
-            e => MarkError::layout(index, &chart.name, e),
-        }
+            "make `size` larger, or draw fewer rows (faces suit tens of rows, not hundreds)",
+        ),
+        e => MarkError::layout(index, &chart.name, e),
     })?;
 
-    let mut items = vec![Item::new(
-        Role::Background,
-        Shape::Rect(Rect::new(0.0, 0.0, grid.width, grid.height)),
-        Style::fill(theme.background),
-    )];
+    let mut items = vec![canvas.background()];
     let label_size = theme.font_size * 0.9;
     let (mut centers_x, mut centers_y, mut labels) = (Vec::new(), Vec::new(), Vec::new());
     for (k, (&row, p)) in rows.iter().zip(&params).enumerate() {
@@ -147,38 +130,31 @@ pub fn draw(
         centers_y.push(cy);
         labels.push(label);
     }
-    items.extend(frame::title_and_caption(chart, &theme, theme.margin, None));
-    items.extend(grid.key(&legend_lines, &legends, &theme));
 
     let mut derived = Derived::over(rows.clone());
     derived.push("row", DerivedColumn::RowIndex);
     derived.push("label", DerivedColumn::Text(labels));
     derived.push("x", DerivedColumn::Number(centers_x));
     derived.push("y", DerivedColumn::Number(centers_y));
-    for (key, _) in &mapping {
-        let feature = Feature::from_key(key_feature(key)).expect("keys come from Feature");
+    for &(feature, _) in &mapping {
         derived.push(feature.key(), DerivedColumn::Number(params.iter().map(|p| p.get(feature)).collect()));
     }
     if let Some(h) = highlight {
         derived.push("selected", DerivedColumn::Selected(h.selected.clone()));
     }
-    let scene = Scene {
-        width: grid.width,
-        height: grid.height,
-        background: theme.background,
-        title: chart.title.clone(),
-        items,
-    };
-    Ok(ChartOutput { scene, derived, warnings, geojson: None })
+    Ok(ChartOutput { scene: canvas.scene(chart, items, None), derived, warnings, geojson: None })
 }
 
-/// The feature name in a mapping key (`features.mouth_width` or `columns`).
-fn key_feature(key: &str) -> &str {
-    key.rsplit('.').next().unwrap_or(key)
-}
+/// The column driving each mapped feature, in feature order.
+type FeatureColumns = Vec<(Feature, String)>;
 
-/// (spec key, column) per mapped feature: from `columns` in feature order, or from `features`.
-fn feature_columns(chart: &Chart, index: usize, options: &FacesOptions) -> Result<Vec<(String, String)>, MarkError> {
+/// The spec key the mapping comes from (`columns` or `features`) and (feature, column) per
+/// mapped feature: from `columns` in feature order, or from `features`.
+fn feature_columns(
+    chart: &Chart,
+    index: usize,
+    options: &FacesOptions,
+) -> Result<(&'static str, FeatureColumns), MarkError> {
     match (&options.columns, &options.features) {
         (Some(_), Some(_)) => Err(MarkError::at(
             index,
@@ -213,7 +189,7 @@ fn feature_columns(chart: &Chart, index: usize, options: &FacesOptions) -> Resul
                     "name at least one numeric column",
                 ));
             }
-            Ok(columns.iter().zip(Feature::ALL).map(|(c, f)| (format!("columns.{}", f.key()), c.clone())).collect())
+            Ok(("columns", Feature::ALL.into_iter().zip(columns.iter().cloned()).collect()))
         }
         (None, Some(features)) => {
             let map = serde_json::to_value(features).unwrap_or_default();
@@ -244,7 +220,7 @@ fn feature_columns(chart: &Chart, index: usize, options: &FacesOptions) -> Resul
                     "leave one feature neutral",
                 ));
             }
-            Ok(out.into_iter().map(|(f, c)| (format!("features.{}", f.key()), c)).collect())
+            Ok(("features", out))
         }
     }
 }
@@ -255,44 +231,27 @@ fn lighten(color: Color, amount: f64) -> Color {
     Color::rgb(mix(color.r), mix(color.g), mix(color.b))
 }
 
-/// The grid of faces and the key beside it.
+/// The grid of faces in the canvas' room, left of the legends.
 struct FaceGrid {
-    width: f64,
-    height: f64,
     top: f64,
     left: f64,
     per_row: usize,
     cell_w: f64,
     cell_h: f64,
     face: f64,
-    key_w: f64,
 }
 
 impl FaceGrid {
-    fn lay_out(
-        chart: &Chart,
-        theme: &Theme,
-        n: usize,
-        per_row: Option<u32>,
-        lines: &[String],
-        legends: &[Legend],
-    ) -> Result<FaceGrid, LayoutError> {
-        let [width, height] = chart.size.unwrap_or(DEFAULT_SIZE);
+    /// The arrangement of `n` faces (`per_row` of them per row, or the one giving the largest
+    /// faces) that fits the room.
+    fn lay_out(canvas: &frame::PanelCanvas, n: usize, per_row: Option<u32>) -> Result<FaceGrid, LayoutError> {
+        let theme = &canvas.theme;
         let m = theme.margin;
-        let top = m + chart.title.as_ref().map_or(theme.font_size * 0.5, |_| theme.title_size * 1.8);
-        let bottom = m + chart.caption.as_ref().map_or(0.0, |_| theme.caption_size * 1.8);
-        let room = height - top - bottom;
-        let line_w = lines
-            .iter()
-            .map(|l| measure(l, theme.font_size).width)
-            .fold(measure("Features", theme.label_size).width, f64::max);
-        let legend_w = legends.iter().map(|l| l.extent(theme, room).0).fold(0.0, f64::max);
-        let key_w = line_w.max(legend_w).min(width * 0.4);
-        let area_w = width - 2.0 * m - key_w - theme.font_size * 1.5;
+        let area_w = canvas.width - 2.0 * m - canvas.legend_room();
         let label_h = theme.font_size * 1.3;
         let cell = |cols: usize| {
             let rows = n.div_ceil(cols);
-            let (cw, ch) = (area_w / cols as f64, room / rows as f64);
+            let (cw, ch) = (area_w / cols as f64, canvas.room / rows as f64);
             (cw, ch, (cw * 0.88).min(ch - label_h - 4.0))
         };
         let per_row = match per_row {
@@ -303,52 +262,12 @@ impl FaceGrid {
         if face < MIN_FACE {
             return Err(LayoutError::TooSmall { plot_width: face.max(0.0), plot_height: face.max(0.0) });
         }
-        Ok(FaceGrid { width, height, top, left: m, per_row, cell_w, cell_h, face, key_w })
+        Ok(FaceGrid { top: canvas.top(), left: m, per_row, cell_w, cell_h, face })
     }
 
     /// Centre of face `k` (row-major).
     fn center(&self, k: usize) -> (f64, f64) {
         let (r, c) = (k / self.per_row, k % self.per_row);
         (self.left + self.cell_w * (c as f64 + 0.5), self.top + self.cell_h * r as f64 + self.face / 2.0 + 2.0)
-    }
-
-    /// The feature key (which column drives which feature, low → high) and the other legends.
-    fn key(&self, lines: &[String], legends: &[Legend], theme: &Theme) -> Vec<Item> {
-        let x = self.width - theme.margin - self.key_w;
-        let mut y = self.top;
-        let mut items = Vec::new();
-        let room = self.height - self.top - theme.margin;
-        for legend in legends {
-            let (_, h) = legend.extent(theme, room);
-            items.extend(legend.draw(Point::new(x, y), theme, room));
-            y += h + theme.font_size * 1.5;
-        }
-        let text = |content: String, y: f64, size: f64, color: Color, role: Role| {
-            Item::text(
-                role,
-                Text {
-                    at: Point::new(x, y),
-                    content,
-                    size,
-                    anchor: Anchor::Start,
-                    baseline: Baseline::Top,
-                    angle: 0.0,
-                    color,
-                },
-            )
-        };
-        items.push(text("Features".into(), y, theme.label_size, theme.text, Role::Legend));
-        y += theme.label_size * 1.6;
-        for line in lines {
-            items.push(text(
-                truncate_to_width(line, self.key_w, theme.font_size),
-                y,
-                theme.font_size,
-                theme.muted_text,
-                Role::Legend,
-            ));
-            y += theme.font_size * 1.45;
-        }
-        items
     }
 }

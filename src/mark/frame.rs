@@ -4,8 +4,8 @@
 use super::{DEFAULT_SIZE, MarkError};
 use crate::guide::Theme;
 use crate::guide::layout::{self, Frame, FrameSpec, PositionAxis};
-use crate::guide::legend::Legend;
 use crate::guide::legend::truncate_to_width;
+use crate::guide::legend::{self, Legend};
 use crate::scene::{
     Anchor, Baseline, Color, Item, LineBatch, PathCmd, PerPoint, Point, Rect, Role, Scene, Shape, Style, Text,
 };
@@ -112,8 +112,14 @@ pub fn polylines(
     vec![Item::new(Role::DataMark, Shape::Lines(batch), Style::default()).with_rows(rows.to_vec())]
 }
 
-/// The canvas of a kind that lays out its own panels (surface, hyperslice): size, theme, the room
-/// left between title and caption, and a colour bar on the right.
+/// A point at `radius` from `center`, `angle` radians clockwise from 12 o'clock.
+pub fn polar(center: Point, radius: f64, angle: f64) -> Point {
+    Point::new(center.x + radius * angle.sin(), center.y - radius * angle.cos())
+}
+
+/// The canvas of a kind that lays out its own panels (surface, hyperslice, splom, parallel,
+/// daisy, faces, segments): size, theme, the room left between title and caption, and a column
+/// of legends on the right.
 pub struct PanelCanvas {
     /// Canvas width.
     pub width: f64,
@@ -127,22 +133,32 @@ pub struct PanelCanvas {
     pub caption_h: f64,
     /// Height available between title and caption.
     pub room: f64,
-    /// The colour bar.
-    pub legend: Legend,
-    /// Width the colour bar needs.
+    /// The legends, stacked top to bottom on the right.
+    pub legends: Vec<Legend>,
+    /// Width the legend column needs.
     pub legend_w: f64,
 }
 
 impl PanelCanvas {
-    /// Measure the canvas of `chart` with `legend` on the right.
-    pub fn new(chart: &Chart, legend: Legend) -> PanelCanvas {
+    /// Measure the canvas of `chart` with `legends` on the right.
+    pub fn new(chart: &Chart, legends: Vec<Legend>) -> PanelCanvas {
         let [width, height] = chart.size.unwrap_or(DEFAULT_SIZE);
         let theme = Theme::with_font_size(chart.font_size.unwrap_or(12.0));
         let title_h = chart.title.as_ref().map(|_| theme.title_size * 1.8).unwrap_or(0.0);
         let caption_h = chart.caption.as_ref().map(|_| theme.caption_size * 1.8).unwrap_or(0.0);
         let room = height - title_h - caption_h - 2.0 * theme.margin;
-        let (legend_w, _) = legend.extent(&theme, room);
-        PanelCanvas { width, height, theme, title_h, caption_h, room, legend, legend_w }
+        let legend_w = legend::stack_width(&legends, &theme, room);
+        PanelCanvas { width, height, theme, title_h, caption_h, room, legends, legend_w }
+    }
+
+    /// Top of the room below the title.
+    pub fn top(&self) -> f64 {
+        self.theme.margin + self.title_h
+    }
+
+    /// Width the legend column takes from the right of the room, gap included (0 without legends).
+    pub fn legend_room(&self) -> f64 {
+        legend::stack_room(&self.legends, &self.theme, self.room)
     }
 
     /// The canvas background, the first item of the scene.
@@ -154,15 +170,12 @@ impl PanelCanvas {
         )
     }
 
-    /// The finished scene: `items`, then title, caption (overridden by `caption`) and colour bar.
+    /// The finished scene: `items`, then title, caption (overridden by `caption`) and legends.
     pub fn scene(self, chart: &Chart, mut items: Vec<Item>, caption: Option<&str>) -> Scene {
         let m = self.theme.margin;
         items.extend(title_and_caption(chart, &self.theme, m, caption));
-        items.extend(self.legend.draw(
-            Point::new(self.width - m - self.legend_w, m + self.title_h),
-            &self.theme,
-            self.room,
-        ));
+        let at = Point::new(self.width - m - self.legend_w, self.top());
+        items.extend(legend::draw_stack(&self.legends, at, &self.theme, self.room));
         Scene {
             width: self.width,
             height: self.height,

@@ -2,8 +2,10 @@
 //! selected, and translucent bands over the brushed ranges. Shared by every kind that draws
 //! `highlight`.
 
+use super::encode::ColorEncoding;
 use crate::guide::legend::{Legend, Symbol};
-use crate::scene::{Color, Item, Rect, Role, Shape, Stroke, Style};
+use crate::guide::scale::Scale;
+use crate::scene::{Color, Item, PerPoint, Rect, Role, Shape, Stroke, Style};
 use crate::selection::Highlight;
 
 /// Colour of rows outside the selection.
@@ -11,13 +13,64 @@ pub const CONTEXT: Color = Color::rgb(0xc8, 0xc8, 0xc8);
 /// Colour of brushed ranges.
 pub const BRUSH: Color = Color::rgb(0x33, 0x66, 0x99);
 
-/// The legend of a highlight: how many rows are selected, and the grey of the others.
-pub fn legend(highlight: &Highlight, selected: usize, total: usize, symbol: Symbol) -> Legend {
+/// The legend of a highlight: how many of the drawn `rows` are selected, and the grey of the
+/// others.
+pub fn legend(highlight: &Highlight, rows: &[u32], symbol: Symbol) -> Legend {
+    let selected = rows.iter().filter(|&&r| highlight.contains(r)).count();
     Legend::Categorical {
-        title: format!("{}: {selected} of {total} rows", highlight.name),
+        title: format!("{}: {selected} of {} rows", highlight.name, rows.len()),
         entries: vec![("not selected".to_string(), CONTEXT)],
         symbol,
     }
+}
+
+/// The marks of `rows` in drawing order: without a selection one layer of every row; with one,
+/// the unselected rows as grey context first and the selected rows over them. `layer(rows,
+/// context)` draws one layer.
+pub fn layers(
+    rows: &[u32],
+    highlight: Option<&Highlight>,
+    mut layer: impl FnMut(&[u32], bool) -> Vec<Item>,
+) -> Vec<Item> {
+    match highlight {
+        Some(h) => {
+            let (context, selected) = h.split(rows);
+            let mut items = layer(&context, true);
+            items.extend(layer(&selected, false));
+            items
+        }
+        None => layer(rows, false),
+    }
+}
+
+/// The colour of `row` at `opacity`: the context grey, or its encoded colour.
+pub fn row_color(colors: &ColorEncoding, row: u32, context: bool, opacity: f64) -> Color {
+    if context { CONTEXT.with_opacity(opacity) } else { colors.color_of(row).with_opacity(opacity) }
+}
+
+/// Fills of a point batch of `rows`: one colour when the layer is grey context or the colour is
+/// fixed, else each row's colour.
+pub fn point_fill(colors: &ColorEncoding, rows: &[u32], context: bool, opacity: f64) -> PerPoint<Color> {
+    match (colors, context) {
+        (_, true) => PerPoint::Uniform(CONTEXT.with_opacity(opacity)),
+        (ColorEncoding::Fixed(c), false) => PerPoint::Uniform(c.with_opacity(opacity)),
+        (other, false) => PerPoint::Each(rows.iter().map(|&r| other.color_of(r).with_opacity(opacity)).collect()),
+    }
+}
+
+/// The brushed ranges over a plot or cell `rect`: across for the `x` column (name and scale),
+/// up for the `y` column; a band spans the whole rect on a side without a range.
+pub fn brush(h: &Highlight, rect: Rect, x: (&str, &Scale), y: Option<(&str, &Scale)>) -> Option<Item> {
+    let xs = h.range_on(x.0).and_then(|r| pixel_span(r, |v| x.1.map(v), (rect.x, rect.right())));
+    let ys = y
+        .and_then(|(field, scale)| h.range_on(field).map(|r| (r, scale)))
+        .and_then(|(r, scale)| pixel_span(r, |v| scale.map(v), (rect.y, rect.bottom())));
+    if xs.is_none() && ys.is_none() {
+        return None;
+    }
+    let (x0, x1) = xs.unwrap_or((rect.x, rect.right()));
+    let (y0, y1) = ys.unwrap_or((rect.y, rect.bottom()));
+    Some(brush_band(Rect::new(x0, y0, x1 - x0, y1 - y0)))
 }
 
 /// A translucent band over a brushed range (`rect` in canvas units).

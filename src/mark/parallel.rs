@@ -11,7 +11,7 @@ use crate::guide::axis::{self, Side};
 use crate::guide::layout::{Domain, LayoutError, MIN_PLOT_SIDE, PositionAxis, build_scale};
 use crate::guide::legend::{Legend, Symbol, truncate_to_width};
 use crate::guide::scale::Scale;
-use crate::scene::{Anchor, Baseline, Item, PathCmd, Point, Rect, Role, Scene, Shape, Style, Text};
+use crate::scene::{Anchor, Baseline, Item, PathCmd, Point, Rect, Role, Shape, Style, Text};
 use crate::selection::Highlight;
 use crate::spec::{AxisOrder, ChannelOptions, Chart, ParallelOptions};
 use crate::text::measure;
@@ -40,23 +40,15 @@ pub fn draw(
     let chart = &with_default_size(chart, DEFAULT_SIZE);
     let mut columns = encode::columns(chart, index, "columns", &options.columns, table)?;
     let inverted = inverted_columns(chart, index, options, &columns)?;
-    let color_col = options.color.as_ref().and_then(|c| table.column(c.field())).filter(|c| c.numbers().is_some());
-    let mut numeric: Vec<(&str, &Column)> =
-        columns.iter().filter(|(_, c)| c.numbers().is_some()).map(|(o, c)| (o.field.as_str(), *c)).collect();
-    if let (Some(col), Some(c)) = (color_col, &options.color) {
-        numeric.push((c.field(), col));
-    }
-    let (rows, warning) = encode::finite_rows(&chart.name, table.rows, &numeric);
-    let warnings: Vec<String> = warning.into_iter().collect();
-    if rows.is_empty() {
-        return Err(encode::no_rows(chart, index, table, warnings.first().map(String::as_str)));
-    }
+    let fields: Vec<(&str, &Column)> = columns.iter().map(|(o, c)| (o.field.as_str(), *c)).collect();
+    let (rows, warnings) = encode::drawn_rows(chart, index, table, fields, options.color.as_ref())?;
     if options.order == Some(AxisOrder::Correlation) {
         let values: Vec<Option<Vec<f64>>> =
             columns.iter().map(|(_, c)| c.numbers().map(|_| encode::values_at(c, &rows))).collect();
         let order = correlation_order(&values);
         columns = order.into_iter().map(|i| columns[i].clone()).collect();
     }
+    let inverted: Vec<bool> = columns.iter().map(|(o, _)| inverted.contains(&o.field)).collect();
     let n = rows.len();
     let (colors, color_legend) = encode::color_encoding(
         chart,
@@ -75,66 +67,31 @@ pub fn draw(
         share_domain(&mut axes);
     }
     let mut legends: Vec<Legend> = color_legend.into_iter().collect();
-    if let Some(h) = highlight {
-        legends.push(highlight::legend(h, rows.iter().filter(|&&r| h.contains(r)).count(), n, Symbol::Line));
-    }
-    let theme = Theme::with_font_size(chart.font_size.unwrap_or(12.0));
-    let titles: Vec<String> = columns.iter().zip(&axes).map(|(_, a)| a.title.clone()).collect();
-    let layout = AxesLayout::lay_out(chart, &theme, &axes, &titles, &inverted, &columns, &legends)
-        .map_err(|e| MarkError::layout(index, &chart.name, e))?;
+    legends.extend(highlight.map(|h| highlight::legend(h, &rows, Symbol::Line)));
+    let canvas = frame::PanelCanvas::new(chart, legends);
+    let layout =
+        AxesLayout::lay_out(&canvas, &axes, &inverted).map_err(|e| MarkError::layout(index, &chart.name, e))?;
 
     let opacity = options.opacity.unwrap_or_else(|| default_opacity(n));
     let width = options.stroke_width.unwrap_or(if n > 1_000 { 1.0 } else { 1.4 });
     let positioners: Vec<Positioner> =
         layout.scales.iter().zip(&columns).map(|(s, (_, c))| Positioner::new(s, c)).collect();
-    let line_items = |rows: &[u32], context: bool| {
+    let marks = highlight::layers(&rows, highlight, |rows, context| {
         let vertices: Vec<Point> = rows
             .iter()
             .flat_map(|&r| layout.xs.iter().zip(&positioners).map(move |(&x, p)| Point::new(x, p.at(r))))
             .collect();
-        let color = |r: u32| match (&colors, context) {
-            (_, true) => highlight::CONTEXT.with_opacity(opacity),
-            (c, false) => c.color_of(r).with_opacity(opacity),
-        };
-        polylines(vertices, columns.len(), rows, color, width)
-    };
+        polylines(vertices, columns.len(), rows, |r| highlight::row_color(&colors, r, context, opacity), width)
+    });
 
-    let mut items = vec![Item::new(
-        Role::Background,
-        Shape::Rect(Rect::new(0.0, 0.0, layout.width, layout.height)),
-        Style::fill(theme.background),
-    )];
-    let mut marks = Vec::new();
-    match highlight {
-        Some(h) => {
-            let (context, selected) = h.split(&rows);
-            marks.extend(line_items(&context, true));
-            marks.extend(line_items(&selected, false));
-        }
-        None => marks.extend(line_items(&rows, false)),
-    }
+    let mut items = vec![canvas.background()];
     items.push(Item::group(Role::DataMark, marks, None).labelled(chart.name.clone()));
     if let Some(h) = highlight {
         items.extend(brushes(h, &layout, &columns));
     }
-    items.extend(layout.axes(&titles, &inverted_flags(&columns, &inverted), &theme));
-    items.extend(frame::title_and_caption(chart, &theme, theme.margin, None));
-    let mut y = layout.top;
-    for legend in &legends {
-        let (_, h) = legend.extent(&theme, layout.plot_h);
-        items.extend(legend.draw(Point::new(layout.width - theme.margin - layout.legend_w, y), &theme, layout.plot_h));
-        y += h + theme.font_size * 1.5;
-    }
-
+    items.extend(layout.axes(&axes, &inverted, &canvas.theme));
     let derived = derived_vertices(&rows, &columns, &layout, highlight);
-    let scene = Scene {
-        width: layout.width,
-        height: layout.height,
-        background: theme.background,
-        title: chart.title.clone(),
-        items,
-    };
-    Ok(ChartOutput { scene, derived, warnings, geojson: None })
+    Ok(ChartOutput { scene: canvas.scene(chart, items, None), derived, warnings, geojson: None })
 }
 
 /// The columns named in `invert`, each checked against `columns`.
@@ -225,45 +182,35 @@ pub fn correlation_order(values: &[Option<Vec<f64>>]) -> Vec<usize> {
 
 /// Where the axes go and their scales.
 struct AxesLayout {
-    width: f64,
-    height: f64,
     /// Top of the axes.
     top: f64,
     plot_h: f64,
     /// x position of each axis.
     xs: Vec<f64>,
     scales: Vec<Scale>,
-    legend_w: f64,
     /// Room between neighbouring axes.
     spacing: f64,
 }
 
 impl AxesLayout {
+    /// Place one axis per entry of `axes` in the canvas' room, upward unless `inverted`.
     fn lay_out(
-        chart: &Chart,
-        theme: &Theme,
+        canvas: &frame::PanelCanvas,
         axes: &[PositionAxis],
-        titles: &[String],
-        inverted: &[String],
-        columns: &[(ChannelOptions, &Column)],
-        legends: &[Legend],
+        inverted: &[bool],
     ) -> Result<AxesLayout, LayoutError> {
-        let [width, height] = chart.size.unwrap_or(DEFAULT_SIZE);
+        let theme = &canvas.theme;
         let m = theme.margin;
         let k = axes.len();
-        let title_block = chart.title.as_ref().map_or(theme.font_size * 0.5, |_| theme.title_size * 1.8);
-        let top = m + title_block + theme.label_size * 1.8;
-        let bottom = m + chart.caption.as_ref().map_or(0.0, |_| theme.caption_size * 1.8) + theme.font_size;
-        let plot_h = (height - top - bottom).floor();
-        let room = height - top - m;
-        let legend_w = legends.iter().map(|l| l.extent(theme, room).0).fold(0.0, f64::max);
-        let right_legend = if legend_w > 0.0 { legend_w + theme.font_size * 1.5 } else { 0.0 };
+        // Column titles above the axes, half a tick label below them.
+        let top = canvas.top() + theme.label_size * 1.8;
+        let plot_h = (canvas.height - top - m - canvas.caption_h - theme.font_size).floor();
         let target = ((plot_h / (theme.font_size * 3.0)).round() as usize).clamp(2, 10);
         let scales = axes
             .iter()
-            .zip(columns)
-            .map(|(axis, (o, _))| {
-                let range = if inverted.contains(&o.field) { (top, top + plot_h) } else { (top + plot_h, top) };
+            .zip(inverted)
+            .map(|(axis, &down)| {
+                let range = if down { (top, top + plot_h) } else { (top + plot_h, top) };
                 build_scale(axis, range, target).map_err(|error| LayoutError::Scale { axis: "y", error })
             })
             .collect::<Result<Vec<Scale>, LayoutError>>()?;
@@ -273,22 +220,21 @@ impl AxesLayout {
                 .map(|t| measure(&t.label, theme.font_size).width)
                 .fold(0.0, f64::max)
         };
-        let title_w = |t: &str| measure(t, theme.label_size).width;
-        let left =
-            m + (label_w(&scales[0]) + theme.tick_length + theme.font_size * 0.35).max(title_w(&titles[0]) / 2.0);
-        let right = m + right_legend + title_w(&titles[k - 1]).min(theme.font_size * 8.0) / 2.0;
-        let plot_w = width - left - right;
+        let title_w = |a: &PositionAxis| measure(&a.title, theme.label_size).width;
+        let left = m + (label_w(&scales[0]) + theme.tick_length + theme.font_size * 0.35).max(title_w(&axes[0]) / 2.0);
+        let right = m + canvas.legend_room() + title_w(&axes[k - 1]).min(theme.font_size * 8.0) / 2.0;
+        let plot_w = canvas.width - left - right;
         if plot_w < MIN_PLOT_SIDE * (k - 1) as f64 || plot_h < MIN_PLOT_SIDE {
             return Err(LayoutError::TooSmall { plot_width: plot_w.max(0.0), plot_height: plot_h.max(0.0) });
         }
         let spacing = plot_w / (k - 1) as f64;
         let xs = (0..k).map(|i| (left + spacing * i as f64).round()).collect();
-        Ok(AxesLayout { width, height, top, plot_h, xs, scales, legend_w, spacing })
+        Ok(AxesLayout { top, plot_h, xs, scales, spacing })
     }
 
     /// Every axis with its ticks (labels on a light halo, as lines run beneath them), and the
     /// column titles above them; inverted axes get a small downward arrow after the title.
-    fn axes(&self, titles: &[String], inverted: &[bool], theme: &Theme) -> Vec<Item> {
+    fn axes(&self, axes: &[PositionAxis], inverted: &[bool], theme: &Theme) -> Vec<Item> {
         let mut items = Vec::new();
         for (i, (scale, &x)) in self.scales.iter().zip(&self.xs).enumerate() {
             let plot = Rect::new(x + 1.0, self.top, 0.0, self.plot_h);
@@ -305,7 +251,7 @@ impl AxesLayout {
                 items.push(item);
             }
             let arrow = if inverted[i] { theme.font_size * 0.9 } else { 0.0 };
-            let title = truncate_to_width(&titles[i], self.spacing - 4.0 - arrow, theme.label_size);
+            let title = truncate_to_width(&axes[i].title, self.spacing - 4.0 - arrow, theme.label_size);
             let title_w = measure(&title, theme.label_size).width;
             let baseline_y = self.top - theme.font_size * 0.6;
             items.push(Item::text(
@@ -326,11 +272,6 @@ impl AxesLayout {
         }
         items
     }
-}
-
-/// Whether each column's axis is inverted.
-fn inverted_flags(columns: &[(ChannelOptions, &Column)], inverted: &[String]) -> Vec<bool> {
-    columns.iter().map(|(o, _)| inverted.contains(&o.field)).collect()
 }
 
 /// A small downward arrow whose tip sits at `tip_base` (bottom centre), marking an axis whose

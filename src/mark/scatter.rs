@@ -1,13 +1,13 @@
 //! `scatter`: points at (x, y), coloured and sized by columns, drawn as one compact point batch.
 
 use super::derived::{Derived, DerivedColumn};
-use super::encode::{self, ColorEncoding};
+use super::encode::{self};
 use super::{ChartOutput, MarkError, frame, highlight};
 use crate::data::Table;
 use crate::guide::format::format_value;
 use crate::guide::legend::{Legend, Symbol};
 use crate::guide::ticks::extended;
-use crate::scene::{Color, Item, PerPoint, PointBatch, Rect, Role, Shape, Stroke, Style};
+use crate::scene::{Color, Item, PerPoint, PointBatch, Role, Shape, Stroke, Style};
 use crate::selection::Highlight;
 use crate::spec::{Chart, ScatterOptions};
 
@@ -110,7 +110,7 @@ pub fn draw(
     let max_radius = size_opts.as_ref().and_then(|o| o.max_radius).unwrap_or(12.0);
     let mut legends: Vec<Legend> = color_legend.into_iter().collect();
     if let Some(h) = highlight {
-        legends.push(highlight::legend(h, rows.iter().filter(|&&r| h.contains(r)).count(), n, Symbol::Circle));
+        legends.push(highlight::legend(h, &rows, Symbol::Circle));
     }
     if let (Some(o), true) = (&size_opts, max_size > 0.0) {
         legends.push(size_legend(&o.title.clone().unwrap_or(o.field.clone()), o.unit.as_deref(), max_size, max_radius));
@@ -130,13 +130,9 @@ pub fn draw(
     let stroke = (size_col.is_some() || (n <= 2_000 && base_radius >= 3.0))
         .then(|| Stroke::solid(Color::WHITE.with_opacity(0.8), 0.6));
     let sizes = size_col.and_then(|c| c.numbers()).filter(|_| max_size > 0.0);
-    let batch = |rows: Vec<u32>, context: bool| {
-        let centers = encode::centers(&x_pos, &y_pos, &rows);
-        let fill = match (&colors, context) {
-            (_, true) => PerPoint::Uniform(highlight::CONTEXT.with_opacity(opacity)),
-            (ColorEncoding::Fixed(c), false) => PerPoint::Uniform(c.with_opacity(opacity)),
-            (other, false) => PerPoint::Each(rows.iter().map(|&r| other.color_of(r).with_opacity(opacity)).collect()),
-        };
+    let batch = |rows: &[u32], context: bool| {
+        let centers = encode::centers(&x_pos, &y_pos, rows);
+        let fill = highlight::point_fill(&colors, rows, context, opacity);
         let radius = match sizes {
             Some(values) => PerPoint::Each(
                 rows.iter()
@@ -146,35 +142,21 @@ pub fn draw(
             None => PerPoint::Uniform(base_radius),
         };
         let label = if context { format!("{} (not selected)", chart.name) } else { chart.name.clone() };
-        Item::new(
-            Role::DataMark,
-            Shape::Points(PointBatch { centers, radius, fill, stroke: stroke.clone() }),
-            Style::default(),
-        )
-        .with_rows(rows)
-        .labelled(label)
+        vec![
+            Item::new(
+                Role::DataMark,
+                Shape::Points(PointBatch { centers, radius, fill, stroke: stroke.clone() }),
+                Style::default(),
+            )
+            .with_rows(rows.to_vec())
+            .labelled(label),
+        ]
     };
-    let mut marks = Vec::new();
-    match highlight {
-        Some(h) => {
-            let (context, selected) = h.split(&rows);
-            let plot = frame.plot;
-            let x_span = h
-                .range_on(&x_opts.field)
-                .and_then(|r| highlight::pixel_span(r, |v| frame.x.map(v), (plot.x, plot.right())));
-            let y_span = h
-                .range_on(&y_opts.field)
-                .and_then(|r| highlight::pixel_span(r, |v| frame.y.map(v), (plot.y, plot.bottom())));
-            if x_span.is_some() || y_span.is_some() {
-                let (x0, x1) = x_span.unwrap_or((plot.x, plot.right()));
-                let (y0, y1) = y_span.unwrap_or((plot.y, plot.bottom()));
-                marks.push(highlight::brush_band(Rect::new(x0, y0, x1 - x0, y1 - y0)));
-            }
-            marks.push(batch(context, true));
-            marks.push(batch(selected, false));
-        }
-        None => marks.push(batch(rows.clone(), false)),
-    }
+    let mut marks: Vec<Item> = highlight
+        .and_then(|h| highlight::brush(h, frame.plot, (&x_opts.field, &frame.x), Some((&y_opts.field, &frame.y))))
+        .into_iter()
+        .collect();
+    marks.extend(highlight::layers(&rows, highlight, batch));
     let scene = frame::scene(chart, frame, &theme, marks);
 
     let mut derived = Derived::over(rows);

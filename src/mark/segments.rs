@@ -16,7 +16,7 @@ use crate::guide::color::parse_color;
 use crate::guide::format::format_value;
 use crate::guide::layout::{LayoutError, MIN_PLOT_SIDE};
 use crate::guide::legend::{Legend, Symbol, truncate_to_width};
-use crate::scene::{Anchor, Baseline, Color, Item, PathCmd, Point, Raster, Rect, Role, Scene, Shape, Style, Text};
+use crate::scene::{Anchor, Baseline, Color, Item, PathCmd, Point, Raster, Rect, Role, Shape, Style, Text};
 use crate::selection::Highlight;
 use crate::spec::{Chart, SegmentScale, SegmentsOptions};
 
@@ -49,7 +49,7 @@ pub fn draw(
     // Per column: values in row order, scaled to [0, 1]; missing cells stay NaN (their pixels
     // take `nan_color`, the row keeps its place in the order).
     let raw: Vec<Vec<f64>> = columns.iter().map(|(_, c)| encode::values_at(c, &order)).collect();
-    let extents: Vec<Option<(f64, f64)>> = raw.iter().map(|v| finite_extent(v)).collect();
+    let extents: Vec<Option<(f64, f64)>> = raw.iter().map(|v| encode::finite_extent(v.iter().copied())).collect();
     let shared = extents
         .iter()
         .flatten()
@@ -103,13 +103,26 @@ pub fn draw(
         ),
     };
     let mut legends = vec![legend];
+    legends.extend(highlight.map(|h| highlight::legend(h, &order, Symbol::Circle)));
     let selected: Option<Vec<bool>> = highlight.map(|h| order.iter().map(|&r| h.contains(r)).collect());
-    if let (Some(h), Some(flags)) = (highlight, &selected) {
-        legends.push(highlight::legend(h, flags.iter().filter(|f| **f).count(), order.len(), Symbol::Circle));
-    }
 
-    let theme = Theme::with_font_size(chart.font_size.unwrap_or(12.0));
-    let disk = Disk::lay_out(chart, &theme, &legends).map_err(|e| MarkError::layout(index, &chart.name, e))?;
+    // Without a caption of its own, the chart says how to read it there.
+    let order_note = match &options.order_by {
+        Some(c) => format!(
+            "Rows ordered by {c}{}, from the centre outward",
+            if options.descending == Some(true) { " (descending)" } else { "" }
+        ),
+        None => "Rows in data order, from the centre outward".to_string(),
+    };
+    let mut chart = chart.clone();
+    chart.caption.get_or_insert(match scale_note {
+        Some(s) => format!("{order_note}; {s}."),
+        None => format!("{order_note}."),
+    });
+    let chart = &chart;
+    let canvas = frame::PanelCanvas::new(chart, legends);
+    let theme = &canvas.theme;
+    let disk = Disk::lay_out(&canvas).map_err(|e| MarkError::layout(index, &chart.name, e))?;
     let layout = SegmentLayout::new(disk.diameter, columns.len());
     let value_refs: Vec<&[f64]> = scaled.iter().map(Vec::as_slice).collect();
     let to_rgba = |t: f64| {
@@ -130,47 +143,19 @@ pub fn draw(
         smooth: false,
     };
 
-    let mut items = vec![Item::new(
-        Role::Background,
-        Shape::Rect(Rect::new(0.0, 0.0, disk.width, disk.height)),
-        Style::fill(theme.background),
-    )];
+    let mut items = vec![canvas.background()];
     items.push(
         Item::new(Role::DataMark, Shape::Image(raster), Style::default())
             .with_rows(order.clone())
             .labelled(chart.name.clone()),
     );
-    items.push(disk.borders(&layout, &theme));
+    items.push(disk.borders(&layout));
     for (s, ((opts, _), extent)) in columns.iter().zip(&extents).enumerate() {
         let title =
             crate::guide::axis::title_with_unit(opts.title.as_deref().unwrap_or(&opts.field), opts.unit.as_deref());
         let range = extent.map(|(lo, hi)| format!("{} to {}", format_value(lo), format_value(hi)));
-        items.extend(disk.label(layout.mid_angle(s), &title, range.as_deref(), &theme));
+        items.extend(disk.label(layout.mid_angle(s), &title, range.as_deref(), theme));
     }
-    let order_note = match &options.order_by {
-        Some(c) => format!(
-            "Rows ordered by {c}{}, from the centre outward",
-            if options.descending == Some(true) { " (descending)" } else { "" }
-        ),
-        None => "Rows in data order, from the centre outward".to_string(),
-    };
-    let note = match scale_note {
-        Some(s) => format!("{order_note}; {s}."),
-        None => format!("{order_note}."),
-    };
-    items.extend(frame::title_and_caption(
-        chart,
-        &theme,
-        theme.margin,
-        Some(chart.caption.as_deref().unwrap_or(&note)),
-    ));
-    let mut y = disk.top;
-    for legend in &legends {
-        let (_, h) = legend.extent(&theme, disk.room);
-        items.extend(legend.draw(Point::new(disk.width - theme.margin - disk.legend_w, y), &theme, disk.room));
-        y += h + theme.font_size * 1.5;
-    }
-
     let ranks: Vec<f64> = (0..order.len()).map(|k| k as f64).collect();
     let mut derived = Derived::over(order);
     derived.push("row", DerivedColumn::RowIndex);
@@ -181,23 +166,7 @@ pub fn draw(
     if let Some(h) = highlight {
         derived.push("selected", DerivedColumn::Selected(h.selected.clone()));
     }
-    let scene = Scene {
-        width: disk.width,
-        height: disk.height,
-        background: theme.background,
-        title: chart.title.clone(),
-        items,
-    };
-    Ok(ChartOutput { scene, derived, warnings, geojson: None })
-}
-
-/// The extent of the finite values.
-fn finite_extent(values: &[f64]) -> Option<(f64, f64)> {
-    let (lo, hi) = values
-        .iter()
-        .filter(|v| v.is_finite())
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| (a.min(v), b.max(v)));
-    (lo <= hi).then_some((lo, hi))
+    Ok(ChartOutput { scene: canvas.scene(chart, items, None), derived, warnings, geojson: None })
 }
 
 /// Table rows in drawing order: sorted by `order_by` (stable; missing values last), or as
@@ -234,54 +203,42 @@ fn row_order(chart: &Chart, index: usize, options: &SegmentsOptions, table: &Tab
 
 /// Where the disk goes.
 struct Disk {
-    width: f64,
-    height: f64,
-    top: f64,
-    room: f64,
     center: Point,
     radius: f64,
     diameter: u32,
-    legend_w: f64,
 }
 
 impl Disk {
-    fn lay_out(chart: &Chart, theme: &Theme, legends: &[Legend]) -> Result<Disk, LayoutError> {
-        let [width, height] = chart.size.unwrap_or(DEFAULT_SIZE);
+    /// The largest disk that leaves room for the column labels in the canvas' room.
+    fn lay_out(canvas: &frame::PanelCanvas) -> Result<Disk, LayoutError> {
+        let theme = &canvas.theme;
         let m = theme.margin;
-        let top = m + chart.title.as_ref().map_or(theme.font_size * 0.5, |_| theme.title_size * 1.8);
-        let bottom = m + theme.caption_size * 1.8;
-        let room = height - top - bottom;
-        let legend_w = legends.iter().map(|l| l.extent(theme, room).0).fold(0.0, f64::max);
-        let area_w = width - 2.0 * m - legend_w - theme.font_size * 1.5;
+        let area_w = canvas.width - 2.0 * m - canvas.legend_room();
         let label_room = theme.font_size * 9.0;
-        let radius = ((area_w - 2.0 * label_room) / 2.0).min(room / 2.0 - theme.font_size * 2.6).floor();
+        let radius = ((area_w - 2.0 * label_room) / 2.0).min(canvas.room / 2.0 - theme.font_size * 2.6).floor();
         if radius < MIN_PLOT_SIDE {
-            return Err(LayoutError::TooSmall { plot_width: area_w.max(0.0), plot_height: room.max(0.0) });
+            return Err(LayoutError::TooSmall { plot_width: area_w.max(0.0), plot_height: canvas.room.max(0.0) });
         }
         let diameter = ((2.0 * radius) as u32).min(MAX_DIAMETER);
-        let center = Point::new((m + area_w / 2.0).round(), (top + room / 2.0).round());
-        Ok(Disk { width, height, top, room, center, radius, diameter, legend_w })
+        let center = Point::new((m + area_w / 2.0).round(), (canvas.top() + canvas.room / 2.0).round());
+        Ok(Disk { center, radius, diameter })
     }
 
-    /// Thin white lines along the segment borders and a circle around the disk.
-    fn borders(&self, layout: &SegmentLayout, theme: &Theme) -> Item {
+    /// Thin white lines along the segment borders.
+    fn borders(&self, layout: &SegmentLayout) -> Item {
         let mut cmds = Vec::new();
         for s in 0..layout.segments() {
             let (start, _) = layout.span(s);
             cmds.push(PathCmd::MoveTo(self.center));
-            cmds.push(PathCmd::LineTo(Point::new(
-                self.center.x + self.radius * start.sin(),
-                self.center.y - self.radius * start.cos(),
-            )));
+            cmds.push(PathCmd::LineTo(frame::polar(self.center, self.radius, start)));
         }
-        let _ = theme;
         Item::new(Role::Grid, Shape::Path(cmds), Style::stroke(Color::WHITE, 1.5)).labelled("segment borders")
     }
 
     /// A column's name and value range outside the disk at `angle`.
     fn label(&self, angle: f64, title: &str, range: Option<&str>, theme: &Theme) -> Vec<Item> {
         let r = self.radius + theme.font_size * 0.8;
-        let at = Point::new(self.center.x + r * angle.sin(), self.center.y - r * angle.cos());
+        let at = frame::polar(self.center, r, angle);
         let (s, c) = (angle.sin(), angle.cos());
         let anchor = if s > 0.3 {
             Anchor::Start

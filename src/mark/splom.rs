@@ -48,16 +48,8 @@ pub fn draw(
             "colour by a text column instead (`color = \"...\"`)",
         )?;
     }
-    let mut numeric: Vec<(&str, &Column)> = columns.iter().map(|(o, c)| (o.field.as_str(), *c)).collect();
-    let color_col = options.color.as_ref().and_then(|c| table.column(c.field())).filter(|c| c.numbers().is_some());
-    if let (Some(col), Some(c)) = (color_col, &options.color) {
-        numeric.push((c.field(), col));
-    }
-    let (rows, warning) = encode::finite_rows(&chart.name, table.rows, &numeric);
-    let mut warnings: Vec<String> = warning.into_iter().collect();
-    if rows.is_empty() {
-        return Err(encode::no_rows(chart, index, table, warnings.first().map(String::as_str)));
-    }
+    let fields: Vec<(&str, &Column)> = columns.iter().map(|(o, c)| (o.field.as_str(), *c)).collect();
+    let (rows, mut warnings) = encode::drawn_rows(chart, index, table, fields, options.color.as_ref())?;
     let n = rows.len();
     let density = match options.mode.unwrap_or(SplomMode::Auto) {
         SplomMode::Points => false,
@@ -82,7 +74,6 @@ pub fn draw(
     )?;
     let radius = options.radius.unwrap_or_else(|| (scatter::default_radius(n) * 0.75).max(1.0));
     let opacity = options.opacity.unwrap_or_else(|| scatter::default_opacity(n));
-    let theme = Theme::with_font_size(chart.font_size.unwrap_or(12.0));
     let density_map = color::continuous("blues").unwrap_or_else(|| color::continuous("viridis").expect("viridis"));
 
     let mut axes = Vec::with_capacity(columns.len());
@@ -98,13 +89,18 @@ pub fn draw(
         }
         axes.push(axis);
     }
-    let selected = highlight.map(|h| rows.iter().filter(|&&r| h.contains(r)).count());
     let mut legends: Vec<Legend> = color_legend.into_iter().collect();
-    if let (Some(h), Some(count)) = (highlight, selected) {
-        legends.push(highlight::legend(h, count, n, Symbol::Circle));
+    if density {
+        // Bins hold at most every row; the real maximum replaces this bound once counted, so the
+        // layout reserves room for the widest labels the colour bar can have.
+        let bound =
+            Legend::ColorBar { title: "rows per bin".into(), map: density_map.clone(), domain: (0.0, n as f64) };
+        legends.insert(0, bound);
     }
-
-    let grid = Grid::lay_out(chart, &theme, &axes, &legends).map_err(|e| MarkError::layout(index, &chart.name, e))?;
+    legends.extend(highlight.map(|h| highlight::legend(h, &rows, Symbol::Circle)));
+    let mut canvas = frame::PanelCanvas::new(chart, legends);
+    let theme = canvas.theme.clone();
+    let grid = Grid::lay_out(&canvas, &axes).map_err(|e| MarkError::layout(index, &chart.name, e))?;
     let layout = options.layout.unwrap_or(MatrixLayout::Full);
     let shown = |i: usize, j: usize| match layout {
         MatrixLayout::Full => true,
@@ -115,20 +111,36 @@ pub fn draw(
     let split = highlight.map(|h| h.split(&rows));
     let paint = CellPaint { colors: &colors, radius, opacity, highlight, split: split.as_ref(), rows: &rows };
 
-    let mut items = vec![Item::new(
-        Role::Background,
-        Shape::Rect(Rect::new(0.0, 0.0, grid.width, grid.height)),
-        Style::fill(theme.background),
-    )];
-    // The point cells are independent and the bulk of the work: compute them in parallel.
+    // The off-diagonal cells are independent and the bulk of the work: compute them in parallel.
     let pairs: Vec<(usize, usize)> = (0..columns.len())
         .flat_map(|i| (0..columns.len()).map(move |j| (i, j)))
-        .filter(|&(i, j)| i != j && shown(i, j) && !density)
+        .filter(|&(i, j)| i != j && shown(i, j))
         .collect();
-    let mut point_cells: std::collections::HashMap<(usize, usize), Vec<Item>> =
-        pairs.par_iter().map(|&(i, j)| ((i, j), paint.points(&grid.x[j], &grid.y[i], values[j], values[i]))).collect();
-    let mut density_max = 0.0f64;
-    let mut density_cells = Vec::new();
+    let mut cells: std::collections::HashMap<(usize, usize), CellMarks> = pairs
+        .par_iter()
+        .map(|&(i, j)| {
+            let (x, y) = (&grid.x[j], &grid.y[i]);
+            let marks = if density {
+                CellMarks::Density(density_counts(grid.cell(i, j), x, y, values[j], values[i], &rows, highlight))
+            } else {
+                CellMarks::Points(paint.points(x, y, values[j], values[i]))
+            };
+            ((i, j), marks)
+        })
+        .collect();
+    // Density rasters share one colour scale.
+    let density_max = cells
+        .values()
+        .map(|c| match c {
+            CellMarks::Density(counts) => counts.max(),
+            CellMarks::Points(_) => 0.0,
+        })
+        .fold(0.0, f64::max);
+    if let Some(Legend::ColorBar { domain, .. }) = canvas.legends.first_mut().filter(|_| density) {
+        *domain = (0.0, density_max.max(1.0));
+    }
+
+    let mut items = vec![canvas.background()];
     for i in 0..columns.len() {
         for j in 0..columns.len() {
             if !shown(i, j) {
@@ -143,42 +155,24 @@ pub fn draw(
             items.extend(axis::grid(&grid.x[j], Side::Bottom, cell, &theme));
             items.extend(axis::grid(&grid.y[i], Side::Left, cell, &theme));
             if let Some(h) = highlight {
-                items.extend(brush(
+                items.extend(highlight::brush(
                     h,
                     cell,
                     (&columns[j].0.field, &grid.x[j]),
                     Some((&columns[i].0.field, &grid.y[i])),
                 ));
             }
-            if density {
-                let counts = density_counts(cell, &grid.x[j], &grid.y[i], values[j], values[i], &rows, highlight);
-                density_max = density_max.max(counts.max());
-                density_cells.push((items.len(), counts));
-                continue;
+            match cells.remove(&(i, j)) {
+                Some(CellMarks::Density(counts)) => items.push(counts.raster(&density_map, density_max)),
+                Some(CellMarks::Points(marks)) => items.push(
+                    Item::group(Role::DataMark, marks, Some(cell))
+                        .labelled(format!("{} × {}", columns[j].0.field, columns[i].0.field)),
+                ),
+                None => {}
             }
-            let marks = point_cells.remove(&(i, j)).unwrap_or_default();
-            items.push(
-                Item::group(Role::DataMark, marks, Some(cell))
-                    .labelled(format!("{} × {}", columns[j].0.field, columns[i].0.field)),
-            );
         }
     }
-    // Density rasters share one colour scale, known only once every cell is counted.
-    for (offset, (at, counts)) in density_cells.into_iter().enumerate() {
-        items.insert(at + offset, counts.raster(&density_map, density_max));
-    }
-    if density {
-        legends.insert(
-            0,
-            Legend::ColorBar {
-                title: "rows per bin".into(),
-                map: density_map.clone(),
-                domain: (0.0, density_max.max(1.0)),
-            },
-        );
-    }
     items.extend(grid.axes(&axes, layout, &theme));
-    items.extend(grid.guides(chart, &theme, &legends));
 
     let fields: Vec<&str> = columns.iter().map(|(o, _)| o.field.as_str()).collect();
     let mut derived = Derived::of_rows(rows, &fields);
@@ -188,20 +182,19 @@ pub fn draw(
     if let Some(h) = highlight {
         derived.push("selected", DerivedColumn::Selected(h.selected.clone()));
     }
-    let scene = crate::scene::Scene {
-        width: grid.width,
-        height: grid.height,
-        background: theme.background,
-        title: chart.title.clone(),
-        items,
-    };
-    Ok(ChartOutput { scene, derived, warnings, geojson: None })
+    Ok(ChartOutput { scene: canvas.scene(chart, items, None), derived, warnings, geojson: None })
+}
+
+/// What an off-diagonal cell draws.
+enum CellMarks {
+    /// Point batches (context, then selected or all rows).
+    Points(Vec<Item>),
+    /// Row counts in small bins.
+    Density(DensityCounts),
 }
 
 /// The matrix layout: cell rectangles and one scale per column, across and up.
 struct Grid {
-    width: f64,
-    height: f64,
     /// Left edge of each cell column.
     lefts: Vec<f64>,
     /// Top edge of each cell row.
@@ -213,23 +206,17 @@ struct Grid {
     x: Vec<Scale>,
     /// Vertical scale of each column (shared by its cell row).
     y: Vec<Scale>,
-    /// Top of the cell block (below the title).
-    top: f64,
-    /// Width the legends need.
-    legend_w: f64,
 }
 
 impl Grid {
     /// Fit `axes.len()`² cells between the title, caption, outer axes and legends.
-    fn lay_out(chart: &Chart, theme: &Theme, axes: &[PositionAxis], legends: &[Legend]) -> Result<Grid, LayoutError> {
-        let [width, height] = chart.size.unwrap_or(DEFAULT_SIZE);
+    fn lay_out(canvas: &frame::PanelCanvas, axes: &[PositionAxis]) -> Result<Grid, LayoutError> {
+        let (width, height, theme) = (canvas.width, canvas.height, &canvas.theme);
         let m = theme.margin;
         let k = axes.len();
-        let top = m + chart.title.as_ref().map_or(theme.font_size * 0.5, |_| theme.title_size * 1.8);
-        let bottom_reserved = m + chart.caption.as_ref().map_or(0.0, |_| theme.caption_size * 1.8);
-        let room = (height - top - bottom_reserved).max(0.0);
-        let legend_w = legends.iter().map(|l| l.extent(theme, room).0).fold(0.0, f64::max);
-        let right = m + if legend_w > 0.0 { legend_w + theme.font_size * 1.5 } else { 0.0 };
+        let top = canvas.top();
+        let bottom_reserved = m + canvas.caption_h;
+        let right = m + canvas.legend_room();
         let gap = (theme.font_size * 0.8).round();
         let mut left = m + theme.font_size * 4.0;
         let mut bottom = bottom_reserved + theme.font_size * 3.0;
@@ -264,7 +251,7 @@ impl Grid {
                         .fold(0.0, f64::max);
                 continue;
             }
-            return Ok(Grid { width, height, lefts, tops, cell_w, cell_h, gap, x, y, top, legend_w });
+            return Ok(Grid { lefts, tops, cell_w, cell_h, gap, x, y });
         }
         unreachable!("the second pass returns")
     }
@@ -306,20 +293,6 @@ impl Grid {
         }
         items
     }
-
-    /// Title, caption and legends.
-    fn guides(&self, chart: &Chart, theme: &Theme, legends: &[Legend]) -> Vec<Item> {
-        let m = theme.margin;
-        let mut items = frame::title_and_caption(chart, theme, m, None);
-        let room = self.height - self.top - m;
-        let mut y = self.top;
-        for legend in legends {
-            let (_, h) = legend.extent(theme, room);
-            items.extend(legend.draw(Point::new(self.width - m - self.legend_w, y), theme, room));
-            y += h + theme.font_size * 1.5;
-        }
-        items
-    }
 }
 
 /// How the rows of an off-diagonal cell are painted.
@@ -339,13 +312,7 @@ impl CellPaint<'_> {
         let batch = |rows: &[u32], context: bool| {
             let centers: Vec<Point> =
                 rows.iter().map(|&r| Point::new(x.map(xs[r as usize]), y.map(ys[r as usize]))).collect();
-            let fill = match (self.colors, context) {
-                (_, true) => PerPoint::Uniform(highlight::CONTEXT.with_opacity(self.opacity)),
-                (ColorEncoding::Fixed(c), false) => PerPoint::Uniform(c.with_opacity(self.opacity)),
-                (other, false) => {
-                    PerPoint::Each(rows.iter().map(|&r| other.color_of(r).with_opacity(self.opacity)).collect())
-                }
-            };
+            let fill = highlight::point_fill(self.colors, rows, context, self.opacity);
             let stroke =
                 (rows.len() <= 2_000 && self.radius >= 2.5).then(|| Stroke::solid(Color::WHITE.with_opacity(0.7), 0.5));
             let batch = PointBatch { centers, radius: PerPoint::Uniform(self.radius), fill, stroke };
@@ -357,8 +324,8 @@ impl CellPaint<'_> {
         }
     }
 
-    /// The colour groups of the diagonal: (label, colour, rows) — one group per category for a
-    /// categorical colour, else one group.
+    /// The colour groups of the diagonal: (colour, rows), one group per category for a
+    /// categorical colour, else one.
     fn groups(&self, rows: &[u32]) -> Vec<(Color, Vec<u32>)> {
         match self.colors {
             ColorEncoding::Categorical { categories, colors } => {
@@ -396,7 +363,7 @@ fn diagonal_cell(
     let (lo, hi) = scale.domain();
     let mut items = Vec::new();
     if let Some(h) = paint.highlight {
-        items.extend(brush(h, cell, (&channel.field, scale), None));
+        items.extend(highlight::brush(h, cell, (&channel.field, scale), None));
     }
     let (context, foreground): (&[u32], &[u32]) = match paint.split {
         Some((_, selected)) => (paint.rows, selected),
@@ -509,20 +476,6 @@ fn rect_path(rects: &[[f64; 4]], color: Color, label: &str) -> Item {
         cmds.push(PathCmd::Close);
     }
     Item::new(Role::DataMark, Shape::Path(cmds), Style::fill(color)).labelled(label)
-}
-
-/// The brushed ranges of a cell: across for the cell's x column, up for its y column.
-fn brush(h: &Highlight, cell: Rect, x: (&str, &Scale), y: Option<(&str, &Scale)>) -> Option<Item> {
-    let xs = h.range_on(x.0).and_then(|r| highlight::pixel_span(r, |v| x.1.map(v), (cell.x, cell.right())));
-    let ys = y
-        .and_then(|(field, scale)| h.range_on(field).map(|r| (r, scale)))
-        .and_then(|(r, scale)| highlight::pixel_span(r, |v| scale.map(v), (cell.y, cell.bottom())));
-    if xs.is_none() && ys.is_none() {
-        return None;
-    }
-    let (x0, x1) = xs.unwrap_or((cell.x, cell.right()));
-    let (y0, y1) = ys.unwrap_or((cell.y, cell.bottom()));
-    Some(highlight::brush_band(Rect::new(x0, y0, x1 - x0, y1 - y0)))
 }
 
 /// Row counts in small square bins of one cell: all rows, and the selected ones.
