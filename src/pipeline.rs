@@ -108,7 +108,7 @@ pub fn load(spec_path: &Path, policy: PathPolicy) -> Result<Loaded, Failed> {
         }
     }
     diagnostics.extend(check_columns(&json, &doc, &tables));
-    let (highlights, selection_errors) = evaluate_selections(&sources, checked.spec.as_ref(), &doc, &tables);
+    let (highlights, selection_errors) = evaluate_selections(checked.spec.as_ref(), &doc, &tables);
     diagnostics.extend(selection_errors);
 
     let has_errors = diagnostics.iter().any(Diagnostic::is_error);
@@ -121,7 +121,6 @@ pub fn load(spec_path: &Path, policy: PathPolicy) -> Result<Loaded, Failed> {
 /// Evaluate every selection of a valid spec against its loaded table; problems (unknown columns,
 /// ranges on text) become diagnostics pointing into the spec.
 fn evaluate_selections(
-    sources: &BTreeMap<String, spec::DataSource>,
     spec: Option<&Spec>,
     doc: &SpecDoc,
     tables: &BTreeMap<String, Table>,
@@ -130,9 +129,7 @@ fn evaluate_selections(
     let mut diagnostics = Vec::new();
     let Some(spec) = spec else { return (highlights, diagnostics) };
     for (name, selection) in &spec.selection {
-        let Some(table) = tables.get(&selection.data).filter(|_| sources.contains_key(&selection.data)) else {
-            continue;
-        };
+        let Some(table) = tables.get(&selection.data) else { continue };
         match selection::evaluate(name, selection, table) {
             Ok(h) => {
                 highlights.insert(name.clone(), h);
@@ -313,10 +310,7 @@ pub fn select_charts<'s>(spec: &'s Spec, names: &[String]) -> Result<Vec<(usize,
             Some(found) => out.push(found),
             None => {
                 let known: Vec<&str> = spec.chart.iter().map(|c| c.name.as_str()).collect();
-                let hint = match spec::suggest::did_you_mean(name, known.iter().copied()) {
-                    Some(best) => format!("did you mean `{best}`? charts: {}", known.join(", ")),
-                    None => format!("charts: {}", known.join(", ")),
-                };
+                let hint = spec::suggest::hint(name, &known, "charts", false);
                 return Err(Diagnostic::error(format!("no chart named `{name}` in the spec")).with_hint(hint));
             }
         }

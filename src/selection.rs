@@ -32,7 +32,7 @@ impl Highlight {
     /// The brushed numeric range on `column`, if the selection has one (`None` for `or`
     /// selections and inverted ones, whose ranges do not bound the selected rows on one axis).
     pub fn range_on(&self, column: &str) -> Option<(f64, f64)> {
-        if self.selection.invert == Some(true) || self.selection.combine == Some(Combine::Or) {
+        if !self.bounds_rows() {
             return None;
         }
         self.selection.range.as_ref()?.get(column).map(|r| (r[0], r[1]))
@@ -41,29 +41,17 @@ impl Highlight {
     /// The brushed categories on `column`, if the selection has a set for it (`None` for `or`
     /// and inverted selections).
     pub fn categories_on(&self, column: &str) -> Option<Vec<String>> {
-        if self.selection.invert == Some(true) || self.selection.combine == Some(Combine::Or) {
+        if !self.bounds_rows() {
             return None;
         }
         let set = self.selection.categories.as_ref()?.get(column)?;
         Some(set.iter().map(category_text).collect())
     }
 
-    /// A one-line description, e.g. `selection "small": 1 ≤ petal_length ≤ 2.5`.
-    pub fn describe(&self) -> String {
-        let mut parts = Vec::new();
-        for (column, [lo, hi]) in self.selection.range.iter().flatten() {
-            parts.push(format!("{} ≤ {column} ≤ {}", format_value(*lo), format_value(*hi)));
-        }
-        for (column, set) in self.selection.categories.iter().flatten() {
-            let listed: Vec<String> = set.iter().map(category_text).collect();
-            parts.push(format!("{column} ∈ {{{}}}", listed.join(", ")));
-        }
-        let joiner = if self.selection.combine == Some(Combine::Or) { " or " } else { " and " };
-        let mut text = parts.join(joiner);
-        if self.selection.invert == Some(true) {
-            text = format!("not ({text})");
-        }
-        format!("selection \"{}\": {text}", self.name)
+    /// Whether every condition bounds the selected rows on its own (an `and` selection, not
+    /// inverted), so that its ranges and sets can be drawn on their axes.
+    fn bounds_rows(&self) -> bool {
+        self.selection.invert != Some(true) && self.selection.combine != Some(Combine::Or)
     }
 }
 
@@ -98,12 +86,7 @@ pub fn evaluate(name: &str, selection: &Selection, table: &Table) -> Result<High
     };
     let lookup = |kind: &str, column: &str| -> Result<&Column, SelectionError> {
         table.column(column).ok_or_else(|| {
-            let names = table.column_names();
-            let listing = names.iter().map(|n| format!("`{n}`")).collect::<Vec<_>>().join(", ");
-            let hint = match crate::spec::suggest::did_you_mean(column, names.iter().copied()) {
-                Some(best) => format!("did you mean `{best}`? columns: {listing}"),
-                None => format!("columns: {listing}"),
-            };
+            let hint = crate::spec::suggest::hint(column, &table.column_names(), "columns", true);
             SelectionError {
                 message: format!("selection \"{name}\": data \"{}\" has no column `{column}`", selection.data),
                 hint,
@@ -235,12 +218,5 @@ mod tests {
         assert_eq!(e.path[3], PathSeg::Key("kindd".into()));
         let e = evaluate("s", &selection(&[("kind", [0.0, 1.0])], &[], Combine::And), &table()).unwrap_err();
         assert!(e.message.contains("holds text"), "{}", e.message);
-    }
-
-    #[test]
-    fn describe_reads_like_the_condition() {
-        let s = selection(&[("x", [1.0, 2.5])], &[("kind", vec![text("a")])], Combine::And);
-        let h = evaluate("small", &s, &table()).unwrap();
-        assert_eq!(h.describe(), "selection \"small\": 1 ≤ x ≤ 2.5 and kind ∈ {a}");
     }
 }

@@ -22,12 +22,7 @@ pub const DEFAULT_MARK_COLOR: Color = Color::rgb(0x00, 0x72, 0xb2);
 pub fn missing_column(chart: &str, data: &str, field: &str, table: &Table) -> (String, String) {
     let names = table.column_names();
     let message = format!("chart \"{chart}\": data \"{data}\" has no column `{field}`");
-    let listing = names.iter().map(|n| format!("`{n}`")).collect::<Vec<_>>().join(", ");
-    let hint = match crate::spec::suggest::did_you_mean(field, names.iter().copied()) {
-        Some(best) => format!("did you mean `{best}`? columns: {listing}"),
-        None => format!("columns: {listing}"),
-    };
-    (message, hint)
+    (message, crate::spec::suggest::hint(field, &names, "columns", true))
 }
 
 /// The column a channel names, or an error pointing at the channel's key.
@@ -440,10 +435,7 @@ pub fn palette(index: usize, keys: &[&str], name: Option<&str>) -> Result<Vec<Co
     let name = name.unwrap_or(color::DEFAULT_CATEGORICAL);
     color::categorical(name).ok_or_else(|| {
         let names = color::categorical_names();
-        let hint = match crate::spec::suggest::did_you_mean(name, names.iter().copied()) {
-            Some(best) => format!("did you mean `{best}`? categorical schemes: {}", names.join(", ")),
-            None => format!("categorical schemes: {}", names.join(", ")),
-        };
+        let hint = crate::spec::suggest::hint(name, names, "categorical schemes", false);
         MarkError::at(index, keys, format!("unknown categorical colour scheme `{name}`"), hint)
     })
 }
@@ -540,10 +532,7 @@ pub fn continuous_map(index: usize, keys: &[&str], name: Option<&str>) -> Result
     let scheme = name.unwrap_or(color::DEFAULT_SEQUENTIAL);
     color::continuous(scheme).ok_or_else(|| {
         let names = color::continuous_names();
-        let hint = match crate::spec::suggest::did_you_mean(scheme, names.iter().copied()) {
-            Some(best) => format!("did you mean `{best}`? continuous schemes: {}", names.join(", ")),
-            None => format!("continuous schemes: {}", names.join(", ")),
-        };
+        let hint = crate::spec::suggest::hint(scheme, names, "continuous schemes", false);
         MarkError::at(index, keys, format!("unknown continuous colour scheme `{scheme}`"), hint)
     })
 }

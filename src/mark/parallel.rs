@@ -105,10 +105,7 @@ fn inverted_columns(
     let mut out = Vec::new();
     for name in options.invert.iter().flatten() {
         if !fields.contains(&name.as_str()) {
-            let hint = match crate::spec::suggest::did_you_mean(name, fields.iter().copied()) {
-                Some(best) => format!("did you mean `{best}`? axes: {}", fields.join(", ")),
-                None => format!("axes: {}", fields.join(", ")),
-            };
+            let hint = crate::spec::suggest::hint(name, &fields, "axes", false);
             return Err(MarkError::at(
                 index,
                 &["invert"],

@@ -154,13 +154,10 @@ pub(crate) fn draw_batch(pixmap: &mut Pixmap, batch: &LineBatch, scale: f64, cli
 fn draw_batch_on(pixmap: &mut Pixmap, batch: &LineBatch, scale: f64, clip: &Clip, threads: usize) {
     let (pw, ph) = (i64::from(pixmap.width()), i64::from(pixmap.height()));
     let width = pixmap.width() as usize;
-    let r = clip.rect;
-    let bound = |v: f64, hi: i64| if v.is_finite() { (v as i64).clamp(0, hi) } else { 0 };
-    let (x0, y0) = (bound((r.x * scale).floor(), pw), bound((r.y * scale).floor(), ph));
-    let (x1, y1) = (bound((r.right() * scale).ceil(), pw), bound((r.bottom() * scale).ceil(), ph));
+    let Some((x0, y0, x1, y1)) = clip.device_bounds(pixmap, scale) else { return };
     let device_width = batch.width * scale;
     // Written so that NaN fails too.
-    if x0 >= x1 || y0 >= y1 || batch.is_empty() || !(device_width > 0.0 && device_width.is_finite()) {
+    if batch.is_empty() || !(device_width > 0.0 && device_width.is_finite()) {
         return;
     }
     // Hairlines: one pixel wide at proportionally less alpha. Wider than the canvas diagonal
@@ -178,10 +175,7 @@ fn draw_batch_on(pixmap: &mut Pixmap, batch: &LineBatch, scale: f64, clip: &Clip
         }
         PerPoint::Each(_) => None,
     };
-    // A clip rectangle on whole device pixels is exactly the target bounds: skip its mask.
-    let on_pixels = |v: f64| (v * scale - (v * scale).round()).abs() < 1e-9;
-    let aligned = [r.x, r.y, r.right(), r.bottom()].into_iter().all(on_pixels);
-    let mask = if aligned { None } else { clip.mask.as_ref().map(|m| m.data()) };
+    let mask = clip.device_mask(scale);
 
     let half_width = device_width / 2.0;
     // At a fixed major coordinate the stroke reaches at most half_width·√2 from its centre

@@ -193,6 +193,29 @@ pub(crate) struct Clip {
     pub(crate) mask: Option<Mask>,
 }
 
+impl Clip {
+    /// The clip rectangle in whole device pixels `(x0, y0, x1, y1)`, half-open and inside the
+    /// pixmap, at `scale` device pixels per canvas unit; `None` when nothing is visible.
+    pub(crate) fn device_bounds(&self, pixmap: &Pixmap, scale: f64) -> Option<(i64, i64, i64, i64)> {
+        let (pw, ph) = (i64::from(pixmap.width()), i64::from(pixmap.height()));
+        let r = self.rect;
+        let bound = |v: f64, hi: i64| if v.is_finite() { (v as i64).clamp(0, hi) } else { 0 };
+        let (x0, y0) = (bound((r.x * scale).floor(), pw), bound((r.y * scale).floor(), ph));
+        let (x1, y1) = (bound((r.right() * scale).ceil(), pw), bound((r.bottom() * scale).ceil(), ph));
+        (x0 < x1 && y0 < y1).then_some((x0, y0, x1, y1))
+    }
+
+    /// The coverage mask to apply at `scale`, or `None` when the clip rectangle lies on whole
+    /// device pixels and so is exactly [`Clip::device_bounds`] (chart layouts snap plot areas
+    /// to pixels, which lets blitters skip the mask).
+    pub(crate) fn device_mask(&self, scale: f64) -> Option<&[u8]> {
+        let r = self.rect;
+        let on_pixels = |v: f64| (v * scale - (v * scale).round()).abs() < 1e-9;
+        let aligned = [r.x, r.y, r.right(), r.bottom()].into_iter().all(on_pixels);
+        if aligned { None } else { self.mask.as_ref().map(|m| m.data()) }
+    }
+}
+
 /// A solid anti-aliased paint.
 pub(crate) fn paint(c: Color) -> Paint<'static> {
     let mut p = Paint::default();

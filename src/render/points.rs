@@ -533,15 +533,9 @@ pub(crate) fn draw_batch(pixmap: &mut Pixmap, batch: &PointBatch, scale: f64, cl
 
 /// [`draw_batch`] using at most `threads` threads.
 fn draw_batch_on(pixmap: &mut Pixmap, batch: &PointBatch, scale: f64, clip: &Clip, threads: usize) {
-    let (pw, ph) = (i64::from(pixmap.width()), i64::from(pixmap.height()));
     let width = pixmap.width() as usize;
-    let r = clip.rect;
-    let bound = |v: f64, hi: i64| if v.is_finite() { (v as i64).clamp(0, hi) } else { 0 };
-    let (x0, y0) = (bound((r.x * scale).floor(), pw), bound((r.y * scale).floor(), ph));
-    let (x1, y1) = (bound((r.right() * scale).ceil(), pw), bound((r.bottom() * scale).ceil(), ph));
-    if x0 >= x1 || y0 >= y1 {
-        return;
-    }
+    let ph = i64::from(pixmap.height());
+    let Some((x0, y0, x1, y1)) = clip.device_bounds(pixmap, scale) else { return };
     // Outline: device width, and for hairlines (< 1 px) one pixel at proportionally less alpha.
     let stroke = visible_stroke(&batch.stroke).map(|s| {
         let w = s.width * scale;
@@ -566,11 +560,7 @@ fn draw_batch_on(pixmap: &mut Pixmap, batch: &PointBatch, scale: f64, clip: &Cli
         x1: x1 as f64,
         y1: y1 as f64,
     };
-    // A clip rectangle on whole device pixels is exactly the target bounds: skip its mask so
-    // stamps can take the fast unmasked path (chart layouts snap the plot area to pixels).
-    let on_pixels = |v: f64| (v * scale - (v * scale).round()).abs() < 1e-9;
-    let aligned = [r.x, r.y, r.right(), r.bottom()].into_iter().all(on_pixels);
-    let mask = if aligned { None } else { clip.mask.as_ref().map(|m| m.data()) };
+    let mask = clip.device_mask(scale);
     let n = batch.centers.len();
     let (keys, large) = plan.keys(0..n);
     plan.prepare(&keys);

@@ -25,6 +25,16 @@ where
     best.map(|(_, c)| c)
 }
 
+/// A hint listing what exists, led by a "did you mean" when one name is close to `wanted`:
+/// "did you mean `b`? columns: `a`, `b`" (names in backticks when `quoted`).
+pub fn hint(wanted: &str, names: &[&str], label: &str, quoted: bool) -> String {
+    let listing: Vec<String> = names.iter().map(|n| if quoted { format!("`{n}`") } else { (*n).to_string() }).collect();
+    match did_you_mean(wanted, names.iter().copied()) {
+        Some(best) => format!("did you mean `{best}`? {label}: {}", listing.join(", ")),
+        None => format!("{label}: {}", listing.join(", ")),
+    }
+}
+
 /// How alike two names are, 0..=1, ignoring case and `-`/`_` differences.
 ///
 /// Exact matches after normalising score 1; one edit or swap apart in names of 3+ characters scores
