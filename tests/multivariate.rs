@@ -347,3 +347,16 @@ fn splom_of_text_columns_explains_itself() {
     let e = draw_err("[[chart]]\nname = \"m\"\nkind = \"splom\"\ndata = \"t\"\ncolumns = [\"a\", \"kind\"]");
     assert!(e.contains("column `kind` holds text; a scatter-plot matrix needs numbers"), "{e}");
 }
+
+#[test]
+fn segments_order_text_alphabetically_keeping_ties_in_data_order() {
+    let order = |descending: bool| {
+        let out = draw_ok(&format!(
+            "[[chart]]\nname = \"g\"\nkind = \"segments\"\ndata = \"t\"\ncolumns = [\"a\", \"c\"]\norder_by = \"kind\"\ndescending = {descending}"
+        ));
+        let csv = out[0].derived.to_csv(&Default::default());
+        csv.lines().skip(1).map(|l| l.split(',').next().unwrap().to_string()).collect::<Vec<_>>()
+    };
+    assert_eq!(order(false), ["0", "2", "5", "7", "1", "4", "3", "6"]);
+    assert_eq!(order(true), ["3", "6", "1", "4", "0", "2", "5", "7"]);
+}

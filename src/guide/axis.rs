@@ -22,11 +22,21 @@ fn gap(theme: &Theme) -> f64 {
 /// The ticks that will be labelled: all of them unless neighbouring labels would overlap, in which
 /// case every k-th tick is kept (the smallest k that leaves a gap between labels).
 pub fn visible_ticks(scale: &Scale, side: Side, theme: &Theme) -> Vec<Tick> {
-    let ticks = scale.ticks();
+    visible_ticks_within(scale, side, theme, (f64::NEG_INFINITY, f64::INFINITY))
+}
+
+/// [`visible_ticks`] among the ticks whose labels fit inside `span` (along x for a bottom axis,
+/// along y for a left one), so that small multiples never push labels into their neighbours'.
+pub fn visible_ticks_within(scale: &Scale, side: Side, theme: &Theme, span: (f64, f64)) -> Vec<Tick> {
     let extent = |t: &Tick| match side {
         Side::Bottom => measure(&t.label, theme.font_size).width,
         Side::Left => theme.font_size,
     };
+    let ticks: Vec<Tick> = scale
+        .ticks()
+        .into_iter()
+        .filter(|t| t.position - extent(t) / 2.0 >= span.0 - 0.5 && t.position + extent(t) / 2.0 <= span.1 + 0.5)
+        .collect();
     let min_gap = theme.font_size * 0.6;
     for step in 1..=ticks.len().max(1) {
         let kept: Vec<&Tick> = ticks.iter().step_by(step).collect();
@@ -87,7 +97,19 @@ fn snap(v: f64) -> f64 {
 
 /// The axis line, tick marks, tick labels and title.
 pub fn draw(scale: &Scale, side: Side, plot: Rect, title: Option<&str>, theme: &Theme) -> Vec<Item> {
-    let ticks = visible_ticks(scale, side, theme);
+    draw_within(scale, side, plot, title, theme, (f64::NEG_INFINITY, f64::INFINITY))
+}
+
+/// [`draw`] labelling only ticks whose labels fit inside `span` (see [`visible_ticks_within`]).
+pub fn draw_within(
+    scale: &Scale,
+    side: Side,
+    plot: Rect,
+    title: Option<&str>,
+    theme: &Theme,
+    span: (f64, f64),
+) -> Vec<Item> {
+    let ticks = visible_ticks_within(scale, side, theme, span);
     let mut items = Vec::new();
     let mut marks = Vec::new();
     let name = match side {
@@ -164,26 +186,6 @@ pub fn draw(scale: &Scale, side: Side, plot: Rect, title: Option<&str>, theme: &
         items.push(Item::text(Role::AxisTitle, text).labelled(name));
     }
     items
-}
-
-/// Drop the tick labels of `items` (from [`draw`]) that would stick out of `span`: along x for a
-/// bottom axis, along y for a left one. Small multiples use this so that the end labels of
-/// neighbouring panels never collide.
-pub fn keep_labels_within(items: Vec<Item>, side: Side, span: (f64, f64)) -> Vec<Item> {
-    items
-        .into_iter()
-        .filter(|item| {
-            let Shape::Text(text) = &item.shape else { return true };
-            if item.role != Role::TickLabel {
-                return true;
-            }
-            let b = crate::text::bounds(text);
-            match side {
-                Side::Bottom => b.x >= span.0 - 0.5 && b.right() <= span.1 + 0.5,
-                Side::Left => b.y >= span.0 - 0.5 && b.bottom() <= span.1 + 0.5,
-            }
-        })
-        .collect()
 }
 
 /// An axis title with its unit: "Petal length (cm)".

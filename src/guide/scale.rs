@@ -551,18 +551,19 @@ impl BandScale {
 }
 
 /// Ticks inside a fixed domain: the extended search restricted to the domain, or when that
-/// labels fewer than two values (short domains with awkward ends), the nice ticks of a loose
-/// search that fall inside.
+/// labels fewer than `min(target, 3)` values (short domains with awkward ends, where the strict
+/// search may settle for two far-apart ticks), the nice ticks of a loose search that fall inside.
 fn within_domain_ticks(lo: f64, hi: f64, target: usize) -> TickSet {
     let inside = |v: &f64| *v >= lo && *v <= hi;
+    let wanted = target.clamp(2, 3);
     let strict = extended(lo, hi, target, false);
-    if strict.values.iter().filter(|v| inside(v)).count() >= 2 || target < 2 {
+    if strict.values.iter().filter(|v| inside(v)).count() >= wanted || target < 2 {
         return strict;
     }
     for t in target..target + 4 {
         let mut loose = extended(lo, hi, t, true);
         loose.values.retain(inside);
-        if loose.values.len() >= 2 {
+        if loose.values.len() >= wanted {
             return loose;
         }
     }
@@ -841,8 +842,12 @@ mod tests {
         for target in 2..=6 {
             let s = LinearScale::new((0.764, 7.136), (0.0, 135.0), false, target).unwrap();
             let values: Vec<f64> = s.ticks().iter().map(|t| t.value).collect();
-            assert!(values.len() >= 2, "target {target}: {values:?}");
+            assert!(values.len() >= target.min(3), "target {target}: {values:?}");
             assert!(values.iter().all(|v| (0.764..=7.136).contains(v)), "target {target}: {values:?}");
         }
+        // Alone, the strict search settles for −2.5 and 5 (a step of 7.5) here.
+        let s = LinearScale::new((-2.878, 5.507), (0.0, 105.0), false, 3).unwrap();
+        let labels: Vec<String> = s.ticks().iter().map(|t| t.label.clone()).collect();
+        assert!(labels.len() >= 3, "{labels:?}");
     }
 }

@@ -74,9 +74,10 @@ pub fn draw(
     let width = options.stroke_width.unwrap_or(if n > 1_000 { 1.0 } else { 1.3 });
     let marks = highlight::layers(&rows, highlight, |rows, context| {
         let mut vertices = Vec::with_capacity(rows.len() * (k * CURVE_STEPS + 1));
+        let mut points: Vec<Point> = Vec::with_capacity(k);
         for &r in rows {
-            let points: Vec<Point> =
-                positioners.iter().map(|p| polar(wheel.center, wheel.radius, wheel.angle(p.at(r)))).collect();
+            points.clear();
+            points.extend(positioners.iter().map(|p| polar(wheel.center, wheel.radius, wheel.angle(p.at(r)))));
             for i in 0..k {
                 let (a, b) = (points[i], points[(i + 1) % k]);
                 let mid = Point::new((a.x + b.x) / 2.0, (a.y + b.y) / 2.0);

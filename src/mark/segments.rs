@@ -5,6 +5,8 @@
 
 use std::sync::Arc;
 
+use rayon::prelude::*;
+
 use super::derived::{Derived, DerivedColumn};
 use super::encode;
 use super::frame;
@@ -177,26 +179,28 @@ fn row_order(chart: &Chart, index: usize, options: &SegmentsOptions, table: &Tab
     let col: &Column = encode::column(chart, index, "order_by", field, table)?;
     let descending = options.descending == Some(true);
     if let Some(values) = col.numbers() {
-        let key = |r: &u32| values.get(*r as usize).copied().unwrap_or(f64::NAN);
-        order.sort_by(|a, b| {
-            let (x, y) = (key(a), key(b));
-            match (x.is_nan(), y.is_nan()) {
-                (true, true) => std::cmp::Ordering::Equal,
-                (true, false) => std::cmp::Ordering::Greater,
-                (false, true) => std::cmp::Ordering::Less,
-                _ if descending => y.total_cmp(&x),
-                _ => x.total_cmp(&y),
-            }
+        // Sort (value, row) pairs: no lookups inside the comparisons, and a stable parallel
+        // sort keeps ties in data order.
+        let mut keyed: Vec<(f64, u32)> = order.iter().map(|&r| (values[r as usize], r)).collect();
+        keyed.par_sort_by(|(x, _), (y, _)| match (x.is_nan(), y.is_nan()) {
+            (true, true) => std::cmp::Ordering::Equal,
+            (true, false) => std::cmp::Ordering::Greater,
+            (false, true) => std::cmp::Ordering::Less,
+            _ if descending => y.total_cmp(x),
+            _ => x.total_cmp(y),
         });
+        order = keyed.into_iter().map(|(_, r)| r).collect();
     } else if let Some(cats) = col.categories() {
-        let key = |r: &u32| cats.value(*r as usize);
-        order.sort_by(|a, b| match (key(a), key(b)) {
-            (None, None) => std::cmp::Ordering::Equal,
-            (None, Some(_)) => std::cmp::Ordering::Greater,
-            (Some(_), None) => std::cmp::Ordering::Less,
-            (Some(x), Some(y)) if descending => y.cmp(x),
-            (Some(x), Some(y)) => x.cmp(y),
-        });
+        // Rank the categories once; rows then sort by an integer (missing text last).
+        let mut levels: Vec<usize> = (0..cats.levels.len()).collect();
+        levels.sort_by(|&a, &b| cats.levels[a].cmp(&cats.levels[b]));
+        let mut rank = vec![0u32; levels.len()];
+        for (position, &level) in levels.iter().enumerate() {
+            rank[level] = if descending { (levels.len() - 1 - position) as u32 } else { position as u32 };
+        }
+        let key =
+            |r: &u32| cats.codes.get(*r as usize).and_then(|&c| rank.get(c as usize)).copied().unwrap_or(u32::MAX);
+        order.par_sort_by_key(key);
     }
     Ok(order)
 }

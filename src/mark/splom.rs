@@ -228,8 +228,8 @@ impl Grid {
             }
             let lefts: Vec<f64> = (0..k).map(|j| left.ceil() + j as f64 * (cell_w + gap)).collect();
             let tops: Vec<f64> = (0..k).map(|i| top.ceil() + i as f64 * (cell_h + gap)).collect();
-            let target_x = ((cell_w / (theme.font_size * 3.5)).round() as usize).clamp(2, 6);
-            let target_y = ((cell_h / (theme.font_size * 3.0)).round() as usize).clamp(2, 6);
+            let target_x = ((cell_w / (theme.font_size * 3.0)).round() as usize).clamp(3, 6);
+            let target_y = ((cell_h / (theme.font_size * 3.0)).round() as usize).clamp(3, 6);
             let mut x = Vec::with_capacity(k);
             let mut y = Vec::with_capacity(k);
             for (c, axis) in axes.iter().enumerate() {
@@ -277,19 +277,11 @@ impl Grid {
             // Labels may reach past the outer edges, but never into a neighbouring cell's labels.
             let slack = |outer: bool| if outer { f64::INFINITY } else { self.gap * 0.3 };
             let span = (cell.x - slack(c == 0), cell.right() + slack(c == k - 1));
-            items.extend(axis::keep_labels_within(
-                axis::draw(&self.x[c], Side::Bottom, cell, Some(&title), theme),
-                Side::Bottom,
-                span,
-            ));
+            items.extend(axis::draw_within(&self.x[c], Side::Bottom, cell, Some(&title), theme, span));
             let cell = self.cell(c, left_col);
             let title = truncate_to_width(&axis.title, self.cell_h + self.gap, theme.label_size);
             let span = (cell.y - slack(c == 0), cell.bottom() + slack(c == k - 1));
-            items.extend(axis::keep_labels_within(
-                axis::draw(&self.y[c], Side::Left, cell, Some(&title), theme),
-                Side::Left,
-                span,
-            ));
+            items.extend(axis::draw_within(&self.y[c], Side::Left, cell, Some(&title), theme, span));
         }
         items
     }
@@ -386,7 +378,9 @@ fn diagonal_cell(
                 let x1 = scale.map(lo + (hi - lo) * (k + 1) as f64 / bins as f64);
                 let y0 = base - height * from / max;
                 let y1 = base - height * (from + count) / max;
-                [x0 + 0.5, y1, x1 - 0.5, y0]
+                // A hairline gap between bars, narrower for narrow bars so they stay solid.
+                let gap = ((x1 - x0).abs() * 0.08).min(0.5);
+                [x0 + gap, y1, x1 - gap, y0]
             };
             if !context.is_empty() {
                 let rects: Vec<[f64; 4]> = total.iter().enumerate().map(|(k, &c)| bar(k, 0.0, c)).collect();
