@@ -56,11 +56,7 @@ pub fn draw(
         &rows,
         Symbol::Line,
     )?;
-    let mut axes: Vec<PositionAxis> = Vec::with_capacity(columns.len());
-    for (opts, col) in &columns {
-        let axis = encode::position_axis(chart, index, "columns", opts, col, &rows)?;
-        axes.push(encode::integer_ticks(axis, col, &rows));
-    }
+    let axes = encode::column_axes(chart, index, &columns, &rows)?;
     let mut legends: Vec<Legend> = color_legend.into_iter().collect();
     legends.extend(highlight.map(|h| highlight::legend(h, &rows, Symbol::Line)));
     let canvas = frame::PanelCanvas::new(chart, legends);

@@ -253,6 +253,20 @@ pub fn position_axis(
     })
 }
 
+/// One axis per entry of a `columns` list over the kept rows, whole-number columns ticked per
+/// integer (parallel coordinates, daisy charts).
+pub fn column_axes(
+    chart: &crate::spec::Chart,
+    index: usize,
+    columns: &[(ChannelOptions, &Column)],
+    rows: &[u32],
+) -> Result<Vec<PositionAxis>, MarkError> {
+    columns
+        .iter()
+        .map(|(opts, col)| Ok(integer_ticks(position_axis(chart, index, "columns", opts, col, rows)?, col, rows)))
+        .collect()
+}
+
 /// For a column of few distinct whole numbers (counts, codes, years) on a linear axis without a
 /// requested tick count: one tick per whole number, so no tick claims a value like 3.5.
 pub fn integer_ticks(mut axis: PositionAxis, column: &Column, rows: &[u32]) -> PositionAxis {

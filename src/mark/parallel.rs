@@ -59,10 +59,7 @@ pub fn draw(
         &rows,
         Symbol::Line,
     )?;
-    let mut axes: Vec<PositionAxis> = Vec::with_capacity(columns.len());
-    for (opts, col) in &columns {
-        axes.push(encode::integer_ticks(encode::position_axis(chart, index, "columns", opts, col, &rows)?, col, &rows));
-    }
+    let mut axes = encode::column_axes(chart, index, &columns, &rows)?;
     if options.shared_scale == Some(true) {
         share_domain(&mut axes);
     }

@@ -36,7 +36,7 @@ use crate::scene::{LineBatch, PerPoint, Point};
 
 use super::finite_point;
 use super::png::Clip;
-use super::points::{coverage_table, in_parallel, mul_lanes, over, premultiplied};
+use super::points::{Target, coverage_table, in_parallel, mul_lanes, over, premultiplied};
 
 /// Bits of fraction of the fixed-point minor coordinates (see [`Seg`]).
 const FIX_BITS: u32 = 24;
@@ -125,19 +125,6 @@ struct View {
     /// Clip area in canvas units (the visible device rectangle plus a margin that the stroke
     /// cannot cross): x min, y min, x max, y max.
     area: [f64; 4],
-}
-
-/// Where a band may write: rows `y0..y1` (its bytes start at row `row0`, the first one) and
-/// columns `x0..x1` of a pixmap `width` pixels wide, plus the clip mask (whole pixmap,
-/// row-major) if any.
-struct Target<'a> {
-    width: usize,
-    row0: i64,
-    x0: i64,
-    y0: i64,
-    x1: i64,
-    y1: i64,
-    mask: Option<&'a [u8]>,
 }
 
 /// Draws every polyline of `batch` (canvas units, `scale` device pixels per unit) inside

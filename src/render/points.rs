@@ -191,15 +191,19 @@ pub(super) fn coverage_table(src: u32) -> Box<[u32; 256]> {
 
 /// Where blits may write: a horizontal band of the pixmap (its bytes start at row `row0`),
 /// limited to the half-open device rectangle `x0..x1 × y0..y1`, plus the clip mask (whole
-/// pixmap, row-major) if any.
-struct Target<'a> {
-    width: usize,
-    row0: i64,
-    x0: i64,
-    y0: i64,
-    x1: i64,
-    y1: i64,
-    mask: Option<&'a [u8]>,
+/// pixmap, row-major) if any. Shared with the line rasterizer.
+pub(super) struct Target<'a> {
+    /// Pixmap width in pixels.
+    pub(super) width: usize,
+    /// First pixmap row of the band's bytes.
+    pub(super) row0: i64,
+    /// Writable columns `x0..x1` and rows `y0..y1`.
+    pub(super) x0: i64,
+    pub(super) y0: i64,
+    pub(super) x1: i64,
+    pub(super) y1: i64,
+    /// Clip coverage of the whole pixmap, if the clip is not pixel-aligned.
+    pub(super) mask: Option<&'a [u8]>,
 }
 
 /// Blends one stamp with its pixel (0, 0) at device pixel (`ox`, `oy`).
