@@ -51,6 +51,7 @@
 pub mod data;
 pub mod enrich;
 pub mod guide;
+pub mod layout;
 pub mod mark;
 pub mod pipeline;
 pub mod render;
