@@ -87,6 +87,9 @@ impl LoadError {
             LoadError::Parse { format: DataFormat::Npy, .. } => {
                 "save a 2-D float or integer array with numpy.save".into()
             }
+            LoadError::Parse { format: DataFormat::Tree, .. } => {
+                "a tree file is one JSON object with a `children` array of objects of the same shape".into()
+            }
             LoadError::Parse { format: DataFormat::Matrix, .. } => {
                 "a CSV matrix has no header and the same number of numbers on every line".into()
             }
@@ -106,6 +109,7 @@ fn format_name(format: DataFormat) -> &'static str {
         DataFormat::Json => "JSON",
         DataFormat::Npy => "NumPy .npy",
         DataFormat::Matrix => "a CSV matrix",
+        DataFormat::Tree => "a nested JSON tree",
     }
 }
 
@@ -143,6 +147,7 @@ pub fn load_source(
             match format {
                 DataFormat::Npy => return Ok(super::matrix::read_npy(&resolved)?.to_table(source.extent)),
                 DataFormat::Matrix => return Ok(read_csv_matrix(&resolved, separator)?.to_table(source.extent)),
+                DataFormat::Tree => return super::nested::read_tree_json(&resolved),
                 _ => {}
             }
             match columns {
@@ -194,7 +199,7 @@ pub fn load_file(
             .into_reader_with_file_handle(file)
             .finish(),
         DataFormat::Parquet => ParquetReader::new(file).with_columns(columns.map(<[String]>::to_vec)).finish(),
-        DataFormat::Npy | DataFormat::Matrix => {
+        DataFormat::Npy | DataFormat::Matrix | DataFormat::Tree => {
             return Err(LoadError::Parse { origin, format, message: "grid files are read by load_source".into() });
         }
         DataFormat::Json => {

@@ -6,9 +6,12 @@
 
 pub mod load;
 pub mod matrix;
+pub mod nested;
+pub mod network;
 pub mod paths;
 pub mod table;
 pub mod time;
+pub mod tree;
 
 pub use load::{LoadError, load_source};
 pub use paths::{PathError, PathPolicy, resolve_data_path};

@@ -58,6 +58,16 @@ pub struct Column {
 }
 
 impl Column {
+    /// The cell at `row` as an identity key (node ids, tree paths): text trimmed, numbers in
+    /// shortest form; `None` when the cell is missing, empty or not finite.
+    pub fn key(&self, row: usize) -> Option<String> {
+        if let Some(values) = self.numbers() {
+            return values.get(row).filter(|v| v.is_finite()).map(|v| v.to_string());
+        }
+        let text = self.categories()?.value(row)?.trim();
+        (!text.is_empty()).then(|| text.to_string())
+    }
+
     /// Number of rows.
     pub fn len(&self) -> usize {
         match &self.values {

@@ -46,7 +46,9 @@ impl fmt::Display for HierarchyError {
             Self::TooLarge(n) => write!(f, "the tree has {n} nodes; at most {} are supported", u32::MAX - 1),
             Self::NoRoot => write!(f, "every node has a parent, so there is no root (the parents form a cycle)"),
             Self::SeveralRoots(roots) => write!(f, "{} nodes have no parent (a tree has one root)", roots.len()),
-            Self::ParentOutOfRange { node, parent } => write!(f, "node {node} names parent {parent}, which does not exist"),
+            Self::ParentOutOfRange { node, parent } => {
+                write!(f, "node {node} names parent {parent}, which does not exist")
+            }
             Self::Cycle(nodes) => write!(f, "the parents form a cycle through {} nodes", nodes.len()),
         }
     }

@@ -104,6 +104,9 @@ pub enum DataFormat {
     Npy,
     /// A CSV file of numbers without a header, read as a grid: columns along x, rows along y.
     Matrix,
+    /// A nested JSON tree (an object with a `children` array), flattened into columns `id`,
+    /// `parent`, `path`, `name`, `depth` and one per field.
+    Tree,
 }
 
 /// One chart: options shared by every kind, plus the options of its `kind`.
