@@ -184,10 +184,40 @@ fn chart_fields(index: usize, chart: &Value) -> Vec<(String, Vec<PathSeg>)> {
                 path.push(PathSeg::Key(k.clone()));
                 v.as_str().map(|s| (s.to_string(), path))
             })),
+            // A tree's columns (treemap, hypertree).
+            ("tree", Value::Object(map)) => out.extend(named_fields(map, &["id", "parent", "path"], &base)),
             _ => out.extend(field_refs(value, base)),
         }
     }
     out
+}
+
+/// Column names with the spec paths that name them.
+type FieldRefs = Vec<(String, Vec<PathSeg>)>;
+
+/// The string values of `keys` in a table, with their spec paths.
+fn named_fields(map: &serde_json::Map<String, Value>, keys: &[&str], base: &[PathSeg]) -> Vec<(String, Vec<PathSeg>)> {
+    keys.iter()
+        .filter_map(|k| {
+            let mut path = base.to_vec();
+            path.push(PathSeg::Key(k.to_string()));
+            map.get(*k).and_then(Value::as_str).map(|s| (s.to_string(), path))
+        })
+        .collect()
+}
+
+/// A network chart's node table: its data source and the columns named in `nodes`.
+fn node_fields(index: usize, chart: &Value) -> Option<(String, FieldRefs)> {
+    let Value::Object(nodes) = chart.get("nodes")? else { return None };
+    let data = nodes.get("data")?.as_str()?.to_string();
+    let base = vec![PathSeg::Key("chart".into()), PathSeg::Index(index), PathSeg::Key("nodes".into())];
+    let mut fields = named_fields(nodes, &["id", "label", "size", "x", "y"], &base);
+    if let Some(color) = nodes.get("color") {
+        let mut path = base.clone();
+        path.push(PathSeg::Key("color".into()));
+        fields.extend(field_refs(color, path));
+    }
+    Some((data, fields))
 }
 
 /// The columns each data source must provide: the union of its charts' column references.
@@ -198,6 +228,9 @@ fn needed_columns(doc: &Value) -> BTreeMap<String, std::collections::BTreeSet<St
     for (index, chart) in charts.iter().enumerate() {
         let Some(data_name) = chart.get("data").and_then(Value::as_str) else { continue };
         out.entry(data_name.to_string()).or_default().extend(chart_fields(index, chart).into_iter().map(|(f, _)| f));
+        if let Some((nodes, fields)) = node_fields(index, chart) {
+            out.entry(nodes).or_default().extend(fields.into_iter().map(|(f, _)| f));
+        }
     }
     // A selection reads its own columns, which its charts need not draw.
     if let Some(Value::Object(selections)) = doc.get("selection") {
@@ -220,21 +253,36 @@ fn check_columns(doc: &Value, spans: &SpecDoc, tables: &BTreeMap<String, Table>)
     let mut out = Vec::new();
     let Some(Value::Array(charts)) = doc.get("chart") else { return out };
     for (index, chart) in charts.iter().enumerate() {
-        let Some(data_name) = chart.get("data").and_then(Value::as_str) else { continue };
-        let Some(table) = tables.get(data_name) else { continue };
         let chart_name = chart.get("name").and_then(Value::as_str).unwrap_or("?");
-        for (field, path) in chart_fields(index, chart) {
-            if table.column(&field).is_none() {
-                let (message, hint) = mark::encode::missing_column(chart_name, data_name, &field, table);
-                let mut d = Diagnostic::error(message).with_hint(hint).with_label("no such column");
-                if let Some(span) = spans.span_of(&path) {
-                    d = d.at(span);
-                }
-                out.push(d);
-            }
+        let own = chart.get("data").and_then(Value::as_str).map(|d| (d.to_string(), chart_fields(index, chart)));
+        for (data_name, fields) in own.into_iter().chain(node_fields(index, chart)) {
+            let Some(table) = tables.get(&data_name) else { continue };
+            out.extend(missing_columns(chart_name, &data_name, table, fields, spans));
         }
     }
     out
+}
+
+/// Diagnostics for the fields that `table` lacks.
+fn missing_columns(
+    chart_name: &str,
+    data_name: &str,
+    table: &Table,
+    fields: Vec<(String, Vec<PathSeg>)>,
+    spans: &SpecDoc,
+) -> Vec<Diagnostic> {
+    fields
+        .into_iter()
+        .filter(|(field, _)| table.column(field).is_none())
+        .map(|(field, path)| {
+            let (message, hint) = mark::encode::missing_column(chart_name, data_name, &field, table);
+            let d = Diagnostic::error(message).with_hint(hint).with_label("no such column");
+            match spans.span_of(&path) {
+                Some(span) => d.at(span),
+                None => d,
+            }
+        })
+        .collect()
 }
 
 /// Column names in a channel value: `"col"`, `{ field = "col" }`, or a list of those.
@@ -324,7 +372,12 @@ pub fn draw_chart(loaded: &Loaded, index: usize, chart: &spec::Chart) -> Result<
         MarkError::at(index, &["data"], format!("chart \"{}\": data \"{}\" was not loaded", chart.name, chart.data), "")
     })?;
     let highlight = chart.highlight.as_ref().and_then(|name| loaded.highlights.get(name));
-    mark::draw(chart, index, table, highlight)
+    let nodes = match &chart.kind {
+        spec::ChartKind::Graph(spec::GraphOptions { nodes: Some(n), .. })
+        | spec::ChartKind::Linkmap(spec::LinkmapOptions { nodes: Some(n), .. }) => loaded.tables.get(&n.data),
+        _ => None,
+    };
+    mark::draw_with_nodes(chart, index, table, highlight, nodes)
 }
 
 /// A mark error as a diagnostic pointing into the spec.

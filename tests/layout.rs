@@ -70,6 +70,9 @@ fn every_chart_is_labelled() {
         if kind == "faces" {
             // Faces have no axes; their key names each feature's column and direction.
             assert!(count(Role::Legend) >= 3, "{name} has a feature key");
+        } else if ["treemap", "hypertree", "graph", "linkmap"].contains(&kind) {
+            // Hierarchies and networks have no axes: their nodes (or matrix rows) are labelled.
+            assert!(count(Role::Annotation) + count(Role::TickLabel) >= 10, "{name} labels its nodes");
         } else {
             assert!(count(Role::AxisTitle) >= 2, "{name} has axis titles");
             assert!(count(Role::TickLabel) >= 4, "{name} has tick labels");
@@ -84,7 +87,8 @@ fn every_chart_is_labelled() {
         assert!(marks >= 1, "{name} has data marks");
         // Marks drawn one per row keep their rows; derived geometry (contour lines, sections,
         // surface quads, slices) is not one row per mark.
-        let derived = ["contour", "section", "surface", "hyperslice"].contains(&kind);
+        // Hyperbolic-tree edges are geometry between two rows' nodes.
+        let derived = ["contour", "section", "surface", "hyperslice", "hypertree"].contains(&kind);
         if !derived {
             assert_eq!(with_rows, marks, "{name}: every data mark keeps its source rows");
         }

@@ -40,7 +40,7 @@ const CONTINUOUS_NAMES: [&str; 17] = [
     "rdbu", "brbg", "puor", "piyg", "prgn", "rdylbu",
 ];
 
-const CATEGORICAL_NAMES: [&str; 5] = ["okabe-ito", "tableau10", "category10", "set2", "dark2"];
+const CATEGORICAL_NAMES: [&str; 6] = ["okabe-ito", "tableau10", "category10", "set2", "dark2", "paired"];
 
 /// Okabe & Ito (2008), in the order used for successive categories.
 const OKABE_ITO: [Color; 8] = [
@@ -61,15 +61,24 @@ pub struct ContinuousMap {
     gradient: colorous::Gradient,
     reversed: bool,
     diverging: bool,
+    /// The part of the gradient used, so that a map can start past its lightest colour.
+    start: f64,
 }
 
 impl ContinuousMap {
+    /// The same map starting at `start` (0 to 1) of the way along it, e.g. so the lowest
+    /// values of thin lines are not drawn in near-white.
+    pub fn starting_at(mut self, start: f64) -> ContinuousMap {
+        self.start = start.clamp(0.0, 0.9);
+        self
+    }
+
     /// The colour at `t`, clamped to 0..=1 (±∞ go to the ends); NaN gives [`MISSING`].
     pub fn at(&self, t: f64) -> Color {
         if t.is_nan() {
             return MISSING;
         }
-        let t = t.clamp(0.0, 1.0);
+        let t = self.start + (1.0 - self.start) * t.clamp(0.0, 1.0);
         let t = if self.reversed { 1.0 - t } else { t };
         let c = self.gradient.eval_continuous(t);
         Color::rgb(c.r, c.g, c.b)
@@ -101,7 +110,7 @@ pub fn continuous(name: &str) -> Option<ContinuousMap> {
     let base = if base == "grays" { "greys" } else { base };
     let (canonical, gradient, diverging) = CONTINUOUS.iter().find(|(n, _, _)| *n == base)?;
     let name = if reversed { format!("{canonical}_r") } else { canonical.to_string() };
-    Some(ContinuousMap { name, gradient: *gradient, reversed, diverging: *diverging })
+    Some(ContinuousMap { name, gradient: *gradient, reversed, diverging: *diverging, start: 0.0 })
 }
 
 /// The colours of the categorical palette called `name` (case-insensitive), if known.
@@ -113,6 +122,7 @@ pub fn categorical(name: &str) -> Option<Vec<Color>> {
         "category10" => Some(from(&colorous::CATEGORY10)),
         "set2" => Some(from(&colorous::SET2)),
         "dark2" => Some(from(&colorous::DARK2)),
+        "paired" => Some(from(&colorous::PAIRED)),
         _ => None,
     }
 }
@@ -213,6 +223,43 @@ fn named(name: &str) -> Option<Color> {
     Some(Color::rgb(r, g, b))
 }
 
+/// `color` mixed with white: `amount` 0 keeps it, 1 gives white.
+pub fn lighten(color: Color, amount: f64) -> Color {
+    let mix = |c: u8| (c as f64 + (255.0 - c as f64) * amount).round() as u8;
+    Color { r: mix(color.r), g: mix(color.g), b: mix(color.b), a: color.a }
+}
+
+/// `color` mixed with black: `amount` 0 keeps it, 1 gives black.
+pub fn darken(color: Color, amount: f64) -> Color {
+    let mix = |c: u8| (c as f64 * (1.0 - amount)).round() as u8;
+    Color { r: mix(color.r), g: mix(color.g), b: mix(color.b), a: color.a }
+}
+
+/// WCAG relative luminance of an opaque colour (0 black, 1 white).
+pub fn relative_luminance(color: Color) -> f64 {
+    let channel = |c: u8| {
+        let c = c as f64 / 255.0;
+        if c <= 0.04045 { c / 12.92 } else { ((c + 0.055) / 1.055).powf(2.4) }
+    };
+    0.2126 * channel(color.r) + 0.7152 * channel(color.g) + 0.0722 * channel(color.b)
+}
+
+/// WCAG contrast ratio of two colours (1 to 21).
+pub fn contrast_ratio(a: Color, b: Color) -> f64 {
+    let (la, lb) = (relative_luminance(a), relative_luminance(b));
+    (la.max(lb) + 0.05) / (la.min(lb) + 0.05)
+}
+
+/// Near-black or white, whichever contrasts more with `background`: text drawn on a filled mark.
+pub fn text_color_on(background: Color) -> Color {
+    let dark = Color::rgb(0x1a, 0x1a, 0x1a);
+    if contrast_ratio(dark, background) >= contrast_ratio(Color::rgb(255, 255, 255), background) {
+        dark
+    } else {
+        Color::rgb(255, 255, 255)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -287,5 +334,17 @@ mod tests {
         for bad in ["", "#", "#ff", "#fffff", "#ggg", "#ééé", "#123456789", "notacolour", "rgb(1,2,3)"] {
             assert_eq!(parse_color(bad), None, "{bad}");
         }
+    }
+
+    #[test]
+    fn contrast_follows_wcag() {
+        let (black, white) = (Color::rgb(0, 0, 0), Color::rgb(255, 255, 255));
+        assert!((contrast_ratio(black, white) - 21.0).abs() < 1e-9);
+        // WCAG's worked value: #777777 on white is 4.48:1.
+        assert!((contrast_ratio(Color::rgb(0x77, 0x77, 0x77), white) - 4.48).abs() < 0.01);
+        assert_eq!(text_color_on(Color::rgb(0, 0x72, 0xb2)), white);
+        assert_ne!(text_color_on(Color::rgb(0xf0, 0xe4, 0x42)), white);
+        assert_eq!(lighten(black, 1.0), white);
+        assert_eq!(darken(white, 1.0), black);
     }
 }

@@ -20,6 +20,8 @@ pub enum Symbol {
     Circle,
     /// A short line (line series).
     Line,
+    /// A filled square (areas: treemap cells, matrix cells).
+    Square,
 }
 
 /// A legend block placed beside the plot.
@@ -346,6 +348,14 @@ fn swatch(symbol: Symbol, center: Point, color: Color, theme: &Theme) -> Item {
             ]),
             Style::stroke(color, 2.5),
         ),
+        Symbol::Square => {
+            let side = theme.font_size * 0.75;
+            Item::new(
+                Role::Legend,
+                Shape::Rect(Rect::new(center.x + (w - side) / 2.0, center.y - side / 2.0, side, side)),
+                Style::fill(color),
+            )
+        }
     }
 }
 

@@ -186,7 +186,9 @@ impl Hierarchy {
         for node in self.preorder() {
             reached[node as usize] = true;
         }
-        let Some(start) = (0..n).find(|&i| !reached[i]) else { return Vec::new() };
+        let Some(start) = (0..n).find(|&i| !reached[i]) else {
+            return Vec::new();
+        };
         // Walk parents n steps to be sure to stand on the cycle, then collect it.
         let mut node = start;
         for _ in 0..n {

@@ -99,7 +99,7 @@ pub fn draw(
         let paint = if selected {
             let skin = match &colors {
                 ColorEncoding::Fixed(_) => SKIN,
-                c => lighten(c.color_of(row), 0.55),
+                c => crate::guide::color::lighten(c.color_of(row), 0.55),
             };
             FacePaint { skin, ink: INK, hair: HAIR }
         } else {
@@ -223,12 +223,6 @@ fn feature_columns(
             Ok(("features", out))
         }
     }
-}
-
-/// `color` mixed with white: `amount` 0 keeps it, 1 gives white.
-fn lighten(color: Color, amount: f64) -> Color {
-    let mix = |c: u8| (c as f64 + (255.0 - c as f64) * amount).round() as u8;
-    Color::rgb(mix(color.r), mix(color.g), mix(color.b))
 }
 
 /// The grid of faces in the canvas' room, left of the legends.

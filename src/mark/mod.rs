@@ -10,12 +10,16 @@ pub mod encode;
 pub mod face;
 pub mod faces;
 pub mod frame;
+pub mod graph;
 pub mod gridded;
 pub mod highlight;
 pub mod hyperslice;
+pub mod hypertree;
 pub mod image;
 pub mod interp1d;
 pub mod line;
+pub mod linkmap;
+pub mod network_input;
 pub mod parallel;
 pub mod scatter;
 pub mod scattered;
@@ -23,6 +27,8 @@ pub mod section;
 pub mod segments;
 pub mod splom;
 pub mod surface;
+pub mod tree_input;
+pub mod treemap;
 
 use std::fmt;
 
@@ -95,6 +101,17 @@ pub fn draw(
     table: &Table,
     highlight: Option<&Highlight>,
 ) -> Result<ChartOutput, MarkError> {
+    draw_with_nodes(chart, index, table, highlight, None)
+}
+
+/// [`draw`] for charts that also read a node table (`graph`, `linkmap` with `nodes`).
+pub fn draw_with_nodes(
+    chart: &Chart,
+    index: usize,
+    table: &Table,
+    highlight: Option<&Highlight>,
+    nodes: Option<&Table>,
+) -> Result<ChartOutput, MarkError> {
     match &chart.kind {
         ChartKind::Scatter(options) => scatter::draw(chart, options, index, table, highlight),
         ChartKind::Line(options) => line::draw(chart, options, index, table),
@@ -110,6 +127,10 @@ pub fn draw(
         ChartKind::Daisy(options) => daisy::draw(chart, options, index, table, highlight),
         ChartKind::Faces(options) => faces::draw(chart, options, index, table, highlight),
         ChartKind::Segments(options) => segments::draw(chart, options, index, table, highlight),
+        ChartKind::Treemap(options) => treemap::draw(chart, options, index, table),
+        ChartKind::Graph(options) => graph::draw(chart, options, index, table, nodes),
+        ChartKind::Linkmap(options) => linkmap::draw(chart, options, index, table, nodes),
+        ChartKind::Hypertree(options) => hypertree::draw(chart, options, index, table),
     }
 }
 
@@ -125,6 +146,9 @@ pub fn column_keys(kind: &str) -> &'static [&'static str] {
         "splom" | "parallel" | "daisy" => &["columns", "color"],
         "faces" => &["columns", "features", "label", "color"],
         "segments" => &["columns", "order_by"],
+        "treemap" => &["tree", "value", "label", "color"],
+        "hypertree" => &["tree", "label", "color"],
+        "graph" | "linkmap" => &["source", "target", "weight"],
         _ => &[],
     }
 }

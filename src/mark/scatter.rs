@@ -183,8 +183,8 @@ pub fn area_radius(value: f64, max_value: f64, max_radius: f64) -> f64 {
     max_radius * (value / max_value).sqrt()
 }
 
-/// A size key with three nice reference values up to the largest value.
-fn size_legend(title: &str, unit: Option<&str>, max_value: f64, max_radius: f64) -> Legend {
+/// A size key (areas) with three nice reference values up to the largest value.
+pub fn size_legend(title: &str, unit: Option<&str>, max_value: f64, max_radius: f64) -> Legend {
     let ticks = extended(0.0, max_value, 3, false);
     let mut values: Vec<f64> = ticks.values.into_iter().filter(|v| *v > 0.0 && *v <= max_value * 1.0001).collect();
     if values.is_empty() {

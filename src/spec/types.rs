@@ -176,6 +176,15 @@ pub enum ChartKind {
     Faces(FacesOptions),
     /// Circle segments: one wedge per column, rows as pixels from the centre outward.
     Segments(SegmentsOptions),
+    /// Treemap: a hierarchy as nested rectangles whose areas are the leaves' values.
+    Treemap(TreemapOptions),
+    /// Hyperbolic tree: a hierarchy laid out in the Poincaré disk around a focus node.
+    Hypertree(HypertreeOptions),
+    /// Node-link diagram of a network: force-directed, circular or layered layout.
+    Graph(GraphOptions),
+    /// SeeNet-style link view: links drawn thin to thick by their statistic, or an
+    /// adjacency matrix for dense networks.
+    Linkmap(LinkmapOptions),
 }
 
 impl ChartKind {
@@ -195,6 +204,10 @@ impl ChartKind {
         "daisy",
         "faces",
         "segments",
+        "treemap",
+        "hypertree",
+        "graph",
+        "linkmap",
     ];
 
     /// The kind's name as written in the spec.
@@ -214,6 +227,10 @@ impl ChartKind {
             ChartKind::Daisy(_) => "daisy",
             ChartKind::Faces(_) => "faces",
             ChartKind::Segments(_) => "segments",
+            ChartKind::Treemap(_) => "treemap",
+            ChartKind::Hypertree(_) => "hypertree",
+            ChartKind::Graph(_) => "graph",
+            ChartKind::Linkmap(_) => "linkmap",
         }
     }
 }
@@ -731,6 +748,243 @@ pub enum SegmentScale {
     Column,
     /// One domain over all columns.
     Shared,
+}
+
+/// Where a tree's shape comes from: an `id` and a `parent` column, or one `path` column.
+#[derive(Clone, Debug, Deserialize, Serialize, JsonSchema, PartialEq)]
+pub struct TreeSource {
+    /// Column of node ids (with `parent`).
+    #[serde(default)]
+    #[schemars(example = &"id")]
+    pub id: Option<String>,
+    /// Column of each node's parent id; empty for top-level nodes (several top-level nodes get a
+    /// root named `(all)` above them).
+    #[serde(default)]
+    #[schemars(example = &"parent")]
+    pub parent: Option<String>,
+    /// Column of paths such as `flare/vis/axis` (instead of `id` and `parent`); inner nodes a
+    /// path implies are added.
+    #[serde(default)]
+    #[schemars(example = &"path")]
+    pub path: Option<String>,
+    /// Separator of `path` segments (default `/`).
+    #[serde(default)]
+    pub separator: Option<String>,
+}
+
+/// Options of `kind = "treemap"`.
+#[derive(Clone, Debug, Deserialize, Serialize, JsonSchema, PartialEq)]
+pub struct TreemapOptions {
+    /// The tree's columns: `{ id = "id", parent = "parent" }` or `{ path = "path" }`.
+    pub tree: TreeSource,
+    /// Numeric column of leaf sizes (default: every leaf counts 1). Inner nodes are the sum of
+    /// their leaves; negative and missing values count as 0, with a warning.
+    #[serde(default)]
+    #[schemars(example = &"size")]
+    pub value: Option<String>,
+    /// Unit of `value`, shown in labels and the caption.
+    #[serde(default)]
+    pub unit: Option<String>,
+    /// Column of node labels (default: the id, or the last path segment).
+    #[serde(default)]
+    pub label: Option<String>,
+    /// Colour leaves by a column (text: categories; numbers: a colour map).
+    #[serde(default)]
+    pub color: Option<ColorChannel>,
+    /// Without `color`: `branch` (default: one hue per top-level branch), `depth`, or `value`
+    /// (a colour map of each leaf's value).
+    #[serde(default)]
+    pub color_by: Option<TreemapColor>,
+    /// Colour scheme: categorical for `branch`, continuous for `depth` and `value`.
+    #[serde(default)]
+    pub scheme: Option<String>,
+    /// `squarified` (default; Bruls et al.), `slice-dice` (alternating by depth) or `strip`
+    /// (ordered rows keeping the data order).
+    #[serde(default)]
+    pub tiling: Option<Tiling>,
+    /// Gap in pixels between siblings and inside each parent's border (default 2).
+    #[serde(default)]
+    #[schemars(range(min = 0, max = 50))]
+    pub padding: Option<f64>,
+    /// Draw a header band with its name over each inner node (default true).
+    #[serde(default)]
+    pub headers: Option<bool>,
+    /// Deepest level drawn below the root (default: all); deeper nodes fold into their
+    /// ancestor at that level.
+    #[serde(default)]
+    #[schemars(range(min = 1, max = 64))]
+    pub depth: Option<u32>,
+}
+
+/// What colours a treemap without a `color` column.
+#[derive(Clone, Copy, Debug, Deserialize, Serialize, JsonSchema, PartialEq, Eq)]
+#[serde(rename_all = "lowercase")]
+pub enum TreemapColor {
+    /// One hue per child of the root; everything below it shares that hue.
+    Branch,
+    /// A colour map of each node's depth.
+    Depth,
+    /// A colour map of each leaf's value.
+    Value,
+}
+
+/// How a treemap splits a rectangle among children.
+#[derive(Clone, Copy, Debug, Deserialize, Serialize, JsonSchema, PartialEq, Eq)]
+#[serde(rename_all = "kebab-case")]
+pub enum Tiling {
+    /// Rows of near-square rectangles, largest first (Bruls, Huizing & van Wijk 2000).
+    Squarified,
+    /// Slices across, alternating horizontal and vertical by depth (Shneiderman 1992).
+    SliceDice,
+    /// Ordered strips that keep the data order (Bederson, Shneiderman & Wattenberg 2002).
+    Strip,
+}
+
+/// Options of `kind = "hypertree"`.
+#[derive(Clone, Debug, Deserialize, Serialize, JsonSchema, PartialEq)]
+pub struct HypertreeOptions {
+    /// The tree's columns: `{ id = "id", parent = "parent" }` or `{ path = "path" }`.
+    pub tree: TreeSource,
+    /// Column of node labels (default: the id, or the last path segment).
+    #[serde(default)]
+    pub label: Option<String>,
+    /// Node brought to the centre: its id (its full path for path trees), or a label only one
+    /// node has (default: the root).
+    #[serde(default)]
+    #[schemars(example = &"flare/vis")]
+    pub focus: Option<String>,
+    /// Colour nodes by a column (default: one hue per top-level branch).
+    #[serde(default)]
+    pub color: Option<ColorChannel>,
+    /// Categorical scheme of the branch colours.
+    #[serde(default)]
+    pub scheme: Option<String>,
+    /// Hyperbolic distance between a parent and its children (default 1.2; larger spreads the
+    /// tree out and pushes deep levels to the rim).
+    #[serde(default)]
+    #[schemars(range(min = 0.2, max = 5))]
+    pub spacing: Option<f64>,
+}
+
+/// A node table for a network: ids matching the edges' endpoints, plus attributes.
+#[derive(Clone, Debug, Deserialize, Serialize, JsonSchema, PartialEq)]
+pub struct NodeTable {
+    /// Data source of the nodes (a key of `[data]`).
+    #[schemars(example = &"airports")]
+    pub data: String,
+    /// Column of node ids, matching the edges' `source` and `target`.
+    #[schemars(example = &"code")]
+    pub id: String,
+    /// Column of node labels (default: the id).
+    #[serde(default)]
+    pub label: Option<String>,
+    /// Numeric column scaling node area.
+    #[serde(default)]
+    pub size: Option<String>,
+    /// Colour nodes by a column (text: categories; numbers: a colour map).
+    #[serde(default)]
+    pub color: Option<ColorChannel>,
+    /// Column of given x positions (`layout = "given"`).
+    #[serde(default)]
+    pub x: Option<String>,
+    /// Column of given y positions (`layout = "given"`).
+    #[serde(default)]
+    pub y: Option<String>,
+}
+
+/// How a network's nodes are placed.
+#[derive(Clone, Copy, Debug, Deserialize, Serialize, JsonSchema, PartialEq, Eq)]
+#[serde(rename_all = "lowercase")]
+pub enum GraphLayout {
+    /// Force-directed, multilevel with a Barnes–Hut approximation; deterministic for a `seed`.
+    Force,
+    /// Nodes on a circle, ordered to reduce crossings.
+    Circular,
+    /// Layers top to bottom along the edges' direction (Sugiyama), for directed acyclic graphs.
+    Layered,
+    /// Positions from the node table's `x` and `y` columns.
+    Given,
+}
+
+/// Options of `kind = "graph"`.
+#[derive(Clone, Debug, Deserialize, Serialize, JsonSchema, PartialEq)]
+pub struct GraphOptions {
+    /// Column of edge sources (node ids).
+    #[schemars(example = &"from")]
+    pub source: String,
+    /// Column of edge targets (node ids).
+    #[schemars(example = &"to")]
+    pub target: String,
+    /// Numeric column of edge weights: edge width and colour (default: all edges alike).
+    #[serde(default)]
+    pub weight: Option<String>,
+    /// Node table with ids and attributes (default: nodes are the edges' endpoints).
+    #[serde(default)]
+    pub nodes: Option<NodeTable>,
+    /// `force` (default), `circular`, `layered` or `given`.
+    #[serde(default)]
+    pub layout: Option<GraphLayout>,
+    /// Seed of the force layout (default 1): the same seed gives the same picture.
+    #[serde(default)]
+    pub seed: Option<u64>,
+    /// Draw arrowheads (default: true for `layered`, false otherwise).
+    #[serde(default)]
+    pub directed: Option<bool>,
+    /// Label nodes (default: when there are at most 150); labels that would overlap are left out.
+    #[serde(default)]
+    pub labels: Option<bool>,
+    /// Node radius in pixels without a size column (default from the node count).
+    #[serde(default)]
+    #[schemars(extend("exclusiveMinimum" = 0))]
+    pub node_radius: Option<f64>,
+    /// Continuous scheme of edge colours by weight (default `greys`).
+    #[serde(default)]
+    pub scheme: Option<String>,
+}
+
+/// How a link view shows the network.
+#[derive(Clone, Copy, Debug, Deserialize, Serialize, JsonSchema, PartialEq, Eq)]
+#[serde(rename_all = "lowercase")]
+pub enum LinkMode {
+    /// Nodes and links, links drawn thin to thick in order of their statistic.
+    Links,
+    /// An adjacency matrix with rows and columns ordered by clustering.
+    Matrix,
+}
+
+/// Options of `kind = "linkmap"`.
+#[derive(Clone, Debug, Deserialize, Serialize, JsonSchema, PartialEq)]
+pub struct LinkmapOptions {
+    /// Column of link sources (node ids).
+    #[schemars(example = &"from")]
+    pub source: String,
+    /// Column of link targets (node ids).
+    #[schemars(example = &"to")]
+    pub target: String,
+    /// Numeric column of the link statistic (traffic, calls, flow): width and colour.
+    #[schemars(example = &"traffic")]
+    pub weight: String,
+    /// Unit of `weight`, shown in the legend.
+    #[serde(default)]
+    pub unit: Option<String>,
+    /// Node table with ids and attributes, or given positions (`x`, `y`).
+    #[serde(default)]
+    pub nodes: Option<NodeTable>,
+    /// `links` (default) or `matrix`.
+    #[serde(default)]
+    pub mode: Option<LinkMode>,
+    /// Node placement in `links` mode: `force` (default), `circular`, `layered` or `given`.
+    #[serde(default)]
+    pub layout: Option<GraphLayout>,
+    /// Seed of the force layout (default 1).
+    #[serde(default)]
+    pub seed: Option<u64>,
+    /// Continuous scheme of the link statistic (default `viridis_r`: low values light, high dark).
+    #[serde(default)]
+    pub scheme: Option<String>,
+    /// Label nodes (default: when there are at most 150).
+    #[serde(default)]
+    pub labels: Option<bool>,
 }
 
 /// Contour levels: how many, or which.

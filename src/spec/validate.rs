@@ -925,6 +925,12 @@ impl<'s> Walker<'s> {
         if let (Some(names), Some(data)) = (data_names, chart.get("data")) {
             self.check_reference(data, names, Reference::Data);
         }
+        if let (Some(names), Some(data)) = (data_names, chart.get("nodes").and_then(|n| n.get("data"))) {
+            self.check_reference(data, names, Reference::Data);
+        }
+        if let Some(tree) = chart.get("tree") {
+            self.check_tree_source(tree);
+        }
         if let Some(highlight) = chart.get("highlight") {
             self.check_highlight(chart, highlight, selections);
         }
@@ -942,6 +948,26 @@ impl<'s> Walker<'s> {
             for (local, t) in tables {
                 self.check_domain(&local, t);
             }
+        }
+    }
+
+    /// A tree's columns: `path`, or `id` with `parent`.
+    fn check_tree_source(&mut self, tree: &SpannedValue) {
+        if !tree.is_table() {
+            return;
+        }
+        let (id, parent, path) = (tree.get("id"), tree.get("parent"), tree.get("path"));
+        let problem = match (id.is_some(), parent.is_some(), path.is_some()) {
+            (_, _, true) if id.is_some() || parent.is_some() => Some("`tree` has both `path` and `id`/`parent`"),
+            (false, false, false) => Some("`tree` names no columns"),
+            (true, false, false) => Some("`tree` has `id` but no `parent`"),
+            (false, true, false) => Some("`tree` has `parent` but no `id`"),
+            _ => None,
+        };
+        if let Some(message) = problem {
+            self.diags.push(Diagnostic::error(message).at(tree.span.clone()).with_hint(
+                "write `tree = { id = \"id\", parent = \"parent\" }` (a parent id per row) or `tree = { path = \"path\" }` (paths such as a/b/c)",
+            ));
         }
     }
 
