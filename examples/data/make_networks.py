@@ -56,3 +56,29 @@ with open(out / "us-flights.csv", "w", newline="") as f:
     for r in routes:
         if r["origin"] in keep and r["destination"] in keep:
             w.writerow([r["origin"], r["destination"], r["count"]])
+
+# Flare's package dependencies: how many imports of classes in one package each other package
+# makes (an edge from the providing package to the using one), for the layered layout.
+flare = {n["id"]: n for n in json.loads((src / "flare.json").read_text())}
+
+
+def flare_package(i):
+    parts = []
+    i = flare[i].get("parent")
+    while i:
+        parts.append(flare[i]["name"])
+        i = flare[i].get("parent")
+    return "/".join(reversed(parts[:-1])) or "flare"
+
+
+imports = Counter()
+for d in json.loads((src / "flare-dependencies.json").read_text()):
+    # In this file `source` is the imported class and `target` the class importing it.
+    provider, user = flare_package(d["source"]), flare_package(d["target"])
+    if provider != user:
+        imports[(provider, user)] += 1
+with open(out / "flare-package-imports.csv", "w", newline="") as f:
+    w = csv.writer(f)
+    w.writerow(["provider", "user", "imports"])
+    for (provider, user), count in sorted(imports.items()):
+        w.writerow([provider, user, count])

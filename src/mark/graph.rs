@@ -117,7 +117,8 @@ pub fn draw_network(chart: &Chart, index: usize, input: NetworkInput, look: &Loo
         return Err(MarkError::layout(index, &chart.name, error));
     }
     let inset = radii.iter().copied().fold(0.0, f64::max) + 2.0;
-    let fit = Fit::new(placement.positions.iter().copied(), rect, inset, placement.uniform);
+    let bends = placement.paths.iter().flatten().copied();
+    let fit = Fit::new(placement.positions.iter().copied().chain(bends), rect, inset, placement.uniform);
     let centers: Vec<Point> = placement.positions.iter().map(|&p| fit.at(p)).collect();
 
     let mut items = vec![canvas.background()];
