@@ -474,28 +474,7 @@ fn slots_of(order: &[u32]) -> Vec<u32> {
 mod tests {
     use super::*;
 
-    /// SplitMix64, for reproducible random graphs.
-    struct Rng(u64);
-
-    impl Rng {
-        fn next(&mut self) -> u64 {
-            self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-            let mut z = self.0;
-            z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-            z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-            z ^ (z >> 31)
-        }
-
-        fn below(&mut self, n: u32) -> u32 {
-            (self.next() % u64::from(n)) as u32
-        }
-
-        fn shuffle(&mut self, v: &mut [u32]) {
-            for i in (1..v.len()).rev() {
-                v.swap(i, self.below(i as u32 + 1) as usize);
-            }
-        }
-    }
+    use crate::layout::split_mix::SplitMix64 as Rng;
 
     fn random_edges(n: u32, m: usize, seed: u64) -> Vec<(u32, u32)> {
         let mut rng = Rng(seed);

@@ -375,28 +375,7 @@ fn merge_distances(dist: &mut Condensed, active: &[bool], size: &[f64], keep: us
 mod tests {
     use super::*;
 
-    /// A small deterministic generator (SplitMix64).
-    struct Rng(u64);
-
-    impl Rng {
-        fn next(&mut self) -> u64 {
-            self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-            let mut z = self.0;
-            z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-            z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-            z ^ (z >> 31)
-        }
-
-        fn below(&mut self, n: usize) -> usize {
-            (self.next() % n as u64) as usize
-        }
-
-        fn shuffle<T>(&mut self, items: &mut [T]) {
-            for i in (1..items.len()).rev() {
-                items.swap(i, self.below(i + 1));
-            }
-        }
-    }
+    use crate::layout::split_mix::SplitMix64 as Rng;
 
     fn is_permutation(order: &[usize], n: usize) -> bool {
         let mut seen = vec![false; n];
@@ -423,7 +402,7 @@ mod tests {
         let mut rng = Rng(1);
         for n in [2, 17, 200] {
             let edges: Vec<_> =
-                (0..3 * n).map(|_| (rng.below(n) as u32, rng.below(n) as u32, rng.below(5) as f64)).collect();
+                (0..3 * n).map(|_| (rng.index(n) as u32, rng.index(n) as u32, rng.index(5) as f64)).collect();
             assert!(is_permutation(&cluster_order(n, &edges).unwrap(), n));
         }
     }
@@ -451,8 +430,8 @@ mod tests {
             for b in a + 1..n {
                 // Dense blocks (70 %), sparse noise between them (2 %).
                 let p = if label[a] == label[b] { 70 } else { 2 };
-                if rng.below(100) < p {
-                    edges.push((a as u32, b as u32, 1.0 + rng.below(3) as f64));
+                if rng.index(100) < p {
+                    edges.push((a as u32, b as u32, 1.0 + rng.index(3) as f64));
                 }
             }
         }
@@ -475,7 +454,7 @@ mod tests {
     fn order_depends_only_on_the_edge_set() {
         let mut rng = Rng(9);
         let n = 150;
-        let mut edges: Vec<_> = (0..600).map(|_| (rng.below(n) as u32, rng.below(n) as u32, 0.5)).collect();
+        let mut edges: Vec<_> = (0..600).map(|_| (rng.index(n) as u32, rng.index(n) as u32, 0.5)).collect();
         edges.sort_unstable_by_key(|e| (e.0.min(e.1), e.0.max(e.1)));
         edges.dedup_by_key(|e| (e.0.min(e.1), e.0.max(e.1)));
         let first = cluster_order(n, &edges).unwrap();
@@ -543,7 +522,7 @@ mod tests {
         // On a random graph of 37 nodes (not a multiple of the block size) the paths agree.
         let mut rng = Rng(4);
         let edges: Vec<_> =
-            (0..150).map(|_| (rng.below(37) as u32, rng.below(37) as u32, 1.0 + rng.below(4) as f64)).collect();
+            (0..150).map(|_| (rng.index(37) as u32, rng.index(37) as u32, 1.0 + rng.index(4) as f64)).collect();
         let links = symmetric_links(37, &edges);
         let linked: Vec<usize> = (0..37).filter(|&v| !links[v].is_empty()).collect();
         let [sparse, dense] = both_paths(&rows_with_diagonal(&links, &linked));

@@ -9,4 +9,5 @@ pub mod layered;
 pub mod matrix_order;
 pub mod quadtree;
 pub mod quality;
+pub mod split_mix;
 pub mod treemap;

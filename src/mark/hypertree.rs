@@ -5,9 +5,9 @@
 //!
 //! The layout is computed once; refocusing is a Möbius map of the stored positions, O(n).
 
-use super::derived::{Derived, DerivedColumn};
+use super::derived::DerivedColumn;
 use super::graph::place_labels;
-use super::tree_input::{Branches, branch_legend, branch_palette, labels_of, tree_of};
+use super::tree_input::{Branches, branch_legend, branch_palette, labels_of, node_rows, tree_of};
 use super::{ChartOutput, MarkError, encode, frame, with_default_size};
 use crate::data::Table;
 use crate::guide::layout::LayoutError;
@@ -165,17 +165,8 @@ pub fn draw(chart: &Chart, options: &HypertreeOptions, index: usize, table: &Tab
     let (texts, _) = place_labels(&labels, &centers, &radii, &priority, &sizes, theme, plot);
     items.extend(texts);
 
-    let mut d = Derived::default();
     let nodes: Vec<usize> = h.preorder().into_iter().map(|n| n as usize).collect();
-    d.push("id", DerivedColumn::Text(nodes.iter().map(|&n| tree.ids[n].clone()).collect()));
-    d.push("label", DerivedColumn::Text(nodes.iter().map(|&n| labels[n].clone()).collect()));
-    d.push(
-        "parent",
-        DerivedColumn::Text(
-            nodes.iter().map(|&n| h.parent(n).map(|p| tree.ids[p].clone()).unwrap_or_default()).collect(),
-        ),
-    );
-    d.push("depth", DerivedColumn::Number(nodes.iter().map(|&n| depths[n] as f64).collect()));
+    let mut d = node_rows(&tree, &labels, &nodes, &depths);
     d.push("disk_x", DerivedColumn::Number(nodes.iter().map(|&n| positions[n][0]).collect()));
     d.push("disk_y", DerivedColumn::Number(nodes.iter().map(|&n| positions[n][1]).collect()));
     d.push("scale", DerivedColumn::Number(nodes.iter().map(|&n| scales[n]).collect()));

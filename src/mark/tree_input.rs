@@ -1,6 +1,7 @@
 //! What the hierarchy kinds (treemap, hypertree) share: reading the tree from the chart's
 //! table, node labels, and the top-level branch each node belongs to (for branch colours).
 
+use super::derived::{Derived, DerivedColumn};
 use super::{MarkError, encode};
 use crate::data::Table;
 use crate::data::tree::Tree;
@@ -122,4 +123,17 @@ impl Branches {
             None => crate::guide::color::MISSING,
         }
     }
+}
+
+/// Derived output for `nodes` of a tree: one row each with its id, label, parent id and depth;
+/// kinds add their geometry columns.
+pub fn node_rows(tree: &Tree, labels: &[String], nodes: &[usize], depths: &[u32]) -> Derived {
+    let h = &tree.hierarchy;
+    let mut d = Derived::default();
+    d.push("id", DerivedColumn::Text(nodes.iter().map(|&n| tree.ids[n].clone()).collect()));
+    d.push("label", DerivedColumn::Text(nodes.iter().map(|&n| labels[n].clone()).collect()));
+    let parent = |n: usize| h.parent(n).map(|p| tree.ids[p].clone()).unwrap_or_default();
+    d.push("parent", DerivedColumn::Text(nodes.iter().map(|&n| parent(n)).collect()));
+    d.push("depth", DerivedColumn::Number(nodes.iter().map(|&n| depths[n] as f64).collect()));
+    d
 }

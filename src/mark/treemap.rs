@@ -3,7 +3,7 @@
 //! each inner node and labels that shrink, truncate or hide to fit their rectangle.
 
 use super::derived::{Derived, DerivedColumn};
-use super::tree_input::{Branches, branch_legend, branch_palette, labels_of, tree_of};
+use super::tree_input::{Branches, branch_legend, branch_palette, labels_of, node_rows, tree_of};
 use super::{ChartOutput, MarkError, encode, frame, with_default_size};
 use crate::data::Table;
 use crate::data::tree::Tree;
@@ -300,16 +300,7 @@ fn label_item(content: String, at: Point, size: f64, color: Color) -> Item {
 fn derived(tree: &Tree, labels: &[String], map: &tiling::Treemap, depths: &[u32], limit: u32) -> Derived {
     let h = &tree.hierarchy;
     let nodes: Vec<usize> = h.preorder().into_iter().map(|n| n as usize).filter(|&n| depths[n] <= limit).collect();
-    let mut d = Derived::default();
-    d.push("id", DerivedColumn::Text(nodes.iter().map(|&n| tree.ids[n].clone()).collect()));
-    d.push("label", DerivedColumn::Text(nodes.iter().map(|&n| labels[n].clone()).collect()));
-    d.push(
-        "parent",
-        DerivedColumn::Text(
-            nodes.iter().map(|&n| h.parent(n).map(|p| tree.ids[p].clone()).unwrap_or_default()).collect(),
-        ),
-    );
-    d.push("depth", DerivedColumn::Number(nodes.iter().map(|&n| depths[n] as f64).collect()));
+    let mut d = node_rows(tree, labels, &nodes, depths);
     d.push("value", DerivedColumn::Number(nodes.iter().map(|&n| map.values[n]).collect()));
     let edge = |f: fn(&Cell) -> f64| DerivedColumn::Number(nodes.iter().map(|&n| f(&map.rects[n])).collect());
     d.push("x0", edge(|c| c.x0));
