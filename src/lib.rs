@@ -11,6 +11,7 @@
 //! 2. [`data`] — load the named sources through polars (CSV, Parquet, JSON, inline values) into
 //!    plain columnar [`data::Table`]s.
 //! 3. [`mark`] — one module per chart kind maps a table and a chart spec to a [`scene::Scene`],
+//!    with the hierarchy and network kinds laid out by the plain functions in [`layout`],
 //!    using the shared [`guide`]s (scales, ticks, axes, legends, colour maps).
 //! 4. [`render`] — draw a scene as SVG or PNG with the one embedded font in [`text`]. Rendering a
 //!    valid scene cannot fail: sizes are checked before anything is allocated.

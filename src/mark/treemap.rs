@@ -19,6 +19,8 @@ use crate::text::measure;
 
 /// Canvas size when the spec gives none.
 const DEFAULT_SIZE: [f64; 2] = [820.0, 560.0];
+/// Average area in px² a drawn cell should have at least when the depth is chosen automatically.
+const MIN_CELL_AREA: f64 = 120.0;
 /// Smallest font a label may shrink to before it is truncated or hidden.
 const MIN_LABEL_SIZE: f64 = 7.0;
 
@@ -31,7 +33,22 @@ pub fn draw(chart: &Chart, options: &TreemapOptions, index: usize, table: &Table
     let leaf_values = leaf_values(chart, index, options, &tree, table, &mut warnings)?;
     let h = &tree.hierarchy;
     let depths = h.depths();
-    let limit = options.depth.unwrap_or(u32::MAX);
+    let limit = match options.depth {
+        Some(d) => d,
+        None => {
+            let [w, hgt] = chart.size.unwrap_or(DEFAULT_SIZE);
+            let limit = auto_depth(h, &depths, w * hgt * 0.7 / MIN_CELL_AREA);
+            let deepest = depths.iter().max().copied().unwrap_or(0);
+            if limit < deepest {
+                warnings.push(format!(
+                    "chart \"{}\": {deepest} levels are too many to show in this size; the top {limit} are drawn \
+                     (set `depth` to choose)",
+                    chart.name
+                ));
+            }
+            limit
+        }
+    };
     let shown_leaf = |node: usize| h.is_leaf(node) || depths[node] == limit;
 
     let fill = Fill::new(chart, index, options, table, (&tree, &labels), (&depths, limit))?;
@@ -111,6 +128,30 @@ pub fn draw(chart: &Chart, options: &TreemapOptions, index: usize, table: &Table
     let derived = derived(&tree, &labels, &map, &depths, limit);
     let scene = canvas.scene(chart, items, None);
     Ok(ChartOutput { scene, derived, warnings, geojson: None })
+}
+
+/// The deepest level to draw so that at most `max_cells` cells are drawn: the leaves above that
+/// level plus the nodes at it (always at least one level).
+fn auto_depth(h: &crate::layout::hierarchy::Hierarchy, depths: &[u32], max_cells: f64) -> u32 {
+    let deepest = depths.iter().max().copied().unwrap_or(0) as usize;
+    let mut at_depth = vec![0usize; deepest + 1];
+    let mut leaves_at = vec![0usize; deepest + 1];
+    for (n, &d) in depths.iter().enumerate() {
+        at_depth[d as usize] += 1;
+        if h.is_leaf(n) {
+            leaves_at[d as usize] += 1;
+        }
+    }
+    let mut leaves_above = 0;
+    let mut limit = 1;
+    for d in 1..=deepest {
+        if d > 1 && (leaves_above + at_depth[d]) as f64 > max_cells {
+            break;
+        }
+        limit = d as u32;
+        leaves_above += leaves_at[d];
+    }
+    limit
 }
 
 /// Leaf sizes: the value column (or 1 per leaf), with a warning when inner nodes carry values
@@ -232,7 +273,12 @@ impl Fill {
     /// Fill of an inner node (its header band and the padding around its children).
     fn inner(&self, node: usize, depth: u32) -> Color {
         match &self.mode {
-            FillMode::Branch if self.branches.of_node[node].is_some() => darken(self.branch_color(node), 0.25),
+            // Deeper inner nodes get lighter, so that nested headers and gaps stay visible.
+            FillMode::Branch if self.branches.of_node[node].is_some() => {
+                let step = depth.saturating_sub(1) as f64;
+                let c = self.branch_color(node);
+                if step < 3.0 { darken(c, 0.36 - 0.12 * step) } else { lighten(c, 0.1 * (step - 2.0)) }
+            }
             FillMode::Depth(map, deepest) => darken(map.at((depth as f64 - 1.0) / (deepest - 1.0)), 0.2),
             _ => Color::rgb(0x5f, 0x5f, 0x5f),
         }
