@@ -1,7 +1,7 @@
 //! Quality measures of a straight-line graph drawing.
 //!
-//! **Normalized stress** (after Kamada and Kawai, 1989; scale-free form as in Gansner, Koren and
-//! North, 2004, and Kruiger et al., 2017). For each pair of nodes `i ≠ j` joined by a path, let
+//! **Normalized stress** (the stress of Kamada and Kawai, 1989, with the weights of Gansner,
+//! Koren and North, 2004, made scale-free by optimal scaling). For each pair of nodes `i ≠ j` joined by a path, let
 //! `d_ij` be the graph-theoretic distance (fewest edges, by breadth-first search) and `e_ij` the
 //! Euclidean distance in the drawing. With weights `w_ij = d_ij⁻²`,
 //!
@@ -16,7 +16,8 @@
 //! out; a graph with no connected pair scores 0. The sum runs over ordered pairs (each unordered
 //! pair twice), which does not change the value. [`normalized_stress`] runs one BFS from every
 //! node (O(n·m), parallel over sources); [`normalized_stress_sampled`] runs it from a seeded
-//! random subset of sources instead, an unbiased estimate for big graphs.
+//! random subset of sources instead: an estimate for big graphs (exact when every node is a
+//! source), whose error shrinks as the sample grows.
 //!
 //! **Edge crossings.** The number of pairs of straight edges that cross properly: each edge's
 //! endpoints lie strictly on opposite sides of the other's line. Pairs sharing an endpoint
@@ -49,9 +50,9 @@ pub enum QualityError {
     EdgeOutOfRange {
         /// Position of the edge in the edge list.
         index: usize,
-        /// The edge's endpoints.
+        /// The edge's first endpoint.
         source: u32,
-        /// The edge's endpoints.
+        /// The edge's second endpoint.
         target: u32,
         /// Number of nodes (positions).
         node_count: usize,
@@ -337,7 +338,7 @@ impl Grid {
             )
         });
         let size = (hi[0] - lo[0]).max(hi[1] - lo[1]);
-        if segments.len() < 2 || !(size > 0.0) {
+        if segments.len() < 2 || size.is_nan() || size <= 0.0 {
             return None;
         }
         let mut resolution = ((segments.len() as f64).sqrt().ceil() as usize).clamp(1, 2048);

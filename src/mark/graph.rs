@@ -88,7 +88,7 @@ pub fn draw_network(chart: &Chart, index: usize, input: NetworkInput, look: &Loo
     // Node colour and size from the node table.
     let (node_color, color_legend) = node_colors(chart, index, look, &input, &node_rows)?;
     legends.extend(color_legend);
-    let base_radius = look.node_radius.unwrap_or_else(|| (90.0 / (n as f64).sqrt()).clamp(2.5, 7.0));
+    let base_radius = look.node_radius.unwrap_or_else(|| (70.0 / (n as f64).sqrt()).clamp(2.5, 6.0));
     let (radii, size_legend) = node_radii(chart, index, look, &input, &node_rows, base_radius)?;
     legends.extend(size_legend);
 
@@ -148,7 +148,7 @@ pub fn draw_network(chart: &Chart, index: usize, input: NetworkInput, look: &Loo
         let row = network.graph.raw_edges()[e].weight.row;
         items.push(edge_item(&points, color, width, row));
         if look.directed {
-            items.extend(arrowhead(&points, radii[t], width, color));
+            items.extend(arrowhead(&points, radii[t], width, color).map(|a| a.with_rows(vec![row])));
         }
     }
     for (i, c) in centers.iter().enumerate() {

@@ -21,7 +21,7 @@ const DEFAULT_SIZE: [f64; 2] = [760.0, 680.0];
 /// Node radius at the centre, in pixels.
 const CENTRE_RADIUS: f64 = 6.0;
 /// Nodes whose local scale is below this are too small to see and are not drawn.
-const MIN_SCALE: f64 = 0.004;
+const MIN_SCALE: f64 = 0.008;
 /// Labels smaller than this many pixels are left out.
 const MIN_LABEL: f64 = 6.5;
 /// Fill of the disk.
