@@ -36,3 +36,11 @@ hyperfine --warmup 1 --runs 5 --export-markdown target/bench/parallel_20k.md \
 echo "== circle segments, 8 columns x 1,000,000 rows to PNG, whole process (no peer)"
 hyperfine --warmup 1 --runs 5 --export-markdown target/bench/segments_1m.md \
   -n dataink 'target/release/dataink render benches/segments_1m.toml --format png --out target/bench/out --quiet'
+
+[ -f benches/data/gyre_512.csv ] || python3 benches/make_flow.py benches/data/gyre_512.csv 512
+
+echo "== flow: streamlines of a 512x512 double gyre to a 1000x500 PNG, whole process (CSV read included)"
+hyperfine --warmup 1 --runs 5 --export-markdown target/bench/flow_512.md \
+  -n dataink 'target/release/dataink render benches/flow_512.toml --format png --out target/bench/out --quiet' \
+  -n matplotlib-streamplot 'python3 benches/peer_matplotlib_streamplot.py benches/data/gyre_512.csv target/bench/out/peer_flow.png'
+python3 benches/peer_matplotlib_streamplot.py benches/data/gyre_512.csv target/bench/out/peer_flow.png

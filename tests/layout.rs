@@ -91,7 +91,7 @@ fn every_chart_is_labelled() {
         // Marks drawn one per row keep their rows; derived geometry (contour lines, sections,
         // surface quads, slices) is not one row per mark.
         // Hyperbolic-tree edges are geometry between two rows' nodes.
-        let derived = ["contour", "section", "surface", "hyperslice", "hypertree"].contains(&kind);
+        let derived = ["contour", "section", "surface", "hyperslice", "hypertree", "flow"].contains(&kind);
         if !derived {
             assert_eq!(with_rows, marks, "{name}: every data mark keeps its source rows");
         }

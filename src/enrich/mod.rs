@@ -3,6 +3,7 @@
 
 pub mod contour;
 pub mod distribution;
+pub mod flow;
 pub mod grid;
 pub mod hyperslice;
 pub mod interp1d;

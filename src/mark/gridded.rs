@@ -69,7 +69,7 @@ pub fn load_grid<'t>(
 }
 
 /// Build the grid from long-form rows: the distinct x and y values are the grid's axes.
-fn grid_from_rows(
+pub fn grid_from_rows(
     chart: &Chart,
     index: usize,
     x_col: &Column,

@@ -9,6 +9,7 @@ pub mod derived;
 pub mod encode;
 pub mod face;
 pub mod faces;
+pub mod flow;
 pub mod frame;
 pub mod graph;
 pub mod gridded;
@@ -131,6 +132,7 @@ pub fn draw_with_nodes(
         ChartKind::Graph(options) => graph::draw(chart, options, index, table, nodes),
         ChartKind::Linkmap(options) => linkmap::draw(chart, options, index, table, nodes),
         ChartKind::Hypertree(options) => hypertree::draw(chart, options, index, table),
+        ChartKind::Flow(options) => flow::draw(chart, options, index, table),
     }
 }
 
@@ -149,6 +151,7 @@ pub fn column_keys(kind: &str) -> &'static [&'static str] {
         "treemap" => &["tree", "value", "label", "color"],
         "hypertree" => &["tree", "label", "color"],
         "graph" | "linkmap" => &["source", "target", "weight"],
+        "flow" => &["x", "y", "u", "v", "t"],
         _ => &[],
     }
 }

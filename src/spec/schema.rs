@@ -242,6 +242,7 @@ mod tests {
                 "treemap" | "hypertree" => &["tree"],
                 "graph" => &["source", "target"],
                 "linkmap" => &["source", "target", "weight"],
+                "flow" => &["x", "y", "u", "v"],
                 "contour" | "image" | "section" | "scattered" | "surface" => &["x", "y", "z"],
                 _ => &["x", "y"],
             };

@@ -185,6 +185,9 @@ pub enum ChartKind {
     /// SeeNet-style link view: links drawn thin to thick by their statistic, or an
     /// adjacency matrix for dense networks.
     Linkmap(LinkmapOptions),
+    /// A 2-D vector field: speed image, arrows, streamlines, particle traces, line integral
+    /// convolution and vector field topology, as layers.
+    Flow(FlowOptions),
 }
 
 impl ChartKind {
@@ -208,6 +211,7 @@ impl ChartKind {
         "hypertree",
         "graph",
         "linkmap",
+        "flow",
     ];
 
     /// The kind's name as written in the spec.
@@ -231,6 +235,7 @@ impl ChartKind {
             ChartKind::Hypertree(_) => "hypertree",
             ChartKind::Graph(_) => "graph",
             ChartKind::Linkmap(_) => "linkmap",
+            ChartKind::Flow(_) => "flow",
         }
     }
 }
@@ -985,6 +990,112 @@ pub struct LinkmapOptions {
     /// Label nodes (default: when there are at most 150).
     #[serde(default)]
     pub labels: Option<bool>,
+}
+
+/// Options of `kind = "flow"`.
+#[derive(Clone, Debug, Deserialize, Serialize, JsonSchema, PartialEq)]
+pub struct FlowOptions {
+    /// Grid x coordinate: a numeric column of a long-form table (one row per grid node and time).
+    pub x: Channel,
+    /// Grid y coordinate.
+    pub y: Channel,
+    /// Column of the velocity's x component.
+    #[schemars(example = &"u")]
+    pub u: String,
+    /// Column of the velocity's y component.
+    #[schemars(example = &"v")]
+    pub v: String,
+    /// Column of the time, for unsteady fields (one grid per distinct time).
+    #[serde(default)]
+    pub t: Option<String>,
+    /// Unit of the speed, shown in the colour bar and the arrow key.
+    #[serde(default)]
+    pub unit: Option<String>,
+    /// Layers drawn, bottom to top: `speed`, `lic`, `arrows`, `streamlines`, `pathlines`,
+    /// `streaklines`, `timelines`, `topology` (default `["speed", "streamlines"]`).
+    #[serde(default)]
+    pub layers: Option<Vec<FlowLayer>>,
+    /// Where streamlines and particle traces start: `evenly` (default for streamlines; Jobard–Lefer
+    /// evenly spaced lines), `grid`, `rake` (along `rake`) or `circle` (around `circle`).
+    #[serde(default)]
+    pub seeds: Option<SeedKind>,
+    /// Two end points `[[x0, y0], [x1, y1]]` of the seed rake.
+    #[serde(default)]
+    pub rake: Option<[[f64; 2]; 2]>,
+    /// Centre and radius `[x, y, r]` of the seed circle.
+    #[serde(default)]
+    pub circle: Option<[f64; 3]>,
+    /// Number of seeds on a rake or circle (default 12).
+    #[serde(default)]
+    #[schemars(range(min = 1, max = 10000))]
+    pub seed_count: Option<u32>,
+    /// Line and arrow density, like matplotlib's `density` (default 1): evenly spaced lines are
+    /// 1/30 of the plot's width apart at density 1, and a grid has 30 seeds or arrows a side.
+    #[serde(default)]
+    #[schemars(range(min = 0.1, max = 10))]
+    pub density: Option<f64>,
+    /// Integrator: `euler`, `rk2`, `rk4` or `rk45` (default; adaptive with error control).
+    #[serde(default)]
+    pub integrator: Option<IntegratorKind>,
+    /// Continuous scheme of speed (default `viridis`).
+    #[serde(default)]
+    pub scheme: Option<String>,
+    /// Time of the snapshot for steady layers and the end of particle traces, for unsteady
+    /// fields (default: the first time for snapshots, the last for traces).
+    #[serde(default)]
+    pub time: Option<f64>,
+}
+
+/// A layer of a flow chart.
+#[derive(Clone, Copy, Debug, Deserialize, Serialize, JsonSchema, PartialEq, Eq)]
+#[serde(rename_all = "lowercase")]
+pub enum FlowLayer {
+    /// Speed as a colour image with a colour bar.
+    Speed,
+    /// Line integral convolution of white noise along the flow (tinted by speed when `speed` is
+    /// also drawn).
+    Lic,
+    /// Arrows on a regular grid, length proportional to speed, with a key arrow.
+    Arrows,
+    /// Streamlines of the (first or chosen) snapshot, with direction arrows.
+    Streamlines,
+    /// Paths of particles released at the seeds at the first time (unsteady fields).
+    Pathlines,
+    /// Where particles released continuously at the seeds are at the end time (unsteady fields).
+    Streaklines,
+    /// A line of particles released together along the seeds, drawn at several times.
+    Timelines,
+    /// Critical points classified by the Jacobian's eigenvalues, separatrices from saddles, and
+    /// attachment and detachment points on the boundary.
+    Topology,
+}
+
+/// Where traces start.
+#[derive(Clone, Copy, Debug, Deserialize, Serialize, JsonSchema, PartialEq, Eq)]
+#[serde(rename_all = "lowercase")]
+pub enum SeedKind {
+    /// Evenly spaced streamlines (Jobard & Lefer 1997).
+    Evenly,
+    /// A regular grid of seeds.
+    Grid,
+    /// Seeds along the line `rake`.
+    Rake,
+    /// Seeds around the circle `circle`.
+    Circle,
+}
+
+/// A numerical integrator for traces.
+#[derive(Clone, Copy, Debug, Deserialize, Serialize, JsonSchema, PartialEq, Eq)]
+#[serde(rename_all = "lowercase")]
+pub enum IntegratorKind {
+    /// Forward Euler (first order).
+    Euler,
+    /// Midpoint rule (second order).
+    Rk2,
+    /// Classic Runge–Kutta (fourth order).
+    Rk4,
+    /// Dormand–Prince 5(4) with step-size control.
+    Rk45,
 }
 
 /// Contour levels: how many, or which.
