@@ -269,7 +269,7 @@ fn snapshot(field: &VectorField, time: Option<f64>) -> Result<VectorField, crate
 }
 
 fn integrator(kind: Option<IntegratorKind>) -> Integrator {
-    match kind.unwrap_or(IntegratorKind::Rk45) {
+    match kind.unwrap_or(IntegratorKind::Rk4) {
         IntegratorKind::Euler => Integrator::Euler,
         IntegratorKind::Rk2 => Integrator::Rk2,
         IntegratorKind::Rk4 => Integrator::Rk4,
@@ -287,7 +287,7 @@ fn caption(options: &FlowOptions, layers: &[FlowLayer], field: &VectorField, tim
     }
     let traced = layers.iter().any(|l| !matches!(l, FlowLayer::Speed | FlowLayer::Lic | FlowLayer::Arrows));
     if traced {
-        let name = match options.integrator.unwrap_or(IntegratorKind::Rk45) {
+        let name = match options.integrator.unwrap_or(IntegratorKind::Rk4) {
             IntegratorKind::Euler => "Euler",
             IntegratorKind::Rk2 => "RK2",
             IntegratorKind::Rk4 => "RK4",

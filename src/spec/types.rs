@@ -1034,7 +1034,7 @@ pub struct FlowOptions {
     #[serde(default)]
     #[schemars(range(min = 0.1, max = 10))]
     pub density: Option<f64>,
-    /// Integrator: `euler`, `rk2`, `rk4` or `rk45` (default; adaptive with error control).
+    /// Integrator: `euler`, `rk2`, `rk4` (default) or `rk45` (adaptive with error control; slower).
     #[serde(default)]
     pub integrator: Option<IntegratorKind>,
     /// Continuous scheme of speed (default `viridis`).
