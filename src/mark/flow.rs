@@ -166,7 +166,7 @@ pub fn draw(chart: &Chart, options: &FlowOptions, index: usize, table: &Table) -
         derived.add_critical(t);
     }
     if has(FlowLayer::Arrows) {
-        marks.extend(arrow_key(&frame, &theme, density, max_speed, &snapshot, options.unit.as_deref()));
+        marks.extend(arrow_key(&frame, &theme, density, max_speed, options.unit.as_deref()));
     }
     let scene = frame::scene(chart, frame, &theme, marks);
     Ok(ChartOutput { scene, derived: derived.finish(), warnings: input.warnings, geojson: None })
@@ -317,11 +317,13 @@ fn speed_raster(
     let noise =
         if texture { Some(lic(field, &LicOptions::new(width, height)).map_err(|e| e.to_string())?) } else { None };
     let max = field.max_speed().max(1e-300);
+    let xs: Vec<f64> = (0..width)
+        .map(|col| frame.x.invert(plot.x + plot.w * (col as f64 + 0.5) / width as f64).unwrap_or(f64::NAN))
+        .collect();
     let mut rgba = vec![0u8; width * height * 4];
     for row in 0..height {
         let y = frame.y.invert(plot.y + plot.h * (row as f64 + 0.5) / height as f64).unwrap_or(f64::NAN);
-        for col in 0..width {
-            let x = frame.x.invert(plot.x + plot.w * (col as f64 + 0.5) / width as f64).unwrap_or(f64::NAN);
+        for (col, &x) in xs.iter().enumerate() {
             // LIC rows run from the smallest y up.
             let shade = noise.as_ref().map(|n| n.data[(height - 1 - row) * width + col] as f64);
             let color = match (field.speed(x, y), shade) {
@@ -579,10 +581,8 @@ fn arrow_key(
     theme: &crate::guide::Theme,
     density: f64,
     max_speed: f64,
-    field: &VectorField,
     unit: Option<&str>,
 ) -> Vec<Item> {
-    let _ = field;
     if max_speed <= 0.0 {
         return Vec::new();
     }

@@ -253,11 +253,7 @@ fn edge_item(points: &[Point], color: Color, width: f64, row: u32) -> Item {
     for (i, p) in points.iter().enumerate() {
         cmds.push(if i == 0 { PathCmd::MoveTo(*p) } else { PathCmd::LineTo(*p) });
     }
-    let mut style = Style::stroke(color, width);
-    if let Some(s) = style.stroke.as_mut() {
-        s.width = width;
-    }
-    Item::new(Role::DataMark, Shape::Path(cmds), style).with_rows(vec![row])
+    Item::new(Role::DataMark, Shape::Path(cmds), Style::stroke(color, width)).with_rows(vec![row])
 }
 
 /// A small filled triangle where the last segment meets the target node's rim.
