@@ -1,8 +1,7 @@
 //! Chart kinds against known answers: geometry that can be computed by hand.
 
-mod common;
 
-use common::Fixture;
+use crate::common::Fixture;
 
 const PROJECTILE: &str = r#"
 [data.p]

@@ -1,7 +1,6 @@
 //! Layout invariants of every gallery chart: text stays on the canvas, no two texts overlap, every
 //! chart has a title, axis titles and tick labels, and colour encodings get a legend.
 
-mod common;
 
 use dataink::data::PathPolicy;
 use dataink::pipeline;
@@ -10,7 +9,7 @@ use dataink::text::bounds;
 
 /// Every gallery chart: its name, its kind and its scene.
 fn gallery_scenes() -> Vec<(String, &'static str, Scene)> {
-    let loaded = pipeline::load(&common::root().join("examples/gallery.toml"), PathPolicy::InsideSpecFolder)
+    let loaded = pipeline::load(&crate::common::root().join("examples/gallery.toml"), PathPolicy::InsideSpecFolder)
         .unwrap_or_else(|f| panic!("{}", f.render()));
     loaded
         .spec

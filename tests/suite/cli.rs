@@ -1,10 +1,9 @@
 //! The command-line tool end to end: the README's gallery command, exit codes, help and schema.
 
-mod common;
 
 use std::process::Command;
 
-use common::{assert_svg_parses, root};
+use crate::common::{assert_svg_parses, root};
 
 fn dataink() -> Command {
     Command::new(env!("CARGO_BIN_EXE_dataink"))

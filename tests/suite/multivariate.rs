@@ -1,9 +1,8 @@
 //! Multivariate kinds (splom, parallel, daisy, faces, segments) and selections: linking by row
 //! identity, geometric invariants, and bad input giving the documented results.
 
-mod common;
 
-use common::Fixture;
+use crate::common::Fixture;
 use dataink::mark::ChartOutput;
 use dataink::scene::{Item, Shape};
 

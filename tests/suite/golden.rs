@@ -2,9 +2,7 @@
 //!
 //! PNGs must match within 1/255 per channel with zero pixels beyond that; SVGs must match in every
 //! non-numeric token and in every number within 0.01. Regenerate with `UPDATE_GOLDENS=1 cargo test
-//! --test golden`; on failure the actual output and a diff image go to `target/golden-failures/`.
-
-mod common;
+//! --test suite golden`; on failure the actual output and a diff image go to `target/golden-failures/`.
 
 use std::path::PathBuf;
 
@@ -15,11 +13,11 @@ use dataink::render;
 const CHARTS: &[&str] = &["iris-scatter", "decay", "stock-prices"];
 
 fn golden_dir() -> PathBuf {
-    common::root().join("tests/golden")
+    crate::common::root().join("tests/golden")
 }
 
 fn failure_dir() -> PathBuf {
-    common::root().join("target/golden-failures")
+    crate::common::root().join("target/golden-failures")
 }
 
 fn updating() -> bool {
@@ -123,7 +121,7 @@ fn compare_svg(name: &str, actual: &str) {
 
 #[test]
 fn gallery_charts_match_their_goldens() {
-    let loaded = pipeline::load(&common::root().join("examples/gallery.toml"), PathPolicy::InsideSpecFolder)
+    let loaded = pipeline::load(&crate::common::root().join("examples/gallery.toml"), PathPolicy::InsideSpecFolder)
         .unwrap_or_else(|f| panic!("{}", f.render()));
     for name in CHARTS {
         let (index, chart) = loaded
@@ -136,7 +134,7 @@ fn gallery_charts_match_their_goldens() {
         let out = pipeline::draw_chart(&loaded, index, chart).unwrap_or_else(|e| panic!("{e}"));
         let png = render::png::to_png(&out.scene, 1.0).expect("png");
         let svg = render::svg::to_svg(&out.scene);
-        common::assert_svg_parses(&svg);
+        crate::common::assert_svg_parses(&svg);
         if updating() {
             std::fs::create_dir_all(golden_dir()).expect("golden dir");
             std::fs::write(golden_dir().join(format!("{name}.png")), &png).expect("write golden");

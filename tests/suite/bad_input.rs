@@ -1,9 +1,8 @@
 //! The bad-input checklist of DESIGN.md for specs, data and scales: each case asserts the exact
 //! diagnostic (message, position and hint) or the documented fallback.
 
-mod common;
 
-use common::Fixture;
+use crate::common::Fixture;
 use dataink::data::PathPolicy;
 
 const XY_CHART: &str = r#"

@@ -1,9 +1,8 @@
 //! The `flow` kind on analytic fields with known answers: critical points and their classes,
 //! streamlines staying in the domain, unsteady traces, and bad input.
 
-mod common;
 
-use common::Fixture;
+use crate::common::Fixture;
 use dataink::mark::{ChartOutput, DerivedColumn};
 
 /// A long-form grid of `f` on [-1, 1]², 21 × 21 nodes.
