@@ -49,6 +49,7 @@ fn scatter_chart() -> Chart {
         size: Some([1000.0, 1000.0]),
         font_size: None,
         highlight: None,
+        lint: None,
         kind: ChartKind::Scatter(ScatterOptions {
             x: Channel::Field("x".into()),
             y: Channel::Field("y".into()),

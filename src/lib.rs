@@ -16,7 +16,15 @@
 //! 4. [`render`] — draw a scene as SVG or PNG with the one embedded font in [`text`]. Rendering a
 //!    valid scene cannot fail: sizes are checked before anything is allocated.
 //!
-//! [`pipeline`] strings the stages together for the command-line tool.
+//! 5. [`lint`] — check each drawn chart against "good visualization" rules (scale shown, labels,
+//!    integrity, colour, comparison), reading the scene the reader will see.
+//! 6. [`report`] — one self-contained HTML page (inline SVGs, findings, data provenance with
+//!    SHA-256 hashes, the spec) and a Markdown summary for CI, from minijinja templates that
+//!    escape every value.
+//!
+//! [`pipeline`] strings the stages together for the command-line tool; [`explore`] holds the
+//! interactive window's brushing, linking and navigation (the window itself needs the
+//! `explore` feature).
 //!
 //! Used as a library, the stages run one by one:
 //!
@@ -51,11 +59,14 @@
 
 pub mod data;
 pub mod enrich;
+pub mod explore;
 pub mod guide;
 pub mod layout;
+pub mod lint;
 pub mod mark;
 pub mod pipeline;
 pub mod render;
+pub mod report;
 pub mod scene;
 pub mod selection;
 pub mod spec;

@@ -8,6 +8,7 @@ use rayon::prelude::*;
 use serde_json::Value;
 
 use crate::data::{self, PathPolicy, Table};
+use crate::lint::{self, ChartLint};
 use crate::mark::{self, ChartOutput, MarkError};
 use crate::render;
 use crate::selection::{self, Highlight};
@@ -110,6 +111,9 @@ pub fn load(spec_path: &Path, policy: PathPolicy) -> Result<Loaded, Failed> {
     diagnostics.extend(check_columns(&json, &doc, &tables));
     let (highlights, selection_errors) = evaluate_selections(checked.spec.as_ref(), &doc, &tables);
     diagnostics.extend(selection_errors);
+    if let Some(spec) = &checked.spec {
+        diagnostics.extend(check_lint_config(spec, &doc));
+    }
 
     let has_errors = diagnostics.iter().any(Diagnostic::is_error);
     match checked.spec {
@@ -144,6 +148,40 @@ fn evaluate_selections(
         }
     }
     (highlights, diagnostics)
+}
+
+/// Every rule named in a `[lint]` or chart `lint` table must exist.
+fn check_lint_config(spec: &Spec, doc: &SpecDoc) -> Vec<Diagnostic> {
+    let mut out = Vec::new();
+    let mut tables: Vec<(Vec<PathSeg>, &spec::LintConfig)> = Vec::new();
+    if let Some(config) = &spec.lint {
+        tables.push((vec![PathSeg::Key("lint".into())], config));
+    }
+    for (index, chart) in spec.chart.iter().enumerate() {
+        if let Some(config) = &chart.lint {
+            tables.push((spec::chart_path(index, "lint"), config));
+        }
+    }
+    let keys = lint::rule_keys();
+    for (base, config) in tables {
+        for (list_key, list) in [("allow", &config.allow), ("deny", &config.deny)] {
+            for (i, name) in list.iter().flatten().enumerate() {
+                if lint::find_rule(name).is_some() {
+                    continue;
+                }
+                let mut path = base.clone();
+                path.extend([PathSeg::Key(list_key.into()), PathSeg::Index(i)]);
+                let hint = spec::suggest::hint(name, &keys, "rules", true);
+                out.push(
+                    Diagnostic::error(format!("no lint rule `{name}`"))
+                        .with_hint(hint)
+                        .with_label("unknown rule")
+                        .at_opt(doc.span_of(&path)),
+                );
+            }
+        }
+    }
+    out
 }
 
 /// Run `work`; with the environment variable `DATAINK_TIMINGS` set, print how long it took.
@@ -345,6 +383,69 @@ pub struct Rendered {
     pub files: Vec<PathBuf>,
     /// Warnings raised while drawing.
     pub warnings: Vec<String>,
+    /// What the lint rules found.
+    pub lint: ChartLint,
+}
+
+/// One chart drawn and linted.
+#[derive(Debug)]
+pub struct Linted {
+    /// Position among the spec's charts.
+    pub index: usize,
+    /// The drawn chart.
+    pub output: ChartOutput,
+    /// What the lint rules found.
+    pub lint: ChartLint,
+}
+
+/// Lint one drawn chart under the spec's configuration, placing each finding in the spec file.
+pub fn lint_chart(loaded: &Loaded, index: usize, chart: &spec::Chart, output: &ChartOutput) -> ChartLint {
+    let empty = Table::default();
+    let table = loaded.tables.get(&chart.data).unwrap_or(&empty);
+    let subject = lint::Subject { chart, index, table, nodes: node_table(loaded, chart), output };
+    let mut result = lint::lint_chart(&subject, loaded.spec.lint.as_ref());
+    for f in result.findings.iter_mut().chain(result.allowed.iter_mut()) {
+        // Point at the deepest part of the path that exists in the spec.
+        let mut path = f.segments.clone();
+        while !path.is_empty() {
+            if let Some(span) = loaded.doc.key_span_of(&path).or_else(|| loaded.doc.span_of(&path)) {
+                let (line, column) = loaded.source.line_col(span.start);
+                f.line = Some(line);
+                f.column = Some(column);
+                break;
+            }
+            path.pop();
+        }
+    }
+    result
+}
+
+/// Draw and lint the selected charts (all when `names` is empty) in parallel, in spec order.
+pub fn draw_and_lint(loaded: &Loaded, names: &[String]) -> Result<Vec<Linted>, Vec<Diagnostic>> {
+    let selected = select_charts(&loaded.spec, names).map_err(|d| vec![d])?;
+    let results: Vec<Result<Linted, Diagnostic>> = selected
+        .par_iter()
+        .map(|(index, chart)| {
+            let output = draw_chart(loaded, *index, chart).map_err(|e| mark_diagnostic(loaded, &e))?;
+            let lint = lint_chart(loaded, *index, chart, &output);
+            Ok(Linted { index: *index, output, lint })
+        })
+        .collect();
+    let (ok, errors): (Vec<_>, Vec<_>) = results.into_iter().partition(Result::is_ok);
+    if errors.is_empty() {
+        Ok(ok.into_iter().filter_map(Result::ok).collect())
+    } else {
+        Err(errors.into_iter().filter_map(Result::err).collect())
+    }
+}
+
+/// The node table a network chart names, when it has one.
+fn node_table<'a>(loaded: &'a Loaded, chart: &spec::Chart) -> Option<&'a Table> {
+    match &chart.kind {
+        spec::ChartKind::Graph(spec::GraphOptions { nodes: Some(n), .. })
+        | spec::ChartKind::Linkmap(spec::LinkmapOptions { nodes: Some(n), .. }) => loaded.tables.get(&n.data),
+        _ => None,
+    }
 }
 
 /// Charts selected by name, or a diagnostic naming the unknown ones.
@@ -372,12 +473,7 @@ pub fn draw_chart(loaded: &Loaded, index: usize, chart: &spec::Chart) -> Result<
         MarkError::at(index, &["data"], format!("chart \"{}\": data \"{}\" was not loaded", chart.name, chart.data), "")
     })?;
     let highlight = chart.highlight.as_ref().and_then(|name| loaded.highlights.get(name));
-    let nodes = match &chart.kind {
-        spec::ChartKind::Graph(spec::GraphOptions { nodes: Some(n), .. })
-        | spec::ChartKind::Linkmap(spec::LinkmapOptions { nodes: Some(n), .. }) => loaded.tables.get(&n.data),
-        _ => None,
-    };
-    mark::draw_with_nodes(chart, index, table, highlight, nodes)
+    mark::draw_with_nodes(chart, index, table, highlight, node_table(loaded, chart))
 }
 
 /// A mark error as a diagnostic pointing into the spec.
@@ -439,8 +535,9 @@ pub fn render_all(
             let files = timed(&format!("render and write chart \"{}\"", chart.name), || {
                 write_chart(&out, &chart.name, loaded.tables.get(&chart.data), options)
             })?;
+            let lint = timed(&format!("lint chart \"{}\"", chart.name), || lint_chart(loaded, *index, chart, &out));
             progress(&chart.name);
-            Ok(Rendered { name: chart.name.clone(), files, warnings: out.warnings })
+            Ok(Rendered { name: chart.name.clone(), files, warnings: out.warnings, lint })
         })
         .collect();
     let mut rendered = Vec::new();

@@ -8,7 +8,7 @@ use clap::{Parser, Subcommand, ValueEnum};
 use dataink::data::PathPolicy;
 use dataink::pipeline::{self, Formats, RenderOptions};
 
-const EXIT_CODES: &str = "Exit codes:\n  0  success\n  1  lint errors found (reserved for `dataink lint`)\n  2  bad input (spec, data) or failure";
+const EXIT_CODES: &str = "Exit codes:\n  0  success\n  1  lint errors found (`dataink lint`, `dataink report`; with --deny-warnings, warnings too)\n  2  bad input (spec, data) or failure";
 
 /// Declarative visualization: render the charts of a TOML spec to SVG and PNG.
 #[derive(Parser, Debug)]
@@ -48,9 +48,108 @@ enum Command {
         #[arg(long, short)]
         quiet: bool,
     },
+    /// Check every chart of a spec against the good-visualization rules.
+    #[command(after_help = format!(
+        "Examples:\n  dataink lint examples/gallery.toml\n  dataink lint spec.toml --format sarif > lint.sarif\n  dataink lint spec.toml --format junit --deny-warnings > lint.xml\n  dataink lint --rules   # list every rule\n\n{EXIT_CODES}"
+    ))]
+    Lint {
+        /// The spec file (TOML).
+        #[arg(required_unless_present = "rules")]
+        spec: Option<PathBuf>,
+        /// Output format, written to standard output.
+        #[arg(long, short, default_value = "text")]
+        format: LintFormat,
+        /// Fail (exit code 1) on warnings too, not only on errors.
+        #[arg(long)]
+        deny_warnings: bool,
+        /// Lint only this chart (repeat for several).
+        #[arg(long)]
+        chart: Vec<String>,
+        /// Allow data paths outside the spec's folder (absolute, or climbing out with `..`).
+        #[arg(long)]
+        allow_outside_paths: bool,
+        /// List every rule (code, name, severity, what it checks) and exit.
+        #[arg(long)]
+        rules: bool,
+    },
+    /// Build an HTML report (charts, lint findings, data provenance, the spec) and a Markdown
+    /// summary for CI.
+    #[command(after_help = format!(
+        "Writes DIR/index.html (one self-contained page) and DIR/report.md (summary table and findings).\n\nExamples:\n  dataink report examples/gallery.toml --out report\n  dataink report spec.toml --out report --deny-warnings\n  dataink report spec.toml --out report --template my-report.html.jinja\n\n{EXIT_CODES}"
+    ))]
+    Report {
+        /// The spec file (TOML).
+        spec: PathBuf,
+        /// Output folder for index.html and report.md; created if missing.
+        #[arg(long, short)]
+        out: PathBuf,
+        /// A minijinja template replacing the built-in HTML one (see templates/README.md).
+        #[arg(long)]
+        template: Option<PathBuf>,
+        /// Report only this chart (repeat for several).
+        #[arg(long)]
+        chart: Vec<String>,
+        /// Fail (exit code 1) on warnings too, not only on errors.
+        #[arg(long)]
+        deny_warnings: bool,
+        /// Allow data paths outside the spec's folder (absolute, or climbing out with `..`).
+        #[arg(long)]
+        allow_outside_paths: bool,
+    },
+    /// Open a window with every chart of a spec: brush to select rows (linked across the charts
+    /// of a data source), hover, zoom and pan, refocus hyperbolic trees, save the selection.
+    #[command(after_help = format!(
+        "Keys: drag brushes (shift adds, alt removes, Esc or a click clears), scroll zooms, right-drag pans,\n\
+         double-click resets; in a hyperbolic tree drag moves the focus and a click centres a node.\n\
+         Save writes DIR/selection.toml ([selection.NAME] tables) and the open tab's charts as SVG and PNG.\n\n\
+         Needs a build with the `explore` feature: cargo run --release --features explore -- explore SPEC\n\n\
+         Examples:\n  dataink explore examples/gallery.toml\n  dataink explore spec.toml --out picked\n\n{EXIT_CODES}"
+    ))]
+    Explore {
+        /// The spec file (TOML).
+        spec: PathBuf,
+        /// Folder Save writes into; created when saving.
+        #[arg(long, short, default_value = "explore-out")]
+        out: PathBuf,
+        /// Allow data paths outside the spec's folder (absolute, or climbing out with `..`).
+        #[arg(long)]
+        allow_outside_paths: bool,
+    },
     /// Print the JSON Schema of the spec format (for editor completion and validation).
     #[command(after_help = "Example:\n  dataink schema > dataink.schema.json")]
     Schema,
+}
+
+/// `dataink explore`: the window, in builds with the `explore` feature.
+#[cfg(feature = "explore")]
+fn explore(spec: &std::path::Path, out: PathBuf, policy: PathPolicy) -> ExitCode {
+    let loaded = match load_or_report(spec, policy) {
+        Ok(l) => l,
+        Err(code) => return code,
+    };
+    for w in &loaded.warnings {
+        eprint!("{}", loaded.source.render(w));
+    }
+    let title = format!("dataink explore — {}", spec.display());
+    let session = dataink::explore::Session::new(loaded, 1.0);
+    match dataink::explore::app::run(session, out, &title) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: cannot open the window: {e}");
+            eprintln!("hint: `dataink explore` needs a display (X11) with OpenGL; `dataink render` works without one");
+            ExitCode::from(2)
+        }
+    }
+}
+
+/// `dataink explore` in a build without the window: say how to get it.
+#[cfg(not(feature = "explore"))]
+fn explore(_spec: &std::path::Path, _out: PathBuf, _policy: PathPolicy) -> ExitCode {
+    eprintln!("error: this dataink was built without the interactive window");
+    eprintln!("hint: build it with the `explore` feature:");
+    eprintln!("  cargo run --release --features explore -- explore SPEC");
+    eprintln!("  cargo install --path . --features explore");
+    ExitCode::from(2)
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
@@ -63,6 +162,119 @@ enum Format {
     Csv,
     /// Derived geometry as GeoJSON (contour lines and bands).
     Geojson,
+}
+
+/// Output formats of `dataink lint`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+enum LintFormat {
+    /// Human-readable findings with hints.
+    Text,
+    /// Machine-readable findings.
+    Json,
+    /// SARIF 2.1.0, for code-scanning uploads.
+    Sarif,
+    /// JUnit XML, one test case per chart.
+    Junit,
+}
+
+/// Load a spec, printing every problem on failure.
+fn load_or_report(spec: &std::path::Path, policy: PathPolicy) -> Result<pipeline::Loaded, ExitCode> {
+    pipeline::load(spec, policy).map_err(|failed| {
+        eprint!("{}", failed.render());
+        let errors = failed.diagnostics.iter().filter(|d| d.is_error()).count();
+        eprintln!("error: {} problem{} in `{}`", errors, if errors == 1 { "" } else { "s" }, spec.display());
+        ExitCode::from(2)
+    })
+}
+
+/// `dataink lint`.
+fn lint(
+    spec: &std::path::Path,
+    format: LintFormat,
+    deny_warnings: bool,
+    charts: &[String],
+    policy: PathPolicy,
+) -> ExitCode {
+    let loaded = match load_or_report(spec, policy) {
+        Ok(l) => l,
+        Err(code) => return code,
+    };
+    let linted = match pipeline::draw_and_lint(&loaded, charts) {
+        Ok(l) => l,
+        Err(diagnostics) => {
+            for d in &diagnostics {
+                eprint!("{}", loaded.source.render(d));
+            }
+            return ExitCode::from(2);
+        }
+    };
+    let results: Vec<dataink::lint::ChartLint> = linted.into_iter().map(|l| l.lint).collect();
+    let path = spec.display().to_string();
+    let text = match format {
+        LintFormat::Text => dataink::lint::output::text(&path, &results),
+        LintFormat::Json => dataink::lint::output::json(&path, &results),
+        LintFormat::Sarif => dataink::lint::output::sarif(&path, &results),
+        LintFormat::Junit => dataink::lint::output::junit(&path, &results, deny_warnings),
+    };
+    println!("{}", text.trim_end());
+    if dataink::lint::fails(&results, deny_warnings) { ExitCode::from(1) } else { ExitCode::SUCCESS }
+}
+
+/// `dataink report`.
+fn report(
+    spec: &std::path::Path,
+    out: &std::path::Path,
+    template: Option<&std::path::Path>,
+    charts: &[String],
+    deny_warnings: bool,
+    policy: PathPolicy,
+) -> ExitCode {
+    let html_template = match template.map(dataink::report::TemplateSource::read).transpose() {
+        Ok(t) => t,
+        Err(e) => {
+            eprintln!("error: {e}");
+            return ExitCode::from(2);
+        }
+    };
+    let loaded = match load_or_report(spec, policy) {
+        Ok(l) => l,
+        Err(code) => return code,
+    };
+    for w in &loaded.warnings {
+        eprint!("{}", loaded.source.render(w));
+    }
+    let linted = match pipeline::draw_and_lint(&loaded, charts) {
+        Ok(l) => l,
+        Err(diagnostics) => {
+            for d in &diagnostics {
+                eprint!("{}", loaded.source.render(d));
+            }
+            return ExitCode::from(2);
+        }
+    };
+    let options =
+        dataink::report::ReportOptions { policy, deny_warnings, generated: chrono::Utc::now(), html_template };
+    let written = dataink::report::build(&loaded, &linted, &options)
+        .and_then(|report| dataink::report::write(&report, out).map(|files| (report.passed, files)));
+    match written {
+        Ok((passed, files)) => {
+            let files: Vec<String> = files.iter().map(|f| f.display().to_string()).collect();
+            eprintln!("wrote {}", files.join(", "));
+            if passed { ExitCode::SUCCESS } else { ExitCode::from(1) }
+        }
+        Err(e) => {
+            eprintln!("error: {e}");
+            ExitCode::from(2)
+        }
+    }
+}
+
+/// `dataink lint --rules`: every rule, one per line.
+fn list_rules() -> ExitCode {
+    for r in dataink::lint::rules::ALL {
+        println!("{}  {:<28} {:<8} {:<11} {}", r.code, r.name, r.severity.name(), r.category.name(), r.summary);
+    }
+    ExitCode::SUCCESS
 }
 
 /// Run the tool; returns the process exit code.
@@ -79,25 +291,32 @@ pub fn run() -> ExitCode {
                 ExitCode::from(2)
             }
         },
+        Command::Lint { rules: true, .. } => list_rules(),
+        Command::Explore { spec, out, allow_outside_paths } => {
+            let policy = if allow_outside_paths { PathPolicy::AllowOutside } else { PathPolicy::InsideSpecFolder };
+            explore(&spec, out, policy)
+        }
+        Command::Lint { spec: Some(spec), format, deny_warnings, chart, allow_outside_paths, rules: false } => {
+            let policy = if allow_outside_paths { PathPolicy::AllowOutside } else { PathPolicy::InsideSpecFolder };
+            lint(&spec, format, deny_warnings, &chart, policy)
+        }
+        Command::Report { spec, out, template, chart, deny_warnings, allow_outside_paths } => {
+            let policy = if allow_outside_paths { PathPolicy::AllowOutside } else { PathPolicy::InsideSpecFolder };
+            report(&spec, &out, template.as_deref(), &chart, deny_warnings, policy)
+        }
+        Command::Lint { spec: None, .. } => {
+            eprintln!("error: give a spec file to lint, or --rules");
+            ExitCode::from(2)
+        }
         Command::Render { spec, out, format, chart, scale, allow_outside_paths, quiet } => {
             if !scale.is_finite() || scale <= 0.0 || scale > 16.0 {
                 eprintln!("error: --scale must be a number in (0, 16], got {scale}");
                 return ExitCode::from(2);
             }
             let policy = if allow_outside_paths { PathPolicy::AllowOutside } else { PathPolicy::InsideSpecFolder };
-            let loaded = match pipeline::load(&spec, policy) {
+            let loaded = match load_or_report(&spec, policy) {
                 Ok(l) => l,
-                Err(failed) => {
-                    eprint!("{}", failed.render());
-                    let errors = failed.diagnostics.iter().filter(|d| d.is_error()).count();
-                    eprintln!(
-                        "error: {} problem{} in `{}`",
-                        errors,
-                        if errors == 1 { "" } else { "s" },
-                        spec.display()
-                    );
-                    return ExitCode::from(2);
-                }
+                Err(code) => return code,
             };
             if !quiet {
                 for w in &loaded.warnings {
@@ -126,6 +345,7 @@ pub fn run() -> ExitCode {
                             }
                             let files: Vec<String> = r.files.iter().map(|f| f.display().to_string()).collect();
                             eprintln!("wrote {}", files.join(", "));
+                            eprintln!("lint {}", r.lint.summary_line());
                         }
                     }
                     ExitCode::SUCCESS

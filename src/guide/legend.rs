@@ -82,10 +82,10 @@ impl Legend {
         let row = row_height(theme);
         match self {
             Legend::Categorical { title, entries, .. } => {
-                let shown = displayed_entries(entries);
+                let shown = displayed_entries(entries, rows_fitting(available_height - title_h, row));
                 let label_w = shown.iter().map(|(l, _)| measure(l, theme.font_size).width).fold(0.0, f64::max);
-                let w =
-                    (swatch_width(theme) + theme.font_size * 0.5 + label_w).max(measure(title, theme.label_size).width);
+                let w = (swatch_width(theme) + theme.font_size * 0.5 + label_w)
+                    .max(measure(&shown_title(title, theme), theme.label_size).width);
                 (w, title_h + row * shown.len() as f64)
             }
             Legend::ColorBar { title, .. } => {
@@ -94,27 +94,28 @@ impl Legend {
                 let label_w = scale
                     .map(|s| s.ticks().iter().map(|t| measure(&t.label, theme.font_size).width).fold(0.0, f64::max))
                     .unwrap_or(0.0);
-                let w =
-                    (COLOR_BAR_WIDTH + theme.tick_length + 3.0 + label_w).max(measure(title, theme.label_size).width);
+                let w = (COLOR_BAR_WIDTH + theme.tick_length + 3.0 + label_w)
+                    .max(measure(&shown_title(title, theme), theme.label_size).width);
                 (w, h + theme.font_size * 0.5)
             }
             Legend::Steps { title, edges, .. } => {
                 let h = color_bar_length(available_height - title_h) + title_h;
                 let labels = step_labels(edges);
                 let label_w = labels.iter().map(|l| measure(l, theme.font_size).width).fold(0.0, f64::max);
-                let w =
-                    (COLOR_BAR_WIDTH + theme.tick_length + 3.0 + label_w).max(measure(title, theme.label_size).width);
+                let w = (COLOR_BAR_WIDTH + theme.tick_length + 3.0 + label_w)
+                    .max(measure(&shown_title(title, theme), theme.label_size).width);
                 (w, h + theme.font_size * 0.5)
             }
             Legend::Notes { title, lines } => {
                 let w = lines.iter().map(|l| measure(l, theme.font_size).width).fold(0.0, f64::max);
-                (w.max(measure(title, theme.label_size).width), title_h + row * lines.len() as f64)
+                (w.max(measure(&shown_title(title, theme), theme.label_size).width), title_h + row * lines.len() as f64)
             }
             Legend::Size { title, entries, .. } => {
                 let max_r = entries.iter().map(|e| e.1).fold(0.0, f64::max);
                 let label_w = entries.iter().map(|(l, _)| measure(l, theme.font_size).width).fold(0.0, f64::max);
                 let h: f64 = entries.iter().map(|e| (2.0 * e.1).max(row)).sum::<f64>() + 4.0 * entries.len() as f64;
-                let w = (2.0 * max_r + theme.font_size * 0.5 + label_w).max(measure(title, theme.label_size).width);
+                let w = (2.0 * max_r + theme.font_size * 0.5 + label_w)
+                    .max(measure(&shown_title(title, theme), theme.label_size).width);
                 (w, title_h + h)
             }
         }
@@ -150,7 +151,7 @@ impl Legend {
                 Role::Legend,
                 Text {
                     at,
-                    content: self.title().to_string(),
+                    content: shown_title(self.title(), theme),
                     size: theme.label_size,
                     anchor: Anchor::Start,
                     baseline: Baseline::Top,
@@ -163,7 +164,8 @@ impl Legend {
         let row = row_height(theme);
         match self {
             Legend::Categorical { entries, symbol, .. } => {
-                for (i, (label, color)) in displayed_entries(entries).iter().enumerate() {
+                let fitting = rows_fitting(available_height - title_h, row);
+                for (i, (label, color)) in displayed_entries(entries, fitting).iter().enumerate() {
                     let cy = top + row * (i as f64 + 0.5);
                     if *color != Color::TRANSPARENT {
                         items.push(swatch(*symbol, Point::new(at.x, cy), *color, theme));
@@ -258,8 +260,10 @@ pub fn draw_stack(legends: &[Legend], at: Point, theme: &Theme, available_height
     let mut items = Vec::new();
     let mut y = at.y;
     for legend in legends {
-        items.extend(legend.draw(Point::new(at.x, y), theme, available_height));
-        y += legend.extent(theme, available_height).1 + stack_gap(theme);
+        // Each legend gets the height the ones above it left.
+        let left = available_height - (y - at.y);
+        items.extend(legend.draw(Point::new(at.x, y), theme, left));
+        y += legend.extent(theme, left).1 + stack_gap(theme);
     }
     items
 }
@@ -307,12 +311,26 @@ fn color_bar_length(available: f64) -> f64 {
     available.clamp(60.0, 220.0)
 }
 
-/// Entries to show: at most [`MAX_ENTRIES`], labels truncated, and a summary line for the rest.
-fn displayed_entries(entries: &[(String, Color)]) -> Vec<(String, Color)> {
+/// A legend title as drawn: cut with "…" to the width of the widest entry label allowed, so a
+/// long title cannot squeeze the plot.
+fn shown_title(title: &str, theme: &Theme) -> String {
+    truncate_to_width(title, MAX_LABEL_WIDTH * theme.label_size / 12.0, theme.label_size)
+}
+
+/// How many legend rows of height `row` fit in `height` (at least one).
+fn rows_fitting(height: f64, row: f64) -> usize {
+    if row > 0.0 && height.is_finite() { ((height / row).floor().max(1.0)) as usize } else { usize::MAX }
+}
+
+/// Entries to show in at most `rows` rows: at most [`MAX_ENTRIES`] entries, labels truncated,
+/// and a summary line for the rest (which takes the last row when they do not all fit).
+fn displayed_entries(entries: &[(String, Color)], rows: usize) -> Vec<(String, Color)> {
+    let fits = entries.len() <= MAX_ENTRIES && entries.len() <= rows;
+    let keep = if fits { entries.len() } else { MAX_ENTRIES.min(rows.saturating_sub(1)) };
     let mut shown: Vec<(String, Color)> =
-        entries.iter().take(MAX_ENTRIES).map(|(l, c)| (truncate_to_width(l, MAX_LABEL_WIDTH, 12.0), *c)).collect();
-    if entries.len() > MAX_ENTRIES {
-        shown.push((format!("… and {} more", entries.len() - MAX_ENTRIES), Color::TRANSPARENT));
+        entries.iter().take(keep).map(|(l, c)| (truncate_to_width(l, MAX_LABEL_WIDTH, 12.0), *c)).collect();
+    if keep < entries.len() {
+        shown.push((format!("… and {} more", entries.len() - keep), Color::TRANSPARENT));
     }
     shown
 }
@@ -403,8 +421,14 @@ mod tests {
     #[test]
     fn many_categories_are_summarised() {
         let entries: Vec<(String, Color)> = (0..30).map(|i| (format!("c{i}"), Color::BLACK)).collect();
-        let shown = displayed_entries(&entries);
+        let shown = displayed_entries(&entries, usize::MAX);
         assert_eq!(shown.len(), MAX_ENTRIES + 1);
         assert_eq!(shown[MAX_ENTRIES].0, "… and 6 more");
+        // Ten rows of room: nine entries and the summary.
+        let shown = displayed_entries(&entries, 10);
+        assert_eq!(shown.len(), 10);
+        assert_eq!(shown[9].0, "… and 21 more");
+        // Everything fits: no summary.
+        assert_eq!(displayed_entries(&entries[..5], 10).len(), 5);
     }
 }

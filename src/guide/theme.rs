@@ -2,6 +2,10 @@
 
 use crate::scene::Color;
 
+/// Smallest text dataink draws on purpose, in CSS pixels (about 6.75 pt): labels that would be
+/// smaller are hidden instead, and lint rule LB004 reports any text below it.
+pub const MIN_TEXT_SIZE: f64 = 9.0;
+
 /// The look of guides. Derived from the chart's base font size so everything scales together.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Theme {

@@ -84,7 +84,7 @@ pub fn draw(chart: &Chart, options: &ContourOptions, index: usize, table: &Table
     if let (Some(&y0), Some(&y1)) = (grid.ys().first(), grid.ys().last()) {
         y_axis.domain = Domain::Continuous(y0, y1);
     }
-    let (frame, theme) = frame::cartesian(chart, index, x_axis, y_axis, vec![legend])?;
+    let (frame, theme) = frame::cartesian(chart, index, x_axis, y_axis, encode::shown_legends(legend, &z_opts))?;
     let to_px = |(x, y): (f64, f64)| Point::new(frame.x.map(x), frame.y.map(y));
 
     let mut marks = Vec::new();

@@ -505,7 +505,8 @@ pub fn color_encoding(
             entries.push((level, color));
         }
         let legend = Legend::Categorical { title, entries, symbol };
-        return Ok((ColorEncoding::Categorical { categories, colors }, Some(legend)));
+        let legend = shown_legends(legend, &options).pop();
+        return Ok((ColorEncoding::Categorical { categories, colors }, legend));
     }
     let values = col.numbers().unwrap_or(&[]).to_vec();
     let map = continuous_map(index, &["color", "scheme"], options.scheme.as_deref())?;
@@ -521,7 +522,13 @@ pub fn color_encoding(
         hi += 0.5;
     }
     let legend = Legend::ColorBar { title, map: map.clone(), domain: (lo, hi) };
-    Ok((ColorEncoding::Continuous { values, map, lo, hi }, Some(legend)))
+    let legend = shown_legends(legend, &options).pop();
+    Ok((ColorEncoding::Continuous { values, map, lo, hi }, legend))
+}
+
+/// The legends to draw for a colour encoding: none when its options say `legend = false`.
+pub fn shown_legends(legend: Legend, options: &crate::spec::ColorOptions) -> Vec<Legend> {
+    if options.legend == Some(false) { Vec::new() } else { vec![legend] }
 }
 
 /// The value range the colour map spans: the data range, or for diverging maps a range centred

@@ -648,7 +648,8 @@ impl Topology {
         Topology { points, separatrices: lines.into_iter().map(|s| s.line).collect(), boundary: boundary_points(field) }
     }
 
-    fn legend(&self) -> Option<Legend> {
+    /// The key: critical and boundary points as swatches, separatrices as a line of their own.
+    fn legend(&self) -> Vec<Legend> {
         let mut entries: Vec<(String, Color)> = Vec::new();
         for p in &self.points {
             let (name, color, _) = kind_style(p.kind);
@@ -656,16 +657,24 @@ impl Topology {
                 entries.push((name.to_string(), color));
             }
         }
-        if !self.separatrices.is_empty() {
-            entries.push(("separatrix".into(), SEPARATRIX));
-        }
         if self.boundary.iter().any(|b| b.kind == SwitchKind::Attachment) {
             entries.push(("attachment".into(), Color::rgb(0x33, 0x33, 0x33)));
         }
         if self.boundary.iter().any(|b| b.kind == SwitchKind::Detachment) {
             entries.push(("detachment".into(), Color::rgb(0x99, 0x99, 0x99)));
         }
-        (!entries.is_empty()).then(|| Legend::Categorical { title: "topology".into(), entries, symbol: Symbol::Square })
+        let mut legends = Vec::new();
+        if !entries.is_empty() {
+            legends.push(Legend::Categorical { title: "topology".into(), entries, symbol: Symbol::Square });
+        }
+        if !self.separatrices.is_empty() {
+            legends.push(Legend::Categorical {
+                title: "from saddles".into(),
+                entries: vec![("separatrix".into(), SEPARATRIX)],
+                symbol: Symbol::Line,
+            });
+        }
+        legends
     }
 
     fn draw(&self, to_px: &impl Fn([f64; 2]) -> Point) -> Vec<Item> {

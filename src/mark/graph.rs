@@ -169,13 +169,15 @@ pub fn draw_network(chart: &Chart, index: usize, input: NetworkInput, look: &Loo
         items.extend(labels);
         hidden = left_out;
     }
+    let labels_word = if hidden == 1 { "label" } else { "labels" };
     let note = (hidden > 0).then(|| {
-        format!("{} ({hidden} labels left out where they would overlap)", chart.caption.as_deref().unwrap_or(""))
+        format!("{} ({hidden} {labels_word} left out where they would overlap)", chart.caption.as_deref().unwrap_or(""))
     });
     let derived = derived(&input, &placement, &centers, &fit, &degrees);
     let mut warnings = input.warnings;
     if hidden > 0 {
-        warnings.push(format!("chart \"{}\": {hidden} node labels were left out to avoid overlaps", chart.name));
+        let verb = if hidden == 1 { "was" } else { "were" };
+        warnings.push(format!("chart \"{}\": {hidden} node {labels_word} {verb} left out to avoid overlaps", chart.name));
     }
     let scene = canvas.scene(chart, items, note.as_deref());
     Ok(ChartOutput { scene, derived, warnings, geojson: None })

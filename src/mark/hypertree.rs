@@ -6,6 +6,7 @@
 //! The layout is computed once; refocusing is a Möbius map of the stored positions, O(n).
 
 use super::derived::DerivedColumn;
+use super::geometry::{Disk, DiskNode, Geometry};
 use super::graph::place_labels;
 use super::tree_input::{Branches, branch_legend, branch_palette, labels_of, node_rows, tree_of};
 use super::{ChartOutput, MarkError, encode, frame, with_default_size};
@@ -23,7 +24,7 @@ const CENTRE_RADIUS: f64 = 6.0;
 /// Nodes whose local scale is below this are too small to see and are not drawn.
 const MIN_SCALE: f64 = 0.008;
 /// Labels smaller than this many pixels are left out.
-const MIN_LABEL: f64 = 6.5;
+const MIN_LABEL: f64 = crate::guide::theme::MIN_TEXT_SIZE;
 /// Fill of the disk.
 const DISK_FILL: Color = Color::rgb(0xf7, 0xf7, 0xf5);
 /// Colour of edges.
@@ -63,6 +64,19 @@ fn find_focus(
 
 /// Draw a hyperbolic tree.
 pub fn draw(chart: &Chart, options: &HypertreeOptions, index: usize, table: &Table) -> Result<ChartOutput, MarkError> {
+    draw_with_view(chart, options, index, table, &Mobius::identity()).map(|(output, _)| output)
+}
+
+/// [`draw`] with the view moved by `view` after centring the spec's focus (the explorer's drag
+/// and click-to-focus), also returning the disk and every node's position in it. With a moved
+/// view the ring and the caption name the node nearest the centre.
+pub fn draw_with_view(
+    chart: &Chart,
+    options: &HypertreeOptions,
+    index: usize,
+    table: &Table,
+    view: &Mobius,
+) -> Result<(ChartOutput, Geometry), MarkError> {
     let chart = &with_default_size(chart, DEFAULT_SIZE);
     let tree = tree_of(chart, index, &options.tree, table)?;
     let labels = labels_of(chart, index, &tree, options.label.as_deref(), table)?;
@@ -74,8 +88,9 @@ pub fn draw(chart: &Chart, options: &HypertreeOptions, index: usize, table: &Tab
     let layout_options = HyperbolicOptions { spacing: options.spacing.unwrap_or(1.2), weight_by_leaves: true };
     let layout = HyperbolicLayout::new(h, &layout_options)
         .map_err(|e| MarkError::at(index, &["spacing"], format!("chart \"{}\": {e}", chart.name), ""))?;
-    let positions = view_from(&layout, focus, &Mobius::identity())
+    let positions = view_from(&layout, focus, view)
         .map_err(|e| MarkError::at(index, &["focus"], format!("chart \"{}\": {e}", chart.name), ""))?;
+    let focus = if *view == Mobius::identity() { focus } else { nearest_centre(&positions).unwrap_or(focus) };
 
     // Colours: a column, or one hue per branch.
     let branches = Branches::of(&tree);
@@ -171,5 +186,22 @@ pub fn draw(chart: &Chart, options: &HypertreeOptions, index: usize, table: &Tab
     d.push("disk_y", DerivedColumn::Number(nodes.iter().map(|&n| positions[n][1]).collect()));
     d.push("scale", DerivedColumn::Number(nodes.iter().map(|&n| scales[n]).collect()));
     let scene = canvas.scene(chart, items, None);
-    Ok(ChartOutput { scene, derived: d, warnings: Vec::new(), geojson: None })
+    let nodes = (0..h.len())
+        .map(|n| DiskNode {
+            position: positions[n],
+            radius: if visible(n) { radii[n] } else { 0.0 },
+            label: labels[n].clone(),
+            row: tree.rows[n],
+        })
+        .collect();
+    let geometry = Geometry { disk: Some(Disk { center, radius, nodes }), ..Geometry::default() };
+    Ok((ChartOutput { scene, derived: d, warnings: Vec::new(), geojson: None }, geometry))
+}
+
+/// The node nearest the disk's centre.
+fn nearest_centre(positions: &[[f64; 2]]) -> Option<usize> {
+    let norm = |z: &[f64; 2]| z[0] * z[0] + z[1] * z[1];
+    (0..positions.len()).filter(|&n| norm(&positions[n]).is_finite()).min_by(|&a, &b| {
+        norm(&positions[a]).total_cmp(&norm(&positions[b]))
+    })
 }

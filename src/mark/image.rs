@@ -51,7 +51,7 @@ pub fn draw(chart: &Chart, options: &ImageOptions, index: usize, table: &Table) 
     }
     let title = title_with_unit(z_opts.title.as_deref().unwrap_or(&z_opts.field), z_opts.unit.as_deref());
     let legend = Legend::ColorBar { title, map: map.clone(), domain: (lo, hi) };
-    let (frame, theme) = frame::cartesian(chart, index, x_axis, y_axis, vec![legend])?;
+    let (frame, theme) = frame::cartesian(chart, index, x_axis, y_axis, encode::shown_legends(legend, &z_opts))?;
 
     let width = (frame.plot.w.round().max(1.0) as usize).min(MAX_RASTER_SIDE);
     let height = (frame.plot.h.round().max(1.0) as usize).min(MAX_RASTER_SIDE);

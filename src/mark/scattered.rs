@@ -80,7 +80,7 @@ pub fn draw(chart: &Chart, options: &ScatteredOptions, index: usize, table: &Tab
     let mut y_axis = encode::position_axis(chart, index, "y", &y_opts, y_col, &rows)?;
     x_axis.inset = POINT_RADIUS + 1.5;
     y_axis.inset = POINT_RADIUS + 1.5;
-    let (frame, theme) = frame::cartesian(chart, index, x_axis, y_axis, vec![legend])?;
+    let (frame, theme) = frame::cartesian(chart, index, x_axis, y_axis, encode::shown_legends(legend, &z_opts))?;
     let to_px = |(x, y): (f64, f64)| Point::new(frame.x.map(x), frame.y.map(y));
 
     let mut marks = Vec::new();

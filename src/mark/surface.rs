@@ -32,7 +32,7 @@ pub fn draw(chart: &Chart, options: &SurfaceOptions, index: usize, table: &Table
     let z_title = title_with_unit(z_opts.title.as_deref().unwrap_or(&z_opts.field), z_opts.unit.as_deref());
     let canvas = frame::PanelCanvas::new(
         chart,
-        vec![Legend::ColorBar { title: z_title.clone(), map: map.clone(), domain: (lo, hi) }],
+        encode::shown_legends(Legend::ColorBar { title: z_title.clone(), map: map.clone(), domain: (lo, hi) }, &z_opts),
     );
     let (width, theme, title_h, _caption_h, room, legend_w) =
         (canvas.width, canvas.theme.clone(), canvas.title_h, canvas.caption_h, canvas.room, canvas.legend_w);

@@ -22,7 +22,7 @@ const DEFAULT_SIZE: [f64; 2] = [820.0, 560.0];
 /// Average area in px² a drawn cell should have at least when the depth is chosen automatically.
 const MIN_CELL_AREA: f64 = 120.0;
 /// Smallest font a label may shrink to before it is truncated or hidden.
-const MIN_LABEL_SIZE: f64 = 7.0;
+const MIN_LABEL_SIZE: f64 = crate::guide::theme::MIN_TEXT_SIZE;
 
 /// Draw a treemap.
 pub fn draw(chart: &Chart, options: &TreemapOptions, index: usize, table: &Table) -> Result<ChartOutput, MarkError> {
@@ -302,7 +302,7 @@ fn leaf_label(name: &str, value: f64, unit: Option<&str>, cell: Cell, fill: Colo
     let mut out = vec![label_item(text, at, size, color)];
     let value_text = with_unit(value, unit);
     if h >= 2.3 * size && measure(&value_text, size).width <= w {
-        out.push(label_item(value_text, Point::new(at.x, at.y + 1.15 * size), size, color.with_opacity(0.8)));
+        out.push(label_item(value_text, Point::new(at.x, at.y + 1.15 * size), size, color));
     }
     out
 }

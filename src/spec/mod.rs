@@ -176,7 +176,7 @@ y = "petal_width"
         assert_eq!(
             diags[0].hint.as_deref(),
             Some(
-                "keys allowed here: name, data, kind, x, y, caption, color, font_size, highlight, mark_color, opacity, point_size, radius, size, title"
+                "keys allowed here: name, data, kind, x, y, caption, color, font_size, highlight, lint, mark_color, opacity, point_size, radius, size, title"
             )
         );
         assert_eq!(
@@ -195,7 +195,7 @@ y = "petal_width"
    |
 12 | colour = "species"
    | ^^^^^^ did you mean `color`?
-   = hint: keys allowed here: name, data, kind, x, y, caption, color, font_size, highlight, mark_color, opacity, point_size, radius, size, title
+   = hint: keys allowed here: name, data, kind, x, y, caption, color, font_size, highlight, lint, mark_color, opacity, point_size, radius, size, title
 
 error: `size` must be an array of 2 numbers, found a string
   --> spec.toml:13:8
@@ -412,6 +412,9 @@ categories = { species = ["setosa", 3] }
 combine = "or"
 invert = true
 
+[lint]
+allow = ["DI006"]
+
 [[chart]]
 name = "iris-scatter"
 data = "iris"
@@ -420,10 +423,11 @@ caption = "Source: Fisher (1936)"
 size = [800, 600.5]
 font_size = 12
 highlight = "short"
+lint = { allow = ["LB001"], deny = ["tick-count"] }
 kind = "scatter"
 x = { field = "sepal_length", title = "Sepal length", unit = "cm", scale = "linear", domain = [4, 8], zero = false, nice = true, ticks = 5, grid = true }
 y = "petal_length"
-color = { field = "species", title = "Species", unit = "", scheme = "viridis_r", type = "categorical", midpoint = 0.5 }
+color = { field = "species", title = "Species", unit = "", scheme = "viridis_r", type = "categorical", midpoint = 0.5, legend = true }
 point_size = { field = "petal_width", title = "Width", unit = "cm", max_radius = 10 }
 radius = 3.5
 mark_color = "#336699"
@@ -509,12 +513,17 @@ point_size = "d"
                     invert: Some(true),
                 },
             )]),
+            lint: Some(LintConfig { allow: Some(vec!["DI006".to_owned()]), deny: None }),
             chart: vec![
                 Chart {
                     name: "iris-scatter".to_owned(),
                     data: "iris".to_owned(),
                     title: Some("Petals".to_owned()),
                     highlight: Some("short".to_owned()),
+                    lint: Some(LintConfig {
+                        allow: Some(vec!["LB001".to_owned()]),
+                        deny: Some(vec!["tick-count".to_owned()]),
+                    }),
                     caption: Some("Source: Fisher (1936)".to_owned()),
                     size: Some([800.0, 600.5]),
                     font_size: Some(12.0),
@@ -538,12 +547,14 @@ point_size = "d"
                             scheme: Some("viridis_r".to_owned()),
                             r#type: Some(ColorType::Categorical),
                             midpoint: Some(0.5),
+                            legend: Some(true),
                         })),
                         point_size: Some(SizeChannel::Detailed(SizeOptions {
                             field: "petal_width".to_owned(),
                             title: Some("Width".to_owned()),
                             unit: Some("cm".to_owned()),
                             max_radius: Some(10.0),
+                            mapping: None,
                         })),
                         radius: Some(3.5),
                         mark_color: Some("#336699".to_owned()),
@@ -558,6 +569,7 @@ point_size = "d"
                     size: None,
                     font_size: None,
                     highlight: None,
+                    lint: None,
                     kind: ChartKind::Line(LineOptions {
                         x: field("x"),
                         y: OneOrMany::Many(vec![
@@ -584,6 +596,7 @@ point_size = "d"
                     size: None,
                     font_size: None,
                     highlight: None,
+                    lint: None,
                     kind: ChartKind::Line(LineOptions {
                         x: Channel::Detailed(ChannelOptions {
                             field: "x".to_owned(),
@@ -611,6 +624,7 @@ point_size = "d"
                     size: None,
                     font_size: None,
                     highlight: None,
+                    lint: None,
                     kind: ChartKind::Scatter(ScatterOptions {
                         x: field("a"),
                         y: field("b"),
@@ -660,6 +674,10 @@ point_size = "d"
         for (name, selection) in json.get("selection").and_then(Value::as_object).into_iter().flatten() {
             out.push_str(&format!("[selection.{name:?}]\n"));
             out.push_str(&entries(selection.as_object().unwrap_or(&serde_json::Map::new())));
+        }
+        if let Some(lint) = json.get("lint").and_then(Value::as_object) {
+            out.push_str("[lint]\n");
+            out.push_str(&entries(lint));
         }
         for chart in json.get("chart").and_then(Value::as_array).into_iter().flatten() {
             out.push_str("[[chart]]\n");

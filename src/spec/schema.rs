@@ -279,9 +279,9 @@ mod tests {
         let schema = spec_schema();
         let mut count = 0;
         walk(&schema, &mut count);
-        // Spec, DataSource, Selection, ChannelOptions, ColorOptions, SizeOptions, FaceFeatures,
-        // TreeSource, NodeTable and one branch per kind.
-        assert_eq!(count, 9 + crate::spec::ChartKind::NAMES.len());
+        // Spec, DataSource, Selection, LintConfig, ChannelOptions, ColorOptions, SizeOptions,
+        // FaceFeatures, TreeSource, NodeTable and one branch per kind.
+        assert_eq!(count, 10 + crate::spec::ChartKind::NAMES.len());
         // Maps stay open: any data source name, any column in inline rows.
         assert_eq!(schema["properties"]["data"]["additionalProperties"]["$ref"], "#/$defs/DataSource");
         assert_eq!(def(&schema, "DataSource")["properties"]["values"]["items"]["additionalProperties"], true);

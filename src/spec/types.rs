@@ -24,6 +24,28 @@ pub struct Spec {
     /// Charts, each a `[[chart]]` table.
     #[serde(default)]
     pub chart: Vec<Chart>,
+    /// Lint configuration for every chart: `[lint] allow = ["LB001"]`, `deny = ["SC004"]`.
+    #[serde(default)]
+    pub lint: Option<LintConfig>,
+}
+
+/// Which lint rules to silence or to treat as errors; rules are named by code (`LB001`) or name
+/// (`missing-title`).
+#[derive(Clone, Debug, Default, Deserialize, Serialize, JsonSchema, PartialEq)]
+pub struct LintConfig {
+    /// Rules whose findings are dropped (they still show as allowed in reports).
+    #[serde(default)]
+    #[schemars(example = example_rules())]
+    pub allow: Option<Vec<String>>,
+    /// Rules whose findings are errors, whatever their usual severity.
+    #[serde(default)]
+    #[schemars(example = example_rules())]
+    pub deny: Option<Vec<String>>,
+}
+
+/// Schema example of a rule list.
+fn example_rules() -> [&'static str; 2] {
+    ["LB001", "overplotting"]
 }
 
 /// A named brush over one data source: numeric ranges and category sets that select rows.
@@ -138,6 +160,10 @@ pub struct Chart {
     #[serde(default)]
     #[schemars(example = &"small")]
     pub highlight: Option<String>,
+    /// Lint configuration for this chart, applied on top of the spec's `[lint]`:
+    /// `lint = { allow = ["CM002"] }`.
+    #[serde(default)]
+    pub lint: Option<LintConfig>,
     /// What to draw and how.
     #[serde(flatten)]
     pub kind: ChartKind,
@@ -151,6 +177,9 @@ pub enum ChartKind {
     Scatter(ScatterOptions),
     /// One or more series drawn as lines through (x, y).
     Line(LineOptions),
+    /// Vertical bars from zero: one per category of `x` (grouped side by side by `color`), rows
+    /// of the same category summed.
+    Bar(BarOptions),
     /// Sample points and the curves of one or more 1D interpolation methods through them.
     Interp1d(Interp1dOptions),
     /// Contour lines and filled bands of a scalar field on a regular grid.
@@ -195,6 +224,7 @@ impl ChartKind {
     pub const NAMES: &'static [&'static str] = &[
         "scatter",
         "line",
+        "bar",
         "interp1d",
         "contour",
         "image",
@@ -219,6 +249,7 @@ impl ChartKind {
         match self {
             ChartKind::Scatter(_) => "scatter",
             ChartKind::Line(_) => "line",
+            ChartKind::Bar(_) => "bar",
             ChartKind::Interp1d(_) => "interp1d",
             ChartKind::Contour(_) => "contour",
             ChartKind::Image(_) => "image",
@@ -296,6 +327,26 @@ pub struct LineOptions {
     #[serde(default)]
     pub scheme: Option<String>,
     /// Line colour when there is a single series (CSS name or `#rrggbb`).
+    #[serde(default)]
+    pub mark_color: Option<String>,
+}
+
+/// Options of `kind = "bar"`.
+#[derive(Clone, Debug, Deserialize, Serialize, JsonSchema, PartialEq)]
+pub struct BarOptions {
+    /// The categories along the horizontal axis: a text column, or numbers treated as categories
+    /// (one band each, in ascending order).
+    #[schemars(example = &"state")]
+    pub x: Channel,
+    /// The bar length: a numeric column; rows with the same `x` (and `color`) are summed. Bars
+    /// start at zero unless `zero = false` or a `domain` leaves zero out (lint rule DI001).
+    #[schemars(example = &"flights")]
+    pub y: Channel,
+    /// Group bars side by side within each category by a categorical column, with a legend.
+    #[serde(default)]
+    #[schemars(example = &"origin")]
+    pub color: Option<ColorChannel>,
+    /// Bar colour when `color` is not given (CSS name or `#rrggbb`).
     #[serde(default)]
     pub mark_color: Option<String>,
 }
@@ -422,6 +473,11 @@ pub struct SectionOptions {
     /// section, stacked, sharing both scales).
     #[serde(default)]
     pub layout: Option<SectionLayout>,
+    /// With `layout = "multiples"`: give every panel the same value scale (default true), or
+    /// `false` for a scale per panel fitted to its own section (for sections of very different
+    /// magnitude; the panels can then no longer be compared by height, and lint rule CM001 says so).
+    #[serde(default)]
+    pub shared_scale: Option<bool>,
     /// Line width in pixels (default 2).
     #[serde(default)]
     #[schemars(range(min = 0.0))]
@@ -665,6 +721,10 @@ pub struct FacesOptions {
     #[serde(default)]
     #[schemars(range(min = 1, max = 100))]
     pub per_row: Option<u32>,
+    /// Draw the feature key saying which column drives which feature (default true). Without it
+    /// the faces cannot be read; lint rule TQ005 reports that.
+    #[serde(default)]
+    pub key: Option<bool>,
 }
 
 /// Columns driving facial features; a feature without a column stays neutral.
@@ -1253,6 +1313,10 @@ pub struct ColorOptions {
     /// Centre of a diverging scheme (default: the middle of the domain).
     #[serde(default)]
     pub midpoint: Option<f64>,
+    /// Draw the legend or colour bar (default true). Without it the colours cannot be decoded;
+    /// lint rule SC004 reports that.
+    #[serde(default)]
+    pub legend: Option<bool>,
 }
 
 field_channel!(ColorChannel, ColorOptions);
@@ -1293,6 +1357,22 @@ pub struct SizeOptions {
     #[serde(default)]
     #[schemars(extend("exclusiveMinimum" = 0), example = 12)]
     pub max_radius: Option<f64>,
+    /// How values map to markers: `area` (default: area proportional to the value, which reads
+    /// true) or `radius` (radius proportional to the value, which exaggerates differences as their
+    /// square; lint rule DI002 reports it). Scatter charts only.
+    #[serde(default)]
+    pub mapping: Option<SizeMapping>,
+}
+
+/// How a size encoding maps values to marker size.
+#[derive(Clone, Copy, Debug, Default, Deserialize, Serialize, JsonSchema, PartialEq, Eq)]
+#[serde(rename_all = "lowercase")]
+pub enum SizeMapping {
+    /// Marker area proportional to the value.
+    #[default]
+    Area,
+    /// Marker radius proportional to the value (areas grow with its square).
+    Radius,
 }
 
 field_channel!(SizeChannel, SizeOptions);

@@ -1,0 +1,121 @@
+//! Rules about data the chart silently does not show: DI003 `log-nonpositive` (values ≤ 0 on a
+//! log axis), DI004 `dropped-rows` (rows left out for missing or non-finite values) and DI005
+//! `outside-domain` (rows outside a fixed axis domain, clipped away).
+
+use crate::lint::chart_info::cartesian_axes;
+use crate::lint::{Category, Issue, Rule, Severity, Subject};
+use crate::spec::ScaleKind;
+
+/// DI003.
+pub static LOG_NONPOSITIVE: Rule = Rule {
+    code: "DI003",
+    name: "log-nonpositive",
+    category: Category::Integrity,
+    severity: Severity::Error,
+    summary: "A log-scaled axis has values at or below zero, which it cannot show.",
+    check: check_log,
+};
+
+/// DI004.
+pub static DROPPED_ROWS: Rule = Rule {
+    code: "DI004",
+    name: "dropped-rows",
+    category: Category::Integrity,
+    severity: Severity::Warning,
+    summary: "Rows were left out for missing or non-finite values and the caption does not say how many.",
+    check: check_dropped,
+};
+
+/// DI005.
+pub static OUTSIDE_DOMAIN: Rule = Rule {
+    code: "DI005",
+    name: "outside-domain",
+    category: Category::Integrity,
+    severity: Severity::Error,
+    summary: "A fixed axis domain leaves data rows outside the plot, where they are clipped away.",
+    check: check_domain,
+};
+
+/// Finite values of a numeric column (empty for text).
+fn finite(s: &Subject<'_>, field: &str) -> Vec<f64> {
+    s.table
+        .column(field)
+        .and_then(|c| c.numbers())
+        .map(|v| v.iter().copied().filter(|x| x.is_finite()).collect())
+        .unwrap_or_default()
+}
+
+fn check_log(s: &Subject<'_>) -> Vec<Issue> {
+    cartesian_axes(s.chart)
+        .into_iter()
+        .filter(|a| a.scale() == Some(ScaleKind::Log))
+        .filter_map(|a| {
+            let values = finite(s, &a.options.field);
+            let bad = values.iter().filter(|v| **v <= 0.0).count();
+            (bad > 0).then(|| {
+                Issue::new(
+                    a.name,
+                    format!("{}.scale", a.key),
+                    format!(
+                        "{bad} of {} values of `{}` are ≤ 0 and cannot be placed on the log-scaled {}",
+                        values.len(),
+                        a.options.field,
+                        a.name
+                    ),
+                    "use a linear scale, or filter or transform the column so every value is positive",
+                )
+            })
+        })
+        .collect()
+}
+
+fn check_dropped(s: &Subject<'_>) -> Vec<Issue> {
+    s.output
+        .warnings
+        .iter()
+        .filter(|w| w.contains(" dropped ") && w.contains("non-finite"))
+        .filter(|w| !caption_states_count(s, w))
+        .map(|w| {
+            let message = w.split_once("\": ").map_or(w.as_str(), |(_, m)| m).to_string();
+            Issue::new(
+                "data",
+                "data",
+                message,
+                "say in the caption how many rows are missing, or clean the data so nothing is dropped silently",
+            )
+        })
+        .collect()
+}
+
+/// Whether the chart's caption states the number of dropped rows from the warning
+/// (`dropped 14 of 406 rows ...`), which tells the reader what is missing.
+fn caption_states_count(s: &Subject<'_>, warning: &str) -> bool {
+    let count = warning.split_once(" dropped ").and_then(|(_, rest)| rest.split_whitespace().next());
+    let (Some(count), Some(caption)) = (count, s.chart.caption.as_deref()) else { return false };
+    caption.split(|c: char| !c.is_ascii_digit()).any(|word| word == count)
+}
+
+fn check_domain(s: &Subject<'_>) -> Vec<Issue> {
+    cartesian_axes(s.chart)
+        .into_iter()
+        .filter_map(|a| {
+            let [lo, hi] = a.options.domain?;
+            let (lo, hi) = (lo.min(hi), lo.max(hi));
+            let values = finite(s, &a.options.field);
+            let outside = values.iter().filter(|v| **v < lo || **v > hi).count();
+            (outside > 0).then(|| {
+                let (min, max) = values.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| (a.min(v), b.max(v)));
+                Issue::new(
+                    a.name,
+                    format!("{}.domain", a.key),
+                    format!(
+                        "{outside} of {} rows lie outside the fixed domain [{lo}, {hi}] of the {} (data: {min} to {max}) and are not shown",
+                        values.len(),
+                        a.name
+                    ),
+                    format!("widen `domain` to cover [{min}, {max}], or remove it"),
+                )
+            })
+        })
+        .collect()
+}

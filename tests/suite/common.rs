@@ -1,0 +1,91 @@
+//! Helpers shared by the integration tests: write a spec and its data into a temporary folder,
+//! run the pipeline, and return the outputs or the rendered diagnostics.
+#![allow(dead_code)]
+
+use std::path::{Path, PathBuf};
+
+use dataink::data::PathPolicy;
+use dataink::lint::{ChartLint, Finding};
+use dataink::mark::ChartOutput;
+use dataink::pipeline::{self, Loaded};
+
+/// A temporary folder holding a spec file and its data files.
+pub struct Fixture {
+    pub dir: tempfile::TempDir,
+    pub spec: PathBuf,
+}
+
+impl Fixture {
+    /// Write `spec.toml` with `text` and each `(name, bytes)` data file beside it.
+    pub fn new(text: &str, files: &[(&str, &[u8])]) -> Fixture {
+        let dir = tempfile::tempdir().expect("temp dir");
+        for (name, bytes) in files {
+            let path = dir.path().join(name);
+            if let Some(parent) = path.parent() {
+                std::fs::create_dir_all(parent).expect("mkdir");
+            }
+            std::fs::write(path, bytes).expect("write data");
+        }
+        let spec = dir.path().join("spec.toml");
+        std::fs::write(&spec, text).expect("write spec");
+        Fixture { dir, spec }
+    }
+
+    /// Load and check the spec; on failure, the rendered diagnostics.
+    pub fn load(&self) -> Result<Loaded, String> {
+        self.load_with(PathPolicy::InsideSpecFolder)
+    }
+
+    /// Load with a path policy.
+    pub fn load_with(&self, policy: PathPolicy) -> Result<Loaded, String> {
+        pipeline::load(&self.spec, policy).map_err(|f| f.render())
+    }
+
+    /// Load and draw every chart; on failure, the rendered diagnostics.
+    pub fn draw(&self) -> Result<Vec<ChartOutput>, String> {
+        let loaded = self.load()?;
+        let mut out = Vec::new();
+        for (i, chart) in loaded.spec.chart.iter().enumerate() {
+            match pipeline::draw_chart(&loaded, i, chart) {
+                Ok(o) => out.push(o),
+                Err(e) => return Err(loaded.source.render(&pipeline::mark_diagnostic(&loaded, &e))),
+            }
+        }
+        Ok(out)
+    }
+
+    /// Load, draw and lint every chart; on failure, the rendered diagnostics.
+    pub fn lint(&self) -> Result<Vec<ChartLint>, String> {
+        let loaded = self.load()?;
+        pipeline::draw_and_lint(&loaded, &[])
+            .map(|l| l.into_iter().map(|l| l.lint).collect())
+            .map_err(|ds| ds.iter().map(|d| loaded.source.render(d)).collect())
+    }
+}
+
+/// Lint a spec with its data files and return the codes found (every chart, sorted, repeated
+/// once per finding); panics with the diagnostics if the spec does not load or draw.
+pub fn lint_codes(spec: &str, files: &[(&str, &[u8])]) -> Vec<&'static str> {
+    let results = Fixture::new(spec, files).lint().unwrap_or_else(|e| panic!("{e}"));
+    let mut codes: Vec<&'static str> = results.iter().flat_map(|c| c.findings.iter().map(|f| f.code)).collect();
+    codes.sort_unstable();
+    codes
+}
+
+/// The findings of one rule in a spec, for asserting on messages.
+pub fn lint_findings(spec: &str, files: &[(&str, &[u8])], code: &str) -> Vec<Finding> {
+    let results = Fixture::new(spec, files).lint().unwrap_or_else(|e| panic!("{e}"));
+    results.into_iter().flat_map(|c| c.findings).filter(|f| f.code == code).collect()
+}
+
+/// The repository root.
+pub fn root() -> &'static Path {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+}
+
+/// Assert that an SVG document parses with usvg.
+pub fn assert_svg_parses(svg: &str) {
+    if let Err(e) = usvg::Tree::from_str(svg, &usvg::Options::default()) {
+        panic!("SVG does not parse: {e}\n{}", &svg[..svg.len().min(2000)]);
+    }
+}

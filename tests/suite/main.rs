@@ -1,0 +1,19 @@
+//! The integration suite, one test binary: every module below exercises the public library or the
+//! command-line tool. Keeping them in one binary links the heavy dependency set once, not once
+//! per file.
+
+mod bad_input;
+mod bar;
+mod charts;
+mod cli;
+mod common;
+mod explore;
+mod flow;
+mod golden;
+mod layout;
+mod lint;
+mod lint_colour;
+mod lint_technique;
+mod multivariate;
+mod networks;
+mod report;
