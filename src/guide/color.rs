@@ -14,30 +14,47 @@ pub const DEFAULT_DIVERGING: &str = "rdbu";
 /// The colour [`ContinuousMap::at`] returns for a missing (NaN) value: a neutral mid grey.
 pub const MISSING: Color = Color::rgb(0xbd, 0xbd, 0xbd);
 
-/// Continuous map names, sequential first, then diverging (without the `_r` forms).
-const CONTINUOUS: [(&str, colorous::Gradient, bool); 17] = [
-    ("viridis", colorous::VIRIDIS, false),
-    ("magma", colorous::MAGMA, false),
-    ("inferno", colorous::INFERNO, false),
-    ("plasma", colorous::PLASMA, false),
-    ("cividis", colorous::CIVIDIS, false),
-    ("blues", colorous::BLUES, false),
-    ("greens", colorous::GREENS, false),
-    ("greys", colorous::GREYS, false),
-    ("oranges", colorous::ORANGES, false),
-    ("purples", colorous::PURPLES, false),
-    ("reds", colorous::REDS, false),
-    ("rdbu", colorous::RED_BLUE, true),
-    ("brbg", colorous::BROWN_GREEN, true),
-    ("puor", colorous::PURPLE_ORANGE, true),
-    ("piyg", colorous::PINK_GREEN, true),
-    ("prgn", colorous::PURPLE_GREEN, true),
-    ("rdylbu", colorous::RED_YELLOW_BLUE, true),
+/// What a continuous map is for.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum MapKind {
+    /// Ordered values from low to high: lightness changes monotonically along the map.
+    Sequential,
+    /// Values on either side of a meaningful centre: two hues meeting at a light midpoint.
+    Diverging,
+    /// Hue-cycling ("rainbow") maps: lightness rises and falls along the map, so they show
+    /// bands that are not in the data and hide order. Kept for cyclic quantities (angles,
+    /// phases) and for users who ask; lint rule CL001 warns when they colour ordered data.
+    Rainbow,
+}
+
+/// Continuous maps: sequential first, then diverging, then rainbow (without the `_r` forms).
+const CONTINUOUS: [(&str, colorous::Gradient, MapKind); 21] = [
+    ("viridis", colorous::VIRIDIS, MapKind::Sequential),
+    ("magma", colorous::MAGMA, MapKind::Sequential),
+    ("inferno", colorous::INFERNO, MapKind::Sequential),
+    ("plasma", colorous::PLASMA, MapKind::Sequential),
+    ("cividis", colorous::CIVIDIS, MapKind::Sequential),
+    ("blues", colorous::BLUES, MapKind::Sequential),
+    ("greens", colorous::GREENS, MapKind::Sequential),
+    ("greys", colorous::GREYS, MapKind::Sequential),
+    ("oranges", colorous::ORANGES, MapKind::Sequential),
+    ("purples", colorous::PURPLES, MapKind::Sequential),
+    ("reds", colorous::REDS, MapKind::Sequential),
+    ("rdbu", colorous::RED_BLUE, MapKind::Diverging),
+    ("brbg", colorous::BROWN_GREEN, MapKind::Diverging),
+    ("puor", colorous::PURPLE_ORANGE, MapKind::Diverging),
+    ("piyg", colorous::PINK_GREEN, MapKind::Diverging),
+    ("prgn", colorous::PURPLE_GREEN, MapKind::Diverging),
+    ("rdylbu", colorous::RED_YELLOW_BLUE, MapKind::Diverging),
+    ("spectral", colorous::SPECTRAL, MapKind::Diverging),
+    ("rainbow", colorous::RAINBOW, MapKind::Rainbow),
+    ("turbo", colorous::TURBO, MapKind::Rainbow),
+    ("sinebow", colorous::SINEBOW, MapKind::Rainbow),
 ];
 
-const CONTINUOUS_NAMES: [&str; 17] = [
+const CONTINUOUS_NAMES: [&str; 21] = [
     "viridis", "magma", "inferno", "plasma", "cividis", "blues", "greens", "greys", "oranges", "purples", "reds",
-    "rdbu", "brbg", "puor", "piyg", "prgn", "rdylbu",
+    "rdbu", "brbg", "puor", "piyg", "prgn", "rdylbu", "spectral", "rainbow", "turbo", "sinebow",
 ];
 
 const CATEGORICAL_NAMES: [&str; 6] = ["okabe-ito", "tableau10", "category10", "set2", "dark2", "paired"];
@@ -60,7 +77,7 @@ pub struct ContinuousMap {
     name: String,
     gradient: colorous::Gradient,
     reversed: bool,
-    diverging: bool,
+    kind: MapKind,
     /// The part of the gradient used, so that a map can start past its lightest colour.
     start: f64,
 }
@@ -91,7 +108,18 @@ impl ContinuousMap {
 
     /// Whether the map diverges from a light midpoint (for values around a centre).
     pub fn is_diverging(&self) -> bool {
-        self.diverging
+        self.kind == MapKind::Diverging
+    }
+
+    /// Whether the map cycles through the hues (`rainbow`, `turbo`, `sinebow`): unsuited to
+    /// ordered values, because its lightness is not monotonic.
+    pub fn is_rainbow(&self) -> bool {
+        self.kind == MapKind::Rainbow
+    }
+
+    /// What the map is for: sequential, diverging or rainbow.
+    pub fn kind(&self) -> MapKind {
+        self.kind
     }
 
     /// Whether this is the `_r` form of a map.
@@ -108,9 +136,9 @@ pub fn continuous(name: &str) -> Option<ContinuousMap> {
         None => (lower.as_str(), false),
     };
     let base = if base == "grays" { "greys" } else { base };
-    let (canonical, gradient, diverging) = CONTINUOUS.iter().find(|(n, _, _)| *n == base)?;
+    let (canonical, gradient, kind) = CONTINUOUS.iter().find(|(n, _, _)| *n == base)?;
     let name = if reversed { format!("{canonical}_r") } else { canonical.to_string() };
-    Some(ContinuousMap { name, gradient: *gradient, reversed, diverging: *diverging, start: 0.0 })
+    Some(ContinuousMap { name, gradient: *gradient, reversed, kind: *kind, start: 0.0 })
 }
 
 /// The colours of the categorical palette called `name` (case-insensitive), if known.
@@ -250,9 +278,10 @@ pub fn contrast_ratio(a: Color, b: Color) -> f64 {
     (la.max(lb) + 0.05) / (la.min(lb) + 0.05)
 }
 
-/// Near-black or white, whichever contrasts more with `background`: text drawn on a filled mark.
+/// Black or white, whichever contrasts more with `background`: text drawn on a filled mark.
 pub fn text_color_on(background: Color) -> Color {
-    let dark = Color::rgb(0x1a, 0x1a, 0x1a);
+    // Pure black and white: one of them contrasts at least 4.58:1 with any colour (WCAG AA).
+    let dark = Color::rgb(0, 0, 0);
     if contrast_ratio(dark, background) >= contrast_ratio(Color::rgb(255, 255, 255), background) {
         dark
     } else {
@@ -281,9 +310,9 @@ mod tests {
 
     #[test]
     fn diverging_maps_are_light_in_the_middle() {
-        for name in ["rdbu", "brbg", "puor", "piyg", "prgn", "rdylbu"] {
+        for name in ["rdbu", "brbg", "puor", "piyg", "prgn", "rdylbu", "spectral"] {
             let m = continuous(name).unwrap();
-            assert!(m.is_diverging(), "{name}");
+            assert!(m.is_diverging() && !m.is_rainbow(), "{name}");
             let mid = m.at(0.5);
             let end = m.at(0.0);
             let lightness = |c: Color| c.r as u32 + c.g as u32 + c.b as u32;
@@ -294,6 +323,38 @@ mod tests {
         let mid = continuous("rdbu").unwrap().at(0.5);
         assert!(mid.r >= 0xe8 && mid.g >= 0xe8 && mid.b >= 0xe8, "{}", mid.hex());
         assert!(!continuous("blues").unwrap().is_diverging());
+    }
+
+    #[test]
+    fn rainbow_maps_are_marked_and_their_lightness_is_not_monotonic() {
+        use super::super::colour_science::lab;
+        // L* along the map, in 64 steps.
+        let lightness = |m: &ContinuousMap| (0..=64).map(|i| lab(m.at(i as f64 / 64.0)).l).collect::<Vec<_>>();
+        let monotonic = |ls: &[f64]| {
+            let up = ls.windows(2).all(|w| w[1] >= w[0] - 0.5);
+            let down = ls.windows(2).all(|w| w[1] <= w[0] + 0.5);
+            up || down
+        };
+        for name in continuous_names() {
+            let m = continuous(name).unwrap();
+            let ls = lightness(&m);
+            match m.kind() {
+                MapKind::Sequential => assert!(monotonic(&ls), "{name} should be monotonic in L*"),
+                MapKind::Rainbow => {
+                    assert!(m.is_rainbow() && !m.is_diverging(), "{name}");
+                    // Lightness rises and falls: the reason they mislead on ordered values.
+                    assert!(!monotonic(&ls), "{name} is monotonic in L*");
+                }
+                MapKind::Diverging => assert!(!m.is_rainbow(), "{name}"),
+            }
+        }
+        for name in ["rainbow", "Turbo", "sinebow_r"] {
+            assert!(continuous(name).is_some_and(|m| m.is_rainbow()), "{name}");
+        }
+        assert_eq!(continuous("turbo_r").unwrap().name(), "turbo_r");
+        assert!(!continuous("viridis").unwrap().is_rainbow());
+        let hint = crate::spec::suggest::hint("rainbw", continuous_names(), "continuous schemes", false);
+        assert!(hint.starts_with("did you mean `rainbow`?"), "{hint}");
     }
 
     #[test]

@@ -3,6 +3,7 @@
 
 pub mod axis;
 pub mod color;
+pub mod colour_science;
 pub mod format;
 pub mod layout;
 pub mod legend;
