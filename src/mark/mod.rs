@@ -3,12 +3,14 @@
 //! Shared pieces — reading channels from the table, the non-finite policy, colour and size
 //! encodings — live in [`encode`] so that kinds only describe their own geometry.
 
+pub mod bar;
 pub mod contour;
 pub mod daisy;
 pub mod derived;
 pub mod encode;
 pub mod face;
 pub mod faces;
+pub mod geometry;
 pub mod flow;
 pub mod frame;
 pub mod graph;
@@ -116,6 +118,7 @@ pub fn draw_with_nodes(
     match &chart.kind {
         ChartKind::Scatter(options) => scatter::draw(chart, options, index, table, highlight),
         ChartKind::Line(options) => line::draw(chart, options, index, table),
+        ChartKind::Bar(options) => bar::draw(chart, options, index, table),
         ChartKind::Interp1d(options) => interp1d::draw(chart, options, index, table),
         ChartKind::Contour(options) => contour::draw(chart, options, index, table),
         ChartKind::Image(options) => image::draw(chart, options, index, table),
@@ -142,6 +145,7 @@ pub fn column_keys(kind: &str) -> &'static [&'static str] {
     match kind {
         "scatter" => &["x", "y", "color", "point_size"],
         "line" => &["x", "y", "series"],
+        "bar" => &["x", "y", "color"],
         "interp1d" => &["x", "y", "slopes"],
         "contour" | "image" | "section" | "surface" | "scattered" => &["x", "y", "z"],
         "hyperslice" => &["axes", "z"],

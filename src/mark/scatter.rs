@@ -2,6 +2,7 @@
 
 use super::derived::{Derived, DerivedColumn};
 use super::encode::{self};
+use super::geometry::{Geometry, Plot, PlotScale};
 use super::{ChartOutput, MarkError, frame, highlight};
 use crate::data::Table;
 use crate::guide::format::format_value;
@@ -9,7 +10,7 @@ use crate::guide::legend::{Legend, Symbol};
 use crate::guide::ticks::extended;
 use crate::scene::{Color, Item, PerPoint, PointBatch, Role, Shape, Stroke, Style};
 use crate::selection::Highlight;
-use crate::spec::{Chart, ScatterOptions};
+use crate::spec::{Chart, ScatterOptions, SizeMapping};
 
 /// Default marker radius for `n` points: smaller as the plot fills up.
 pub fn default_radius(n: usize) -> f64 {
@@ -39,6 +40,17 @@ pub fn draw(
     table: &Table,
     highlight: Option<&Highlight>,
 ) -> Result<ChartOutput, MarkError> {
+    draw_with_geometry(chart, options, index, table, highlight).map(|(output, _)| output)
+}
+
+/// [`draw`], also returning the plot area and its scales (for brushing and zooming).
+pub fn draw_with_geometry(
+    chart: &Chart,
+    options: &ScatterOptions,
+    index: usize,
+    table: &Table,
+    highlight: Option<&Highlight>,
+) -> Result<(ChartOutput, Geometry), MarkError> {
     let x_opts = options.x.options();
     let y_opts = options.y.options();
     let x_col = encode::column(chart, index, "x", &x_opts.field, table)?;
@@ -108,12 +120,14 @@ pub fn draw(
         Symbol::Circle,
     )?;
     let max_radius = size_opts.as_ref().and_then(|o| o.max_radius).unwrap_or(12.0);
+    let mapping = size_opts.as_ref().and_then(|o| o.mapping).unwrap_or_default();
     let mut legends: Vec<Legend> = color_legend.into_iter().collect();
     if let Some(h) = highlight {
         legends.push(highlight::legend(h, &rows, Symbol::Circle));
     }
     if let (Some(o), true) = (&size_opts, max_size > 0.0) {
-        legends.push(size_legend(&o.title.clone().unwrap_or(o.field.clone()), o.unit.as_deref(), max_size, max_radius));
+        let title = o.title.clone().unwrap_or(o.field.clone());
+        legends.push(size_legend_mapped(&title, o.unit.as_deref(), max_size, max_radius, mapping));
     }
 
     let base_radius = options.radius.unwrap_or_else(|| default_radius(n));
@@ -136,7 +150,9 @@ pub fn draw(
         let radius = match sizes {
             Some(values) => PerPoint::Each(
                 rows.iter()
-                    .map(|&r| area_radius(values.get(r as usize).copied().unwrap_or(0.0), max_size, max_radius))
+                    .map(|&r| {
+                        mapped_radius(values.get(r as usize).copied().unwrap_or(0.0), max_size, max_radius, mapping)
+                    })
                     .collect(),
             ),
             None => PerPoint::Uniform(base_radius),
@@ -157,6 +173,11 @@ pub fn draw(
         .into_iter()
         .collect();
     marks.extend(highlight::layers(&rows, highlight, batch));
+    let plot = Plot {
+        rect: frame.plot,
+        x: PlotScale { field: x_opts.field.clone(), scale: frame.x.clone() },
+        y: PlotScale { field: y_opts.field.clone(), scale: frame.y.clone() },
+    };
     let scene = frame::scene(chart, frame, &theme, marks);
 
     let mut derived = Derived::over(rows);
@@ -172,7 +193,8 @@ pub fn draw(
     if let Some(h) = highlight {
         derived.push("selected", DerivedColumn::Selected(h.selected.clone()));
     }
-    Ok(ChartOutput { scene, derived, warnings, geojson: None })
+    let geometry = Geometry { plots: vec![plot], ..Geometry::default() };
+    Ok((ChartOutput { scene, derived, warnings, geojson: None }, geometry))
 }
 
 /// Radius whose area is proportional to `value` (the largest value gets `max_radius`).
@@ -183,14 +205,43 @@ pub fn area_radius(value: f64, max_value: f64, max_radius: f64) -> f64 {
     max_radius * (value / max_value).sqrt()
 }
 
+/// Radius whose length is proportional to `value` (the largest value gets `max_radius`): areas
+/// then grow with the square of the value, which exaggerates differences (lint rule DI002).
+pub fn linear_radius(value: f64, max_value: f64, max_radius: f64) -> f64 {
+    if max_value <= 0.0 || !value.is_finite() || value <= 0.0 {
+        return 0.0;
+    }
+    max_radius * (value / max_value)
+}
+
+/// The marker radius of `value` under `mapping`.
+pub fn mapped_radius(value: f64, max_value: f64, max_radius: f64, mapping: SizeMapping) -> f64 {
+    match mapping {
+        SizeMapping::Area => area_radius(value, max_value, max_radius),
+        SizeMapping::Radius => linear_radius(value, max_value, max_radius),
+    }
+}
+
 /// A size key (areas) with three nice reference values up to the largest value.
 pub fn size_legend(title: &str, unit: Option<&str>, max_value: f64, max_radius: f64) -> Legend {
+    size_legend_mapped(title, unit, max_value, max_radius, SizeMapping::Area)
+}
+
+/// A size key drawn with the same `mapping` as the markers, with three nice reference values up
+/// to the largest value.
+pub fn size_legend_mapped(
+    title: &str,
+    unit: Option<&str>,
+    max_value: f64,
+    max_radius: f64,
+    mapping: SizeMapping,
+) -> Legend {
     let ticks = extended(0.0, max_value, 3, false);
     let mut values: Vec<f64> = ticks.values.into_iter().filter(|v| *v > 0.0 && *v <= max_value * 1.0001).collect();
     if values.is_empty() {
         values.push(max_value);
     }
-    let entries = values.iter().map(|&v| (format_value(v), area_radius(v, max_value, max_radius))).collect();
+    let entries = values.iter().map(|&v| (format_value(v), mapped_radius(v, max_value, max_radius, mapping))).collect();
     Legend::Size {
         title: crate::guide::axis::title_with_unit(title, unit),
         entries,
@@ -211,6 +262,16 @@ mod tests {
         assert!((r4 / r1 - 2.0).abs() < 1e-12);
         assert_eq!(area_radius(-1.0, 4.0, 10.0), 0.0);
         assert_eq!(area_radius(f64::NAN, 4.0, 10.0), 0.0);
+    }
+
+    #[test]
+    fn radius_mapping_makes_radius_proportional_to_value() {
+        let r1 = mapped_radius(1.0, 4.0, 10.0, SizeMapping::Radius);
+        let r4 = mapped_radius(4.0, 4.0, 10.0, SizeMapping::Radius);
+        assert!((r4 - 10.0).abs() < 1e-12);
+        assert!((r4 / r1 - 4.0).abs() < 1e-12);
+        assert_eq!(mapped_radius(2.0, 4.0, 10.0, SizeMapping::Area), area_radius(2.0, 4.0, 10.0));
+        assert_eq!(linear_radius(-1.0, 4.0, 10.0), 0.0);
     }
 
     #[test]

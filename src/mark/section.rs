@@ -1,5 +1,6 @@
 //! `section`: cross-sections of a gridded field — z along x at chosen y values (or along y at
-//! chosen x values) — overlaid in one plot or as stacked panels sharing both scales.
+//! chosen x values) — overlaid in one plot or as stacked panels sharing both scales (or, with
+//! `shared_scale = false`, each with its own value scale).
 
 use super::derived::{Derived, DerivedColumn};
 use super::gridded::{self, GridInput};
@@ -126,7 +127,8 @@ pub fn draw(chart: &Chart, options: &SectionOptions, index: usize, table: &Table
             frame::scene(chart, frame, &theme, marks)
         }
         SectionLayout::Multiples => {
-            multiples(chart, index, &cuts, &colors, position_axis, value_axis, stroke_width, &label)?
+            let shared = options.shared_scale.unwrap_or(true);
+            multiples(chart, index, &cuts, &colors, position_axis, value_axis, shared, stroke_width, &label)?
         }
     };
 
@@ -161,7 +163,8 @@ fn section_path(
     Item::new(Role::DataMark, Shape::Path(cmds), Style::stroke(color, width))
 }
 
-/// Stacked panels, one per section, each a full frame with the same scales, under one title.
+/// Stacked panels, one per section, each a full frame under one title: with the same scales, or
+/// unless `shared`, each with a value scale fitted to its own section.
 #[allow(clippy::too_many_arguments)]
 fn multiples(
     chart: &Chart,
@@ -170,6 +173,7 @@ fn multiples(
     colors: &[Color],
     position_axis: PositionAxis,
     value_axis: PositionAxis,
+    shared: bool,
     stroke_width: f64,
     label: &dyn Fn(&Cut) -> String,
 ) -> Result<Scene, MarkError> {
@@ -188,13 +192,17 @@ fn multiples(
         Style::fill(theme.background),
     )];
     for (k, (cut, color)) in cuts.iter().zip(colors).enumerate() {
+        let mut value_axis = value_axis.clone();
+        if !shared && let Some(extent) = encode::finite_extent(cut.points.iter().map(|p| p.1)) {
+            value_axis.domain = Domain::Continuous(extent.0, extent.1);
+        }
         let spec = FrameSpec {
             width,
             height: panel_h,
             title: Some(label(cut)),
             caption: None,
             x: position_axis.clone(),
-            y: value_axis.clone(),
+            y: value_axis,
             legends: Vec::new(),
             theme: panel_theme.clone(),
         };

@@ -1,0 +1,255 @@
+//! The `bar` kind against hand-computed geometry: band positions, lengths from zero, grouping,
+//! sums, the non-finite policy, negative values and bad input.
+
+use crate::common::Fixture;
+use dataink::mark::{ChartOutput, DerivedColumn};
+use dataink::scene::{Item, Rect, Role, Shape};
+
+/// A bar chart of `d.csv` (written from `csv`) with extra chart keys.
+fn spec(extra: &str) -> String {
+    format!(
+        "[data.d]\npath = \"d.csv\"\n\n[[chart]]\nname = \"b\"\nkind = \"bar\"\ndata = \"d\"\nsize = [600, 400]\n{extra}"
+    )
+}
+
+fn draw(csv: &str, extra: &str) -> Result<ChartOutput, String> {
+    Fixture::new(&spec(extra), &[("d.csv", csv.as_bytes())]).draw().map(|mut v| v.remove(0))
+}
+
+fn draw_ok(csv: &str, extra: &str) -> ChartOutput {
+    draw(csv, extra).unwrap_or_else(|e| panic!("{e}"))
+}
+
+fn draw_err(csv: &str, extra: &str) -> String {
+    match draw(csv, extra) {
+        Ok(_) => panic!("expected an error"),
+        Err(e) => e,
+    }
+}
+
+/// The drawn bars: (label, rectangle, source rows), in drawing order.
+fn bars(out: &ChartOutput) -> Vec<(String, Rect, Vec<u32>)> {
+    let mut found = Vec::new();
+    out.scene.walk(|item: &Item| {
+        if item.role == Role::DataMark
+            && let Shape::Rect(r) = &item.shape
+        {
+            found.push((item.label.clone().unwrap_or_default(), *r, item.rows.clone()));
+        }
+    });
+    found
+}
+
+/// The plot area: the clip of the data-mark group.
+fn plot(out: &ChartOutput) -> Rect {
+    let mut plot = None;
+    out.scene.walk(|item: &Item| {
+        if let (Role::DataMark, Shape::Group { clip: Some(c), .. }) = (&item.role, &item.shape) {
+            plot = Some(*c);
+        }
+    });
+    plot.expect("a clipped data group")
+}
+
+/// Tick label texts of one axis.
+fn tick_labels(out: &ChartOutput, axis: &str) -> Vec<String> {
+    let mut labels = Vec::new();
+    out.scene.walk(|item: &Item| {
+        if item.role == Role::TickLabel
+            && item.label.as_deref() == Some(axis)
+            && let Shape::Text(t) = &item.shape
+        {
+            labels.push(t.content.clone());
+        }
+    });
+    labels
+}
+
+fn derived_column<'a>(out: &'a ChartOutput, name: &str) -> &'a DerivedColumn {
+    &out.derived.columns.iter().find(|(n, _)| n == name).unwrap_or_else(|| panic!("no column {name}")).1
+}
+
+fn close(a: f64, b: f64) -> bool {
+    (a - b).abs() < 1e-9
+}
+
+/// Three categories whose rows sum to 30, 40 and 20 (a: 10 + 20).
+const SUMS: &str = "k,v\na,10\nb,40\nc,20\na,20\n";
+
+#[test]
+fn bars_sit_in_equal_bands_with_lengths_proportional_to_the_sums() {
+    let out = draw_ok(SUMS, "x = \"k\"\ny = \"v\"\n");
+    let p = plot(&out);
+    // The value axis runs from 0 to the nice 40, so the bar of b fills the plot's height.
+    assert_eq!(tick_labels(&out, "y axis").last().map(String::as_str), Some("40"));
+    let bars = bars(&out);
+    let labels: Vec<&str> = bars.iter().map(|b| b.0.as_str()).collect();
+    assert_eq!(labels, ["a", "b", "c"], "categories in order of first appearance");
+    // Band scale: 3 bands, inner padding 0.2 and outer 0.1 of the step; step = width / 3.
+    let step = p.w / 3.0;
+    for (i, (_, r, _)) in bars.iter().enumerate() {
+        assert!(close(r.x, p.x + step * (0.1 + i as f64)), "bar {i} starts at {}", r.x);
+        assert!(close(r.w, step * 0.8), "bar {i} is {} wide", r.w);
+        assert!(close(r.bottom(), p.bottom()), "bar {i} rises from zero at the plot's bottom");
+    }
+    for ((_, r, _), sum) in bars.iter().zip([30.0, 40.0, 20.0]) {
+        assert!(close(r.h, p.h * sum / 40.0), "{} vs {}", r.h, p.h * sum / 40.0);
+    }
+    // The rows of a are both in its bar; the y title says the rows were summed.
+    assert_eq!(bars[0].2, vec![0, 3]);
+    let mut titles = Vec::new();
+    out.scene.walk(|item: &Item| {
+        if let (Role::AxisTitle, Shape::Text(t)) = (&item.role, &item.shape) {
+            titles.push(t.content.clone());
+        }
+    });
+    assert!(titles.contains(&"Sum of v".to_string()), "{titles:?}");
+}
+
+#[test]
+fn derived_csv_has_one_row_per_bar_with_its_sum_and_row_count() {
+    let out = draw_ok(SUMS, "x = \"k\"\ny = \"v\"\n");
+    let csv = out.derived.to_csv(&Default::default());
+    assert_eq!(csv, "k,v,rows\na,30,2\nb,40,1\nc,20,1\n");
+}
+
+#[test]
+fn colour_groups_bars_side_by_side_with_a_legend() {
+    // Category a has groups p and q, b only q: b's p slot stays empty.
+    let csv = "k,g,v\na,p,1\na,q,2\nb,q,4\na,p,1\n";
+    let out = draw_ok(csv, "x = \"k\"\ny = \"v\"\ncolor = \"g\"\n");
+    let p = plot(&out);
+    let bars = bars(&out);
+    let labels: Vec<&str> = bars.iter().map(|b| b.0.as_str()).collect();
+    assert_eq!(labels, ["a, p", "a, q", "b, q"]);
+    let step = p.w / 2.0;
+    let (band, bandwidth) = (|i: f64| p.x + step * (0.1 + i), step * 0.8);
+    // Two groups in a band: inner step = bandwidth / (2 − 0.1), bars 0.9 of it wide.
+    let inner = bandwidth / 1.9;
+    assert!(close(bars[0].1.x, band(0.0)) && close(bars[0].1.w, inner * 0.9));
+    assert!(close(bars[1].1.x, band(0.0) + inner) && close(bars[1].1.w, inner * 0.9));
+    assert!(close(bars[2].1.x, band(1.0) + inner), "b's q bar keeps q's place");
+    // Sums: a/p = 1 + 1 = 2, a/q = 2: equal heights; b/q = 4 twice as tall.
+    assert!(close(bars[0].1.h, bars[1].1.h));
+    assert!(close(bars[2].1.h, 2.0 * bars[1].1.h));
+    assert_ne!(bars[0].1.h, 0.0);
+    // Each group has its own colour, and the legend names both.
+    let fill = |i: usize| {
+        let mut fills = Vec::new();
+        out.scene.walk(|item: &Item| {
+            if item.role == Role::DataMark && matches!(item.shape, Shape::Rect(_)) {
+                fills.push(item.style.fill);
+            }
+        });
+        fills[i]
+    };
+    assert_ne!(fill(0), fill(1));
+    assert_eq!(fill(1), fill(2));
+    let mut legend = Vec::new();
+    out.scene.walk(|item: &Item| {
+        if let (Role::Legend, Shape::Text(t)) = (&item.role, &item.shape) {
+            legend.push(t.content.clone());
+        }
+    });
+    assert!(legend.contains(&"p".to_string()) && legend.contains(&"q".to_string()), "{legend:?}");
+    let csv = out.derived.to_csv(&Default::default());
+    assert_eq!(csv, "k,g,v,rows\na,p,2,2\na,q,2,1\nb,q,4,1\n");
+}
+
+#[test]
+fn numbers_on_x_are_categories_in_ascending_order() {
+    let out = draw_ok("cyl,n\n8,1\n4,3\n6,2\n4,1\n", "x = \"cyl\"\ny = \"n\"\n");
+    let labels: Vec<String> = bars(&out).into_iter().map(|b| b.0).collect();
+    assert_eq!(labels, ["4", "6", "8"]);
+    assert_eq!(tick_labels(&out, "x axis"), ["4", "6", "8"]);
+    let DerivedColumn::Number(sums) = derived_column(&out, "n") else { panic!("numbers") };
+    assert_eq!(sums, &[4.0, 2.0, 1.0]);
+}
+
+#[test]
+fn non_finite_values_are_dropped_with_the_usual_warning() {
+    // c's only row is NaN: c disappears; a keeps its finite row.
+    let out = draw_ok("k,v\na,10\na,NaN\nb,20\nc,inf\n", "x = \"k\"\ny = \"v\"\n");
+    let labels: Vec<String> = bars(&out).into_iter().map(|b| b.0).collect();
+    assert_eq!(labels, ["a", "b"]);
+    assert!(
+        out.warnings
+            .iter()
+            .any(|w| w.contains("dropped 2 of 4 rows") && w.contains("`v`: 1 missing or NaN, 1 infinite")),
+        "{:?}",
+        out.warnings
+    );
+    assert_eq!(out.derived.to_csv(&Default::default()), "k,v,rows\na,10,1\nb,20,1\n");
+}
+
+#[test]
+fn negative_sums_hang_below_a_zero_line() {
+    let out = draw_ok("k,v\na,30\nb,-10\n", "x = \"k\"\ny = \"v\"\n");
+    let p = plot(&out);
+    let bars = bars(&out);
+    // Both bars meet at zero: a's bottom is b's top.
+    assert!(close(bars[0].1.bottom(), bars[1].1.y));
+    let zero = bars[0].1.bottom();
+    assert!(zero > p.y && zero < p.bottom(), "zero inside the plot");
+    assert!(close(bars[0].1.h, 3.0 * bars[1].1.h), "lengths 30 and 10");
+    let mut baseline = false;
+    out.scene.walk(|item: &Item| baseline |= item.role == Role::Axis && item.label.as_deref() == Some("baseline"));
+    assert!(baseline, "a zero line separates positive and negative bars");
+}
+
+#[test]
+fn without_zero_bars_start_at_the_bottom_of_the_axis() {
+    // zero = false with a fixed domain [40, 70]: lengths are value − 40.
+    let out = draw_ok("k,v\na,50\nb,60\n", "x = \"k\"\ny = { field = \"v\", domain = [40, 70] }\n");
+    let p = plot(&out);
+    let bars = bars(&out);
+    for ((_, r, _), v) in bars.iter().zip([50.0, 60.0]) {
+        assert!(close(r.bottom(), p.bottom()));
+        assert!(close(r.h, p.h * (v - 40.0) / 30.0), "{} vs {}", r.h, p.h * (v - 40.0) / 30.0);
+    }
+}
+
+#[test]
+fn bad_input_gives_the_documented_errors() {
+    let xy = "x = \"k\"\ny = \"v\"\n";
+    let e = draw_err("k,v\n", xy);
+    assert!(e.contains("error: chart \"b\": data \"d\" has no rows"), "{e}");
+    let e = draw_err("k,v\na,NaN\nb,\n", xy);
+    assert!(e.contains("error: chart \"b\": no rows left to plot out of 2"), "{e}");
+    let e = draw_err("k,v\na,x\n", xy);
+    assert!(e.contains("column `v` holds text; a bar's length needs numbers"), "{e}");
+    let e = draw_err(SUMS, "x = \"k\"\ny = { field = \"v\", scale = \"log\" }\n");
+    assert!(e.contains("a bar's length is measured from zero, which a log scale does not have"), "{e}");
+    let e = draw_err("n,v\n1,2\n", "x = { field = \"n\", scale = \"linear\" }\ny = \"v\"\n");
+    assert!(e.contains("bars place every x value in its own band, so x cannot have a linear scale"), "{e}");
+    let e = draw_err("k,g,v\na,1,2\n", "x = \"k\"\ny = \"v\"\ncolor = { field = \"g\", type = \"continuous\" }\n");
+    assert!(e.contains("bars are grouped by colour, which needs categories"), "{e}");
+    let e = draw_err(SUMS, "x = \"kk\"\ny = \"v\"\n");
+    assert!(e.contains("has no column `kk`") && e.contains("did you mean `k`?"), "{e}");
+    // 1000 categories do not fit 600 px: refused before anything is laid out.
+    let many: String = std::iter::once("k,v\n".to_string()).chain((0..1000).map(|i| format!("c{i},1\n"))).collect();
+    let e = draw_err(&many, xy);
+    assert!(e.contains("1000 categories do not fit a 600 px wide chart"), "{e}");
+}
+
+#[test]
+fn many_narrow_bars_draw_with_a_warning() {
+    let many: String = std::iter::once("k,v\n".to_string()).chain((0..400).map(|i| format!("c{i},{i}\n"))).collect();
+    let out = draw_ok(&many, "x = \"k\"\ny = \"v\"\n");
+    assert_eq!(bars(&out).len(), 399, "the zero bar has no length");
+    assert!(out.warnings.iter().any(|w| w.contains("too narrow to see")), "{:?}", out.warnings);
+    // Tick labels are thinned so they do not overlap.
+    let shown = tick_labels(&out, "x axis").len();
+    assert!(shown > 1 && shown < 400, "{shown} labels");
+}
+
+#[test]
+fn dates_are_categories_and_missing_text_is_its_own() {
+    let out = draw_ok("d,v\n2015-01-02,1\n2015-01-01,2\n2015-01-02,3\n", "x = \"d\"\ny = \"v\"\n");
+    let labels: Vec<String> = bars(&out).into_iter().map(|b| b.0).collect();
+    assert_eq!(labels, ["2015-01-01", "2015-01-02"], "dates ascending, summed per day");
+    assert_eq!(out.derived.to_csv(&Default::default()), "d,v,rows\n2015-01-01,2,1\n2015-01-02,4,2\n");
+    let out = draw_ok("k,v\n,5\nb,1\na,2\n", "x = \"k\"\ny = \"v\"\n");
+    let labels: Vec<String> = bars(&out).into_iter().map(|b| b.0).collect();
+    assert_eq!(labels, ["b", "a", "(missing)"]);
+}
