@@ -1,0 +1,171 @@
+//! The template engine set up for reports: minijinja with HTML auto-escaping forced for every
+//! template whatever its file name, the `safe` filter removed, `{% autoescape %}` blocks refused,
+//! and undefined values as errors (so a misspelt variable in a user template is reported, not
+//! printed as nothing).
+
+use minijinja::{AutoEscape, Environment, ErrorKind, UndefinedBehavior, Value};
+
+use super::ReportError;
+
+/// The built-in HTML report template (`templates/report.html.jinja`).
+pub const HTML: &str = include_str!("../../templates/report.html.jinja");
+
+/// The built-in Markdown report template (`templates/report.md.jinja`), for CI job summaries.
+pub const MARKDOWN: &str = include_str!("../../templates/report.md.jinja");
+
+/// A template's name (used in error messages) and source text.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct TemplateSource {
+    /// Shown in errors: the file path for user templates.
+    pub name: String,
+    /// The template text.
+    pub text: String,
+}
+
+impl TemplateSource {
+    /// A template from its name and text.
+    pub fn new(name: impl Into<String>, text: impl Into<String>) -> TemplateSource {
+        TemplateSource { name: name.into(), text: text.into() }
+    }
+
+    /// Read a user template file.
+    pub fn read(path: &std::path::Path) -> Result<TemplateSource, ReportError> {
+        let text = std::fs::read_to_string(path)
+            .map_err(|source| ReportError::ReadTemplate { path: path.to_path_buf(), source })?;
+        Ok(TemplateSource { name: path.display().to_string(), text })
+    }
+}
+
+/// The environment every report template renders in.
+pub fn environment<'s>() -> Environment<'s> {
+    let mut env = Environment::new();
+    // Every template escapes for HTML, whatever its name says (`.md`, `.txt`, no extension):
+    // Markdown renders entities as the characters they stand for, and raw HTML in a Markdown
+    // job summary would be live.
+    env.set_auto_escape_callback(|_| AutoEscape::Html);
+    env.set_undefined_behavior(UndefinedBehavior::Strict);
+    // Our SVG arrives already marked safe; nothing else may be.
+    env.remove_filter("safe");
+    env.add_filter("md", md);
+    env
+}
+
+/// Render `template` with `context`.
+pub fn render(template: &TemplateSource, context: &Value) -> Result<String, ReportError> {
+    if let Some(line) = autoescape_block_line(&template.text) {
+        return Err(ReportError::TemplateDisablesEscaping { name: template.name.clone(), line });
+    }
+    let mut env = environment();
+    let error = |e: minijinja::Error| ReportError::Template {
+        name: template.name.clone(),
+        message: e.to_string(),
+        hint: template_hint(e.kind()),
+    };
+    env.add_template_owned(template.name.clone(), template.text.clone()).map_err(error)?;
+    env.get_template(&template.name).and_then(|t| t.render(context)).map_err(error)
+}
+
+/// How to fix a template error of `kind`.
+fn template_hint(kind: ErrorKind) -> &'static str {
+    match kind {
+        ErrorKind::UndefinedError => "check the name against the variables listed in templates/README.md",
+        ErrorKind::UnknownFilter => {
+            "use one of minijinja's built-in filters or `md`; `safe` is not available (values are always escaped)"
+        }
+        ErrorKind::SyntaxError => {
+            "fix the template syntax at that line (Jinja2 syntax: {{ value }}, {% for %}, {% if %})"
+        }
+        _ => "see templates/README.md for the variables and filters a report template can use",
+    }
+}
+
+/// The 1-based line of the first `{% autoescape ... %}` tag, if any. Blocks are refused whatever
+/// their argument: escaping is not the template's choice.
+fn autoescape_block_line(text: &str) -> Option<usize> {
+    let mut from = 0;
+    while let Some(found) = text.get(from..).and_then(|rest| rest.find("{%")) {
+        let start = from + found;
+        let after = text.get(start + 2..).unwrap_or("");
+        let tag = after.trim_start_matches(['-', '+', '~']).trim_start();
+        if tag.starts_with("autoescape") {
+            return Some(text.get(..start).map_or(1, |before| before.matches('\n').count() + 1));
+        }
+        from = start + 2;
+    }
+    None
+}
+
+/// The `md` filter: text made inert inside Markdown (table cells, list items). Characters that
+/// start emphasis, links, images, code, tables or headings get a backslash; line breaks become
+/// spaces. HTML escaping still applies after it (`<` becomes `&lt;`, which Markdown shows as
+/// `<`).
+pub fn md(value: Value) -> String {
+    if value.is_none() || value.is_undefined() {
+        return String::new();
+    }
+    let text = value.as_str().map_or_else(|| value.to_string(), str::to_string);
+    let mut out = String::with_capacity(text.len() + 8);
+    for c in text.chars() {
+        match c {
+            '\\' | '`' | '*' | '_' | '[' | ']' | '(' | ')' | '{' | '}' | '#' | '+' | '!' | '|' | '~' => {
+                out.push('\\');
+                out.push(c);
+            }
+            '\n' | '\r' | '\t' => out.push(' '),
+            c if c.is_control() => {}
+            c => out.push(c),
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use minijinja::value::Serde;
+
+    fn render_str(text: &str, ctx: Value) -> Result<String, ReportError> {
+        render(&TemplateSource::new("t.txt", text), &ctx)
+    }
+
+    #[test]
+    fn every_template_escapes_html_whatever_its_name() {
+        let ctx = Value::from(Serde(serde_json::json!({ "x": "</script><script>alert(1)</script>" })));
+        for name in ["a.txt", "a.md", "noext", "a.html"] {
+            let out = render(&TemplateSource::new(name, "{{ x }}"), &ctx).expect("renders");
+            assert_eq!(out, "&lt;&#x2f;script&gt;&lt;script&gt;alert(1)&lt;&#x2f;script&gt;", "{name}");
+        }
+    }
+
+    #[test]
+    fn safe_strings_from_rust_pass_and_the_safe_filter_is_gone() {
+        let ctx = Value::from(Serde(serde_json::json!({ "x": "<b>" })));
+        let svg = Value::from_safe_string("<svg/>".into());
+        let out = render_str("{{ svg }}", minijinja::context! { svg => svg }).expect("renders");
+        assert_eq!(out, "<svg/>");
+        let err = render_str("{{ x|safe }}", ctx).expect_err("no safe filter");
+        assert!(err.to_string().contains("unknown filter"), "{err}");
+    }
+
+    #[test]
+    fn autoescape_blocks_are_refused_with_their_line() {
+        let err = render_str("a\nb\n{%- autoescape false %}{{ x }}{% endautoescape %}", Value::UNDEFINED)
+            .expect_err("refused");
+        assert!(matches!(&err, ReportError::TemplateDisablesEscaping { line: 3, .. }), "{err:?}");
+        assert_eq!(autoescape_block_line("{% if x %}{% endif %}"), None);
+    }
+
+    #[test]
+    fn undefined_variables_are_errors_naming_the_template() {
+        let err = render_str("line one\n{{ chart.titel }}", minijinja::context! {}).expect_err("undefined");
+        let text = err.to_string();
+        assert!(text.contains("t.txt"), "{text}");
+    }
+
+    #[test]
+    fn md_filter_neutralizes_markdown() {
+        assert_eq!(md(Value::from("a|b ![x](http://e) *y*\nz")), "a\\|b \\!\\[x\\]\\(http://e\\) \\*y\\* z");
+        assert_eq!(md(Value::from(())), "");
+        assert_eq!(md(Value::from(3)), "3");
+    }
+}
