@@ -4,6 +4,7 @@
 use super::derived::{Derived, DerivedColumn};
 use super::encode::{self, Positioner};
 use super::frame::{self, polylines};
+use super::geometry::{Geometry, ParallelAxis};
 use super::{ChartOutput, MarkError, highlight, with_default_size};
 use crate::data::{Column, Table};
 use crate::guide::Theme;
@@ -37,6 +38,17 @@ pub fn draw(
     table: &Table,
     highlight: Option<&Highlight>,
 ) -> Result<ChartOutput, MarkError> {
+    draw_with_geometry(chart, options, index, table, highlight).map(|(output, _)| output)
+}
+
+/// [`draw`], also returning every axis with its scale, in drawn order (for brushing).
+pub fn draw_with_geometry(
+    chart: &Chart,
+    options: &ParallelOptions,
+    index: usize,
+    table: &Table,
+    highlight: Option<&Highlight>,
+) -> Result<(ChartOutput, Geometry), MarkError> {
     let chart = &with_default_size(chart, DEFAULT_SIZE);
     let mut columns = encode::columns(chart, index, "columns", &options.columns, table)?;
     let inverted = inverted_columns(chart, index, options, &columns)?;
@@ -88,7 +100,19 @@ pub fn draw(
     }
     items.extend(layout.axes(&axes, &inverted, &canvas.theme));
     let derived = derived_vertices(&rows, &columns, &layout, highlight);
-    Ok(ChartOutput { scene: canvas.scene(chart, items, None), derived, warnings, geojson: None })
+    let axes = columns
+        .iter()
+        .zip(layout.scales.iter().zip(&layout.xs))
+        .map(|((o, _), (scale, &x))| ParallelAxis {
+            field: o.field.clone(),
+            x,
+            top: layout.top,
+            bottom: layout.top + layout.plot_h,
+            scale: scale.clone(),
+        })
+        .collect();
+    let geometry = Geometry { axes, ..Geometry::default() };
+    Ok((ChartOutput { scene: canvas.scene(chart, items, None), derived, warnings, geojson: None }, geometry))
 }
 
 /// The columns named in `invert`, each checked against `columns`.

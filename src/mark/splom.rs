@@ -6,6 +6,7 @@ use rayon::prelude::*;
 
 use super::derived::{Derived, DerivedColumn};
 use super::encode::{self, ColorEncoding};
+use super::geometry::{Geometry, Plot, PlotScale};
 use super::{ChartOutput, MarkError, frame, highlight, scatter, with_default_size};
 use crate::data::{Column, Table};
 use crate::enrich::distribution::{bin_counts, freedman_diaconis_bins, kde, silverman_bandwidth};
@@ -36,6 +37,17 @@ pub fn draw(
     table: &Table,
     highlight: Option<&Highlight>,
 ) -> Result<ChartOutput, MarkError> {
+    draw_with_geometry(chart, options, index, table, highlight).map(|(output, _)| output)
+}
+
+/// [`draw`], also returning every drawn off-diagonal cell with its scales (for brushing).
+pub fn draw_with_geometry(
+    chart: &Chart,
+    options: &SplomOptions,
+    index: usize,
+    table: &Table,
+    highlight: Option<&Highlight>,
+) -> Result<(ChartOutput, Geometry), MarkError> {
     let chart = &with_default_size(chart, DEFAULT_SIZE);
     let columns = encode::columns(chart, index, "columns", &options.columns, table)?;
     for (_, col) in &columns {
@@ -141,12 +153,20 @@ pub fn draw(
     }
 
     let mut items = vec![canvas.background()];
+    let mut geometry = Geometry::default();
     for i in 0..columns.len() {
         for j in 0..columns.len() {
             if !shown(i, j) {
                 continue;
             }
             let cell = grid.cell(i, j);
+            if i != j {
+                geometry.plots.push(Plot {
+                    rect: cell,
+                    x: PlotScale { field: columns[j].0.field.clone(), scale: grid.x[j].clone() },
+                    y: PlotScale { field: columns[i].0.field.clone(), scale: grid.y[i].clone() },
+                });
+            }
             items.push(Item::new(Role::Grid, Shape::Rect(cell), Style::stroke(theme.grid, 1.0)).labelled("cell"));
             if i == j {
                 items.extend(diagonal_cell(options, &grid, i, &columns[i].0, values[i], &paint, &theme));
@@ -182,7 +202,7 @@ pub fn draw(
     if let Some(h) = highlight {
         derived.push("selected", DerivedColumn::Selected(h.selected.clone()));
     }
-    Ok(ChartOutput { scene: canvas.scene(chart, items, None), derived, warnings, geojson: None })
+    Ok((ChartOutput { scene: canvas.scene(chart, items, None), derived, warnings, geojson: None }, geometry))
 }
 
 /// What an off-diagonal cell draws.

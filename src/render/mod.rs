@@ -4,10 +4,13 @@
 //! coordinates are not finite, and never fail on a valid scene — the only error is a PNG canvas
 //! that is non-finite, empty or over [`MAX_CANVAS_PIXELS`], caught before any allocation.
 
+#[cfg(feature = "explore")]
+pub mod egui;
 mod lines;
 pub mod png;
 mod points;
 pub mod svg;
+pub mod tiles;
 
 pub use self::png::{MAX_CANVAS_PIXELS, RenderError, check_canvas, to_pixmap, to_png};
 pub use self::svg::to_svg;
