@@ -187,6 +187,16 @@ fn load_or_report(spec: &std::path::Path, policy: PathPolicy) -> Result<pipeline
     })
 }
 
+/// Draw and lint the charts, printing every problem on failure.
+fn draw_and_lint_or_report(loaded: &pipeline::Loaded, charts: &[String]) -> Result<Vec<pipeline::Linted>, ExitCode> {
+    pipeline::draw_and_lint(loaded, charts).map_err(|diagnostics| {
+        for d in &diagnostics {
+            eprint!("{}", loaded.source.render(d));
+        }
+        ExitCode::from(2)
+    })
+}
+
 /// `dataink lint`.
 fn lint(
     spec: &std::path::Path,
@@ -199,14 +209,9 @@ fn lint(
         Ok(l) => l,
         Err(code) => return code,
     };
-    let linted = match pipeline::draw_and_lint(&loaded, charts) {
+    let linted = match draw_and_lint_or_report(&loaded, charts) {
         Ok(l) => l,
-        Err(diagnostics) => {
-            for d in &diagnostics {
-                eprint!("{}", loaded.source.render(d));
-            }
-            return ExitCode::from(2);
-        }
+        Err(code) => return code,
     };
     let results: Vec<dataink::lint::ChartLint> = linted.into_iter().map(|l| l.lint).collect();
     let path = spec.display().to_string();
@@ -243,14 +248,9 @@ fn report(
     for w in &loaded.warnings {
         eprint!("{}", loaded.source.render(w));
     }
-    let linted = match pipeline::draw_and_lint(&loaded, charts) {
+    let linted = match draw_and_lint_or_report(&loaded, charts) {
         Ok(l) => l,
-        Err(diagnostics) => {
-            for d in &diagnostics {
-                eprint!("{}", loaded.source.render(d));
-            }
-            return ExitCode::from(2);
-        }
+        Err(code) => return code,
     };
     let options =
         dataink::report::ReportOptions { policy, deny_warnings, generated: chrono::Utc::now(), html_template };

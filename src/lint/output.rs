@@ -173,10 +173,10 @@ pub fn junit(spec_path: &str, results: &[ChartLint], deny_warnings: bool) -> Str
                 "      <failure type=\"{}\" message=\"{}\">{}</failure>\n",
                 first.code,
                 xml(&format!("{} finding(s) fail the lint; first: {}", failed.len(), first.message)),
-                xml(&lines.join("\n"))
+                xml_lines(&lines)
             ));
         } else {
-            out.push_str(&format!("      <system-out>{}</system-out>\n", xml(&lines.join("\n"))));
+            out.push_str(&format!("      <system-out>{}</system-out>\n", xml_lines(&lines)));
         }
         out.push_str("    </testcase>\n");
     }
@@ -184,23 +184,14 @@ pub fn junit(spec_path: &str, results: &[ChartLint], deny_warnings: bool) -> Str
     out
 }
 
-/// Text escaped for XML attributes and content; characters XML 1.0 cannot carry are dropped.
+/// Text escaped for XML attributes and content (control characters dropped).
 fn xml(s: &str) -> String {
-    let mut out = String::with_capacity(s.len());
-    for c in s.chars() {
-        match c {
-            '&' => out.push_str("&amp;"),
-            '<' => out.push_str("&lt;"),
-            '>' => out.push_str("&gt;"),
-            '"' => out.push_str("&quot;"),
-            '\'' => out.push_str("&apos;"),
-            '\n' => out.push_str("&#10;"),
-            '\t' => out.push('\t'),
-            c if (c as u32) < 0x20 || c == '\u{fffe}' || c == '\u{ffff}' => {}
-            c => out.push(c),
-        }
-    }
-    out
+    crate::render::svg::escape(s)
+}
+
+/// Lines escaped one by one and joined with newlines, for element content.
+fn xml_lines(lines: &[String]) -> String {
+    lines.iter().map(|l| xml(l)).collect::<Vec<_>>().join("\n")
 }
 
 #[cfg(test)]

@@ -215,7 +215,7 @@ fn check_scales(chart: &Chart, index: usize, options: &BarOptions, y_col: &Colum
             format!(
                 "chart \"{}\": bars place every x value in its own band, so x cannot have a {} scale",
                 chart.name,
-                scale_name(kind)
+                encode::scale_name(kind)
             ),
             "remove `scale` from x (or set `scale = \"band\"`); for a numeric x axis use a line or scatter chart",
         ));
@@ -247,21 +247,13 @@ fn check_scales(chart: &Chart, index: usize, options: &BarOptions, y_col: &Colum
             format!(
                 "chart \"{}\": a bar's length is measured from zero, which a {} scale does not have",
                 chart.name,
-                scale_name(kind)
+                encode::scale_name(kind)
             ),
             "remove `scale` from y (bars need a linear scale); for values spanning decades use a scatter or line chart on a log scale",
         )),
     }
 }
 
-fn scale_name(kind: ScaleKind) -> &'static str {
-    match kind {
-        ScaleKind::Linear => "linear",
-        ScaleKind::Log => "log",
-        ScaleKind::Time => "time",
-        ScaleKind::Band => "band",
-    }
-}
 
 /// The colour channel read as categories: a numeric column without `type` is grouped by its
 /// distinct values; `type = "continuous"` is an error, since groups need categories.

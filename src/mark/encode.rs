@@ -281,7 +281,8 @@ pub fn integer_ticks(mut axis: PositionAxis, column: &Column, rows: &[u32]) -> P
     axis
 }
 
-fn scale_name(kind: ScaleKind) -> &'static str {
+/// The spec's name of a scale kind, for messages.
+pub fn scale_name(kind: ScaleKind) -> &'static str {
     match kind {
         ScaleKind::Linear => "linear",
         ScaleKind::Log => "log",

@@ -98,27 +98,13 @@ pub struct ChartEntry {
     pub drawing_notes: Vec<String>,
 }
 
-/// One lint finding.
+/// One lint finding as templates see it: every field of the finding (`severity`, `code`,
+/// `rule`, `element`, `message`, `hint`, `path`, `line`, `column`) plus its `location`.
 #[derive(Debug, Serialize)]
 pub struct FindingEntry {
-    /// `"error"`, `"warning"` or `"note"`.
-    pub severity: &'static str,
-    /// The rule's code, e.g. `LB001`.
-    pub code: &'static str,
-    /// The rule's name, e.g. `missing-title`.
-    pub rule: &'static str,
-    /// The element concerned, e.g. `x axis`.
-    pub element: String,
-    /// What is wrong.
-    pub message: String,
-    /// How to fix it.
-    pub hint: String,
-    /// The spec path, e.g. `chart[2].x.scale`.
-    pub path: String,
-    /// 1-based spec line, if the finding could be placed.
-    pub line: Option<usize>,
-    /// 1-based spec column, if the finding could be placed.
-    pub column: Option<usize>,
+    /// The finding itself.
+    #[serde(flatten)]
+    pub finding: Finding,
     /// `line:column`, or empty when the finding has no place.
     pub location: String,
 }
@@ -126,15 +112,7 @@ pub struct FindingEntry {
 impl FindingEntry {
     fn new(f: &Finding) -> FindingEntry {
         FindingEntry {
-            severity: f.severity.name(),
-            code: f.code,
-            rule: f.rule,
-            element: f.element.clone(),
-            message: f.message.clone(),
-            hint: f.hint.clone(),
-            path: f.path.clone(),
-            line: f.line,
-            column: f.column,
+            finding: f.clone(),
             location: match (f.line, f.column) {
                 (Some(l), Some(c)) => format!("{l}:{c}"),
                 (Some(l), None) => l.to_string(),
