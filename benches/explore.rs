@@ -22,10 +22,10 @@ use std::io::Write as _;
 
 use dataink::data::PathPolicy;
 use dataink::explore::app::ExploreApp;
-use eframe::egui;
 use dataink::explore::brush::Mode;
 use dataink::explore::{Session, Target};
 use dataink::scene::Point;
+use eframe::egui;
 
 const ROWS: usize = 100_000;
 
@@ -37,8 +37,9 @@ fn session(dir: &std::path::Path) -> Session {
     for i in 0..ROWS {
         let g = i % 3;
         let base = (uniform() - 0.5) * 3.0 + g as f64 * 1.5;
-        let row: Vec<String> =
-            (0..8).map(|j| format!("{:.4}", base * (0.4 + 0.15 * j as f64) + (uniform() - 0.5) * (1.0 + 0.2 * j as f64))).collect();
+        let row: Vec<String> = (0..8)
+            .map(|j| format!("{:.4}", base * (0.4 + 0.15 * j as f64) + (uniform() - 0.5) * (1.0 + 0.2 * j as f64)))
+            .collect();
         writeln!(csv, "{},g{g}", row.join(",")).expect("write");
     }
     drop(csv);
@@ -74,12 +75,12 @@ fn bench(c: &mut Criterion) {
     let start = Point::new(r.x + r.w * 0.3, r.y + r.h * 0.3);
     let mut group = c.benchmark_group("explore");
     group.sample_size(20);
-    // The brush grows and shrinks as a drag would, a few pixels per frame.
+    // The brush grows and shrinks as a drag would, about a pixel per frame, back and forth.
     let mut frame = 0usize;
     group.bench_function("brush_frame", |b| {
         b.iter(|| {
             frame += 1;
-            let t = 0.45 + 0.4 * ((frame % 40) as f64 / 40.0);
+            let t = 0.45 + 0.4 * triangle(frame, 40);
             let end = Point::new(r.x + r.w * t, r.y + r.h * t);
             s.brush(0, Target::Plot(0), start, end, Mode::Replace);
             black_box(s.charts[1].lit)
@@ -127,8 +128,8 @@ fn bench(c: &mut Criterion) {
     group.bench_function("window_frame", |b| {
         b.iter(|| {
             frame += 1;
-            // A drag moving 3 pixels a frame, back and forth across the cell.
-            let t = 0.45 + 0.4 * (((frame * 3) % 100) as f64 / 100.0);
+            // A drag moving about 1.5 pixels a frame, back and forth across the cell.
+            let t = 0.45 + 0.4 * triangle(frame, 30);
             h.event(egui::Event::PointerMoved(at(Point::new(r.x + r.w * t, r.y + r.h * t))));
             h.step();
         })
@@ -139,6 +140,12 @@ fn bench(c: &mut Criterion) {
         "lit during the window drag: splom {:?}, parallel {:?} (of {ROWS} rows)",
         s.charts[0].lit, s.charts[1].lit
     );
+}
+
+/// A triangle wave over `period` frames: 0 up to 1 and back down to 0.
+fn triangle(frame: usize, period: usize) -> f64 {
+    let p = (frame % (2 * period)) as f64 / period as f64;
+    if p <= 1.0 { p } else { 2.0 - p }
 }
 
 criterion_group!(benches, bench);

@@ -126,7 +126,9 @@ impl ExploreApp {
         egui::Panel::top("tabs").show(ui, |ui| self.top_bar(ui));
         egui::Panel::bottom("status").show(ui, |ui| self.status(ui));
         egui::CentralPanel::default().show(ui, |ui| {
-            egui::ScrollArea::both().auto_shrink([false, false]).show(ui, |ui| self.charts(ui));
+            // Charts wrap at the window's width; scroll down for more.
+            let scroll = egui::ScrollArea::vertical().id_salt(("charts", self.tab)).auto_shrink([false, false]);
+            scroll.show(ui, |ui| self.charts(ui));
         });
     }
 
@@ -140,7 +142,11 @@ impl ExploreApp {
                 }
             }
             ui.separator();
-            if ui.button("Save").on_hover_text(format!("selection.toml, SVG and PNG into {}", self.out_dir.display())).clicked() {
+            if ui
+                .button("Save")
+                .on_hover_text(format!("selection.toml, SVG and PNG into {}", self.out_dir.display()))
+                .clicked()
+            {
                 self.save();
             }
             if ui.button("Clear selection").clicked()
@@ -187,17 +193,36 @@ impl ExploreApp {
     fn charts(&mut self, ui: &mut egui::Ui) {
         let charts = self.tabs.get(self.tab).map(|(_, c)| c.clone()).unwrap_or_default();
         self.hover = None;
-        ui.horizontal_wrapped(|ui| {
-            ui.spacing_mut().item_spacing = Vec2::new(16.0, 16.0);
-            for i in charts {
-                ui.vertical(|ui| self.chart(ui, i));
+        // Rows of charts as wide as the window allows.
+        let gap = 16.0;
+        let room = ui.available_width();
+        let mut rows: Vec<Vec<usize>> = Vec::new();
+        let mut used = 0.0;
+        for i in charts {
+            let w = self.session.charts.get(i).map_or(0.0, |v| v.size[0] as f32) + gap;
+            match rows.last_mut() {
+                Some(row) if used + w <= room || row.is_empty() => row.push(i),
+                _ => {
+                    rows.push(vec![i]);
+                    used = 0.0;
+                }
             }
-        });
+            used += w;
+        }
+        for row in rows {
+            ui.horizontal_top(|ui| {
+                ui.spacing_mut().item_spacing = Vec2::new(gap, 4.0);
+                for i in row {
+                    ui.vertical(|ui| self.chart(ui, i));
+                }
+            });
+            ui.add_space(gap);
+        }
     }
 
     fn chart(&mut self, ui: &mut egui::Ui, i: usize) {
         let Some(v) = self.session.charts.get(i) else { return };
-        let header = if super::session::draws_selection(&self.session.loaded.spec.chart[v.index]) {
+        let header = if self.session.loaded.spec.chart.get(v.index).is_some_and(super::session::draws_selection) {
             format!("{} — {} of {} rows lit", v.name, v.lit.0, v.lit.1)
         } else {
             v.name.clone()
@@ -240,12 +265,16 @@ impl ExploreApp {
         }
         if let Some(p) = response.hover_pos() {
             let scroll = ui.input(|inp| inp.smooth_scroll_delta.y);
-            if scroll != 0.0 {
+            // Over a plot or axis the wheel zooms; elsewhere it scrolls the page.
+            if scroll != 0.0 && self.session.zoomable_at(i, to_canvas(p)) {
                 ui.ctx().input_mut(|inp| inp.smooth_scroll_delta = Vec2::ZERO);
                 let factor = (-f64::from(scroll) / 240.0).exp();
                 self.session.zoom(i, to_canvas(p), factor);
             }
-            self.hover = self.session.hover(i, to_canvas(p));
+            // Not while dragging: the brush is what matters then.
+            if !response.dragged() {
+                self.hover = self.session.hover(i, to_canvas(p));
+            }
         }
         let mods = ui.input(|inp| inp.modifiers);
         let pan = response.dragged_by(PointerButton::Secondary) || response.dragged_by(PointerButton::Middle);
@@ -294,8 +323,9 @@ impl ExploreApp {
                     ui.ctx().request_repaint();
                 }
                 Some(_) if !mods.shift && !mods.alt => {
-                    let data = self.session.charts[i].data.clone();
-                    self.session.clear(&data);
+                    if let Some(data) = self.session.charts.get(i).map(|v| v.data.clone()) {
+                        self.session.clear(&data);
+                    }
                 }
                 _ => {}
             }
@@ -316,6 +346,5 @@ pub fn run(session: Session, out_dir: PathBuf, title: &str) -> Result<(), String
         ..Default::default()
     };
     let app = ExploreApp::new(session, out_dir);
-    eframe::run_native("dataink explore", options, Box::new(move |_cc| Ok(Box::new(app))))
-        .map_err(|e| e.to_string())
+    eframe::run_native("dataink explore", options, Box::new(move |_cc| Ok(Box::new(app)))).map_err(|e| e.to_string())
 }

@@ -151,8 +151,9 @@ pub struct RowSet {
     pub data: String,
     /// Rows of the source's table.
     rows: usize,
-    /// The spec selection the set started from: its name and rows.
-    base: Option<(String, Vec<bool>)>,
+    /// The spec selection the set started from: its name, and its ranges when they bound the
+    /// selected rows (to outline them).
+    base: Option<(String, Option<Brush>)>,
     /// Brushes applied after the base, in order.
     terms: Vec<(Mode, Brush)>,
     /// Rows selected by base and terms; `None` when nothing is selected (every row lit).
@@ -167,13 +168,32 @@ impl RowSet {
         RowSet { data: data.to_string(), rows, base: None, terms: Vec::new(), committed: None, live: None }
     }
 
-    /// A set starting from a spec selection (`name`, its row flags).
-    pub fn from_spec(data: &str, name: &str, selected: Vec<bool>) -> RowSet {
+    /// A set starting from a spec selection (`name`, the selection, its row flags).
+    pub fn from_spec(data: &str, name: &str, selection: &Selection, selected: Vec<bool>) -> RowSet {
         let rows = selected.len();
+        let bounds = selection.invert != Some(true) && selection.combine != Some(crate::spec::Combine::Or);
+        let brush = bounds.then(|| Brush {
+            ranges: selection.range.clone().unwrap_or_default(),
+            categories: selection
+                .categories
+                .iter()
+                .flatten()
+                .map(|(k, v)| {
+                    let names = v
+                        .iter()
+                        .map(|c| match c {
+                            CategoryValue::Text(t) => t.clone(),
+                            CategoryValue::Number(n) => crate::guide::format::format_value(*n),
+                        })
+                        .collect();
+                    (k.clone(), names)
+                })
+                .collect(),
+        });
         RowSet {
             data: data.to_string(),
             rows,
-            base: Some((name.to_string(), selected.clone())),
+            base: Some((name.to_string(), brush)),
             terms: Vec::new(),
             committed: Some(selected),
             live: None,
@@ -240,7 +260,8 @@ impl RowSet {
 
     /// The brushes in force (live one included), for drawing their ranges.
     pub fn brushes(&self) -> Vec<(Mode, &Brush)> {
-        let mut out: Vec<(Mode, &Brush)> = self.terms.iter().map(|(m, b)| (*m, b)).collect();
+        let base = self.base.as_ref().and_then(|(_, b)| b.as_ref()).map(|b| (Mode::Replace, b));
+        let mut out: Vec<(Mode, &Brush)> = base.into_iter().chain(self.terms.iter().map(|(m, b)| (*m, b))).collect();
         if let Some((m, b, _)) = &self.live {
             if *m == Mode::Replace {
                 out.clear();
@@ -366,7 +387,17 @@ mod tests {
         Table::from_columns([
             ("a", ColumnValues::Number(vec![0.0, 1.0, 2.0, 3.0, 4.0, f64::NAN])),
             ("b", ColumnValues::Number(vec![10.0, 30.0, 20.0, 40.0, 0.0, 5.0])),
-            ("k", ColumnValues::Text(Categories::from_values([Some("x"), Some("y"), Some("x"), None, Some("y"), Some("x")]))),
+            (
+                "k",
+                ColumnValues::Text(Categories::from_values([
+                    Some("x"),
+                    Some("y"),
+                    Some("x"),
+                    None,
+                    Some("y"),
+                    Some("x"),
+                ])),
+            ),
         ])
     }
 
@@ -374,8 +405,14 @@ mod tests {
     fn plot() -> Plot {
         Plot {
             rect: Rect::new(0.0, 0.0, 100.0, 100.0),
-            x: PlotScale { field: "a".into(), scale: Scale::Linear(LinearScale::new((0.0, 4.0), (0.0, 100.0), false, 0).unwrap()) },
-            y: PlotScale { field: "b".into(), scale: Scale::Linear(LinearScale::new((0.0, 40.0), (100.0, 0.0), false, 0).unwrap()) },
+            x: PlotScale {
+                field: "a".into(),
+                scale: Scale::Linear(LinearScale::new((0.0, 4.0), (0.0, 100.0), false, 0).unwrap()),
+            },
+            y: PlotScale {
+                field: "b".into(),
+                scale: Scale::Linear(LinearScale::new((0.0, 40.0), (100.0, 0.0), false, 0).unwrap()),
+            },
         }
     }
 
@@ -433,7 +470,10 @@ mod tests {
         set.preview(Mode::Replace, brush, &t).unwrap();
         set.commit();
         let toml = set.to_toml("t-brush").unwrap();
-        assert!(toml.contains("[selection.t-brush]\ndata = \"t\"\nrange = { a = [0.8, 3.6], b = [2.0, 32.0] }"), "{toml}");
+        assert!(
+            toml.contains("[selection.t-brush]\ndata = \"t\"\nrange = { a = [0.8, 3.6], b = [2.0, 32.0] }"),
+            "{toml}"
+        );
         let doc = toml_edit::Document::parse(toml.as_str()).unwrap();
         let range = doc.as_table()["selection"]["t-brush"]["range"].as_inline_table().unwrap();
         let get = |k: &str| -> [f64; 2] {
@@ -463,6 +503,6 @@ mod tests {
         write_table(&mut out, "s", "d\"q", &b);
         assert!(out.contains("data = \"d\\\"q\"\ncategories = { \"k k\" = [\"x\"] }"), "{out}");
         assert_eq!(round_to_step(1234.5, 20.0), 1230.0);
-        assert_eq!(round_to_step(f64::NAN, 1.0).is_nan(), true);
+        assert!(round_to_step(f64::NAN, 1.0).is_nan());
     }
 }

@@ -17,7 +17,7 @@ use crate::mark::ChartOutput;
 use crate::mark::geometry::{self, Geometry};
 use crate::pipeline::Loaded;
 use crate::render::tiles::Tiles;
-use crate::scene::{Point, Rect, Shape};
+use crate::scene::{Item, Point, Rect, Shape};
 use crate::selection::Highlight;
 use crate::spec::{Chart, ChartKind};
 
@@ -64,6 +64,8 @@ pub struct ChartView {
     pub generation: u64,
     /// Count buffers of the large mark tiles, by tile index (relit by counting).
     counted: Vec<Option<CountedTile>>,
+    /// The mask the count buffers show (`None`: every row lit).
+    counted_mask: Option<Vec<bool>>,
 }
 
 impl ChartView {
@@ -110,7 +112,7 @@ impl Session {
             let spec = chart.highlight.as_ref().and_then(|h| loaded.highlights.get(h));
             let entry = sets.entry(chart.data.clone()).or_insert_with(|| RowSet::new(&chart.data, table.rows));
             if let (Some(h), false) = (spec, entry.is_active()) {
-                *entry = RowSet::from_spec(&chart.data, &h.name, h.selected.clone());
+                *entry = RowSet::from_spec(&chart.data, &h.name, &h.selection, h.selected.clone());
             }
         }
         let charts = loaded
@@ -132,6 +134,7 @@ impl Session {
                 lit: (0, 0),
                 generation: 0,
                 counted: Vec::new(),
+                counted_mask: None,
             })
             .collect();
         let mut session = Session { loaded, charts, sets, scale: if scale > 0.0 { scale } else { 1.0 } };
@@ -153,8 +156,7 @@ impl Session {
 
     /// Draw charts `which` again (after a view change), in parallel.
     pub fn draw(&mut self, which: &[usize]) {
-        let masks: BTreeMap<String, Option<Vec<bool>>> =
-            self.sets.iter().map(|(k, s)| (k.clone(), s.mask())).collect();
+        let masks: BTreeMap<String, Option<Vec<bool>>> = self.sets.iter().map(|(k, s)| (k.clone(), s.mask())).collect();
         let (loaded, scale) = (&self.loaded, self.scale);
         let jobs: Vec<&mut ChartView> =
             self.charts.iter_mut().enumerate().filter(|(i, _)| which.contains(i)).map(|(_, v)| v).collect();
@@ -279,17 +281,22 @@ impl Session {
         out
     }
 
+    /// Whether zoom and pan act at `p` on chart `chart` (a plot or an axis is there).
+    pub fn zoomable_at(&self, chart: usize, p: Point) -> bool {
+        self.charts
+            .get(chart)
+            .is_some_and(|v| view::plot_at(&v.geometry, p).is_some() || view::axis_at(&v.geometry, p).is_some())
+    }
+
     /// Zoom chart `chart` by `factor` (below 1 zooms in) about `p`: the plot's two columns, or
     /// the axis' column, get new domains and every chart view using them is redrawn.
     pub fn zoom(&mut self, chart: usize, p: Point, factor: f64) {
         let Some(v) = self.charts.get(chart) else { return };
         let mut changes = Vec::new();
-        if let Some(i) = view::plot_at(&v.geometry, p) {
-            let plot = &v.geometry.plots[i];
+        if let Some(plot) = view::plot_at(&v.geometry, p).and_then(|i| v.geometry.plots.get(i)) {
             changes.extend(view::zoomed(&plot.x.scale, p.x, factor).map(|d| (plot.x.field.clone(), d)));
             changes.extend(view::zoomed(&plot.y.scale, p.y, factor).map(|d| (plot.y.field.clone(), d)));
-        } else if let Some(i) = view::axis_at(&v.geometry, p) {
-            let axis = &v.geometry.axes[i];
+        } else if let Some(axis) = view::axis_at(&v.geometry, p).and_then(|i| v.geometry.axes.get(i)) {
             changes.extend(view::zoomed(&axis.scale, p.y, factor).map(|d| (axis.field.clone(), d)));
         }
         self.set_domains(chart, changes);
@@ -299,12 +306,10 @@ impl Session {
     pub fn pan(&mut self, chart: usize, from: Point, to: Point) {
         let Some(v) = self.charts.get(chart) else { return };
         let mut changes = Vec::new();
-        if let Some(i) = view::plot_at(&v.geometry, from) {
-            let plot = &v.geometry.plots[i];
+        if let Some(plot) = view::plot_at(&v.geometry, from).and_then(|i| v.geometry.plots.get(i)) {
             changes.extend(view::panned(&plot.x.scale, from.x, to.x).map(|d| (plot.x.field.clone(), d)));
             changes.extend(view::panned(&plot.y.scale, from.y, to.y).map(|d| (plot.y.field.clone(), d)));
-        } else if let Some(i) = view::axis_at(&v.geometry, from) {
-            let axis = &v.geometry.axes[i];
+        } else if let Some(axis) = view::axis_at(&v.geometry, from).and_then(|i| v.geometry.axes.get(i)) {
             changes.extend(view::panned(&axis.scale, from.y, to.y).map(|d| (axis.field.clone(), d)));
         }
         self.set_domains(chart, changes);
@@ -451,6 +456,18 @@ fn node_table<'a>(loaded: &'a Loaded, chart: &Chart) -> Option<&'a Table> {
     }
 }
 
+/// Table rows lit in one mask and not the other (`None`: every row lit).
+fn changed_rows(before: Option<&[bool]>, after: Option<&[bool]>) -> Vec<u32> {
+    let flag = |m: Option<&[bool]>, r: usize| m.is_none_or(|m| m.get(r).copied().unwrap_or(false));
+    let n = before.map_or(0, <[bool]>::len).max(after.map_or(0, <[bool]>::len));
+    (0..n).filter(|&r| flag(before, r) != flag(after, r)).map(|r| r as u32).collect()
+}
+
+/// Whether `item` is one of a splom diagonal's distributions (drawn again for a selection).
+fn is_distribution(item: &Item) -> bool {
+    item.role == crate::scene::Role::DataMark && !item.rows.is_empty() && matches!(item.shape, Shape::Path(_))
+}
+
 /// Draw chart view `v` for its view state and relight it for `mask`.
 fn draw_view(loaded: &Loaded, v: &mut ChartView, mask: Option<&[bool]>, scale: f64) {
     let Some(chart) = loaded.spec.chart.get(v.index) else { return };
@@ -464,7 +481,10 @@ fn draw_view(loaded: &Loaded, v: &mut ChartView, mask: Option<&[bool]>, scale: f
     match geometry::draw_with_geometry(&chart, v.index, table, base.as_ref(), nodes, &v.focus.transform) {
         Ok((output, geometry)) => {
             let selectable = base.is_some();
-            let tiles = Tiles::new(&output.scene, scale, |i| selectable && (light::is_marks(i) || light::is_count(i)));
+            let diagonal = geometry.diagonals.is_some();
+            let tiles = Tiles::new(&output.scene, scale, |i| {
+                selectable && (light::is_marks(i) || light::is_count(i) || (diagonal && is_distribution(i)))
+            });
             v.counted = (0..tiles.tiles.len())
                 .into_par_iter()
                 .map(|k| {
@@ -473,6 +493,7 @@ fn draw_view(loaded: &Loaded, v: &mut ChartView, mask: Option<&[bool]>, scale: f
                 })
                 .collect();
             v.tiles = Some(tiles);
+            v.counted_mask = None;
             v.size = [output.scene.width, output.scene.height];
             v.output = Some(output);
             v.geometry = geometry;
@@ -501,15 +522,44 @@ fn relight_view(loaded: &Loaded, v: &mut ChartView, mask: Option<&[bool]>, scale
         Some((lit, drawn)) => {
             let counted: Vec<bool> = v.counted.iter().map(Option::is_some).collect();
             let exact = |k: usize| !counted.get(k).copied().unwrap_or(false);
+            let table = loaded.tables.get(&v.data);
+            let all;
+            let selected = match mask {
+                Some(m) => m,
+                None => {
+                    all = vec![true; table.map_or(0, |t| t.rows)];
+                    &all
+                }
+            };
+            let diagonals: Vec<Vec<Item>> = match (&v.geometry.diagonals, table) {
+                (Some(d), Some(t)) => d.marks(t, light::LIT, selected),
+                _ => Vec::new(),
+            };
+            let cell_at = |p: Point| v.geometry.diagonals.as_ref().and_then(|d| d.cell_at(p));
             tiles.redraw_dynamic_where(exact, |item| match &item.shape {
                 Shape::Text(t) => vec![crate::scene::Item::text(item.role, light::count_text(t, lit, drawn))],
+                Shape::Path(cmds) => {
+                    // A splom diagonal: the grey distribution of all rows stands for the cell,
+                    // drawn again with the selection; the coloured ones it replaces go.
+                    let all_rows = item.label.as_deref().is_some_and(|l| l.ends_with("(all rows)"));
+                    let at = cmds.iter().find_map(|c| match c {
+                        crate::scene::PathCmd::MoveTo(p) => Some(*p),
+                        _ => None,
+                    });
+                    match (all_rows, at.and_then(cell_at)) {
+                        (true, Some(c)) => diagonals.get(c).cloned().unwrap_or_default(),
+                        _ => Vec::new(),
+                    }
+                }
                 _ => light::split(item, mask),
             });
+            let changed = changed_rows(v.counted_mask.as_deref(), mask);
             tiles.tiles.par_iter_mut().zip(v.counted.par_iter_mut()).for_each(|(t, c)| {
                 if let Some(c) = c {
-                    c.update(mask, t);
+                    c.update_rows(mask, Some(&changed), t);
                 }
             });
+            v.counted_mask = mask.map(<[bool]>::to_vec);
             v.lit = (lit, drawn);
         }
         None => {
@@ -575,19 +625,65 @@ mod tests {
         // without ranges: the window outlines brushes itself instead of drawing bands). The
         // window keeps the layout made for "N of N rows", so a count of other width would
         // shift the legend column by a few pixels in a saved file.
-        let p = &s.charts[2];
-        let mask = s.mask("t").unwrap();
-        let h = Highlight { selected: mask, ..light::all_lit("t", 40) };
-        let chart = &s.loaded.spec.chart[2];
-        let direct = crate::mark::draw(chart, 2, s.table("t"), Some(&h)).unwrap();
-        let png = crate::render::to_pixmap(&direct.scene, 1.0).unwrap();
-        let (_, _, window) = p.tiles.as_ref().unwrap().composite();
-        let worst = window.iter().zip(png.data()).map(|(a, b)| a.abs_diff(*b)).max().unwrap();
-        // Overlapping translucent lines blended on a transparent tile and then over the
-        // background round differently from blending straight onto it: a few levels at most.
-        assert!(worst <= 6, "relit window differs from the drawn chart by {worst}");
+        // Both the splom (its diagonal histograms too) and the parallel coordinates.
+        for k in [1, 2] {
+            let mask = s.mask("t").unwrap();
+            let h = Highlight { selected: mask, ..light::all_lit("t", 40) };
+            let chart = &s.loaded.spec.chart[k];
+            let direct = crate::mark::draw(chart, k, s.table("t"), Some(&h)).unwrap();
+            let png = crate::render::to_pixmap(&direct.scene, 1.0).unwrap();
+            let (_, _, window) = s.charts[k].tiles.as_ref().unwrap().composite();
+            let worst = window.iter().zip(png.data()).map(|(a, b)| a.abs_diff(*b)).max().unwrap();
+            // Overlapping translucent marks blended on a transparent tile and then over the
+            // background round differently from blending straight onto it: a few levels at most.
+            assert!(worst <= 6, "relit chart {k} differs from the drawn chart by {worst}");
+        }
         s.clear("t");
         assert!(s.charts.iter().all(|v| v.lit == (40, 40)));
+    }
+
+    #[test]
+    fn large_batches_relit_by_counting_look_like_the_exact_drawing() {
+        let dir = tempfile::tempdir().unwrap();
+        let mut csv = String::from("a,b,c,k\n");
+        for i in 0..24_000u64 {
+            let h = |k: u64| ((i.wrapping_mul(2_654_435_761).wrapping_add(k * 40_503)) % 1000) as f64 / 100.0;
+            csv.push_str(&format!(
+                "{},{},{},{}\n",
+                h(1),
+                h(2) * 0.5 + h(1) * 0.5,
+                h(3),
+                if i % 2 == 0 { "x" } else { "y" }
+            ));
+        }
+        std::fs::write(dir.path().join("t.csv"), csv).unwrap();
+        let spec = "[data.t]\npath = \"t.csv\"\n\n[[chart]]\nname = \"p\"\nkind = \"parallel\"\ndata = \"t\"\ncolumns = [\"a\", \"b\", \"c\"]\ncolor = \"k\"\n";
+        std::fs::write(dir.path().join("spec.toml"), spec).unwrap();
+        let loaded = crate::pipeline::load(&dir.path().join("spec.toml"), PathPolicy::InsideSpecFolder).unwrap();
+        let mut s = Session::new(loaded, 1.0);
+        assert!(s.charts[0].counted.iter().flatten().count() == 1, "the line batch is counted");
+        let (_, _, before) = s.charts[0].tiles.as_ref().unwrap().composite();
+        let axis = s.charts[0].geometry.axes[0].clone();
+        let (y0, y1) = (axis.scale.map(6.0), axis.scale.map(2.0));
+        s.brush(0, Target::Axis(0), Point::new(axis.x, y0), Point::new(axis.x, y1), Mode::Replace);
+        s.end_brush(0);
+        let mask = s.mask("t").unwrap();
+        let lit = mask.iter().filter(|&&m| m).count();
+        assert!(lit > 6_000 && lit < 12_000, "{lit}");
+        assert_eq!(s.charts[0].lit, (lit, 24_000));
+        let h = Highlight { selected: mask, ..light::all_lit("t", 24_000) };
+        let direct = crate::mark::draw(&s.loaded.spec.chart[0], 0, s.table("t"), Some(&h)).unwrap();
+        let png = crate::render::to_pixmap(&direct.scene, 1.0).unwrap();
+        let (_, _, window) = s.charts[0].tiles.as_ref().unwrap().composite();
+        let mean =
+            window.iter().zip(png.data()).map(|(a, b)| f64::from(a.abs_diff(*b))).sum::<f64>() / window.len() as f64;
+        // Same picture; the counted lines are not anti-aliased and mix overlapping colours, so
+        // pixels differ a little (relighting without the selection would be ~20 levels off).
+        assert!(mean < 8.0, "counted relight is {mean} levels from the exact drawing on average");
+        // Clearing brings back the exact pixels of the chart with every row lit.
+        s.clear("t");
+        let (_, _, cleared) = s.charts[0].tiles.as_ref().unwrap().composite();
+        assert!(cleared == before, "the pixels before the brush come back");
     }
 
     #[test]

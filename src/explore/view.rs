@@ -26,38 +26,49 @@ pub fn plot_at(geometry: &Geometry, p: Point) -> Option<usize> {
 
 /// The parallel-coordinates axis within [`AXIS_REACH`] of `p`, by index into `geometry.axes`.
 pub fn axis_at(geometry: &Geometry, p: Point) -> Option<usize> {
-    let near = |a: &ParallelAxis| {
-        (p.x - a.x).abs() <= AXIS_REACH && p.y >= a.top - AXIS_REACH && p.y <= a.bottom + AXIS_REACH
-    };
+    let near =
+        |a: &ParallelAxis| (p.x - a.x).abs() <= AXIS_REACH && p.y >= a.top - AXIS_REACH && p.y <= a.bottom + AXIS_REACH;
     (0..geometry.axes.len())
         .filter(|&i| near(&geometry.axes[i]))
         .min_by(|&a, &b| (p.x - geometry.axes[a].x).abs().total_cmp(&(p.x - geometry.axes[b].x).abs()))
 }
 
-/// Pixel position of `row` of column `field` on `scale` (band scales place categories).
-fn position(table: &Table, field: &str, scale: &Scale, row: usize) -> Option<f64> {
-    let column = table.column(field)?;
-    let px = match (column.numbers(), scale) {
-        (Some(values), _) => scale.map(*values.get(row)?),
-        (None, Scale::Band(band)) => {
-            let cats = column.categories()?;
-            band.center(band.band_of(cats.value(row)?)?)
-        }
-        (None, _) => return None,
-    };
-    px.is_finite().then_some(px)
+/// Pixel positions of the rows of one column on a scale (band scales place categories), with
+/// the column looked up once.
+struct Positions<'a> {
+    column: Option<&'a crate::data::Column>,
+    scale: &'a Scale,
+}
+
+impl<'a> Positions<'a> {
+    fn new(table: &'a Table, field: &str, scale: &'a Scale) -> Positions<'a> {
+        Positions { column: table.column(field), scale }
+    }
+
+    /// Pixel position of `row`, if it has a finite one.
+    fn at(&self, row: usize) -> Option<f64> {
+        let column = self.column?;
+        let px = match (column.numbers(), self.scale) {
+            (Some(values), _) => self.scale.map(*values.get(row)?),
+            (None, Scale::Band(band)) => {
+                let cats = column.categories()?;
+                band.center(band.band_of(cats.value(row)?)?)
+            }
+            (None, _) => return None,
+        };
+        px.is_finite().then_some(px)
+    }
 }
 
 /// The row drawn nearest to `p` in `plot`, if one lies within `reach` canvas units. Ties go to
 /// the row drawn last (on top).
 pub fn nearest_point(plot: &Plot, table: &Table, p: Point, reach: f64) -> Option<u32> {
+    let (px, py) =
+        (Positions::new(table, &plot.x.field, &plot.x.scale), Positions::new(table, &plot.y.field, &plot.y.scale));
     let mut best: Option<(f64, usize)> = None;
     for row in 0..table.rows {
-        let (Some(x), Some(y)) =
-            (position(table, &plot.x.field, &plot.x.scale, row), position(table, &plot.y.field, &plot.y.scale, row))
-        else {
-            continue;
-        };
+        let Some(y) = py.at(row).filter(|y| (y - p.y).abs() <= reach) else { continue };
+        let Some(x) = px.at(row) else { continue };
         let d = (x - p.x).hypot(y - p.y);
         if d <= reach && best.is_none_or(|(bd, _)| d <= bd) {
             best = Some((d, row));
@@ -72,12 +83,10 @@ pub fn nearest_line(axes: &[ParallelAxis], table: &Table, p: Point, reach: f64) 
     let k = axes.windows(2).position(|w| p.x >= w[0].x && p.x <= w[1].x)?;
     let (a, b) = (&axes[k], &axes[k + 1]);
     let t = if b.x > a.x { (p.x - a.x) / (b.x - a.x) } else { 0.0 };
+    let (pa, pb) = (Positions::new(table, &a.field, &a.scale), Positions::new(table, &b.field, &b.scale));
     let mut best: Option<(f64, usize)> = None;
     for row in 0..table.rows {
-        let (Some(ya), Some(yb)) = (position(table, &a.field, &a.scale, row), position(table, &b.field, &b.scale, row))
-        else {
-            continue;
-        };
+        let (Some(ya), Some(yb)) = (pa.at(row), pb.at(row)) else { continue };
         let d = (ya + t * (yb - ya) - p.y).abs();
         if d <= reach && best.is_none_or(|(bd, _)| d <= bd) {
             best = Some((d, row));
@@ -262,7 +271,7 @@ mod tests {
         // Row 2 runs at y = 25 across; row 1 at y = 50.
         assert_eq!(nearest_line(&axes, &t, Point::new(40.0, 27.0), 5.0), Some(2));
         assert_eq!(nearest_line(&axes, &t, Point::new(140.0, 27.0), 5.0), None);
-        let g = Geometry { plots: vec![plot], axes, disk: None };
+        let g = Geometry { plots: vec![plot], axes, ..Geometry::default() };
         assert_eq!(plot_at(&g, Point::new(50.0, 50.0)), Some(0));
         assert_eq!(axis_at(&g, Point::new(95.0, 50.0)), Some(1));
         assert_eq!(axis_at(&g, Point::new(50.0, 50.0)), None);

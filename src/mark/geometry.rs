@@ -86,7 +86,7 @@ impl Disk {
 }
 
 /// The interactive geometry of one drawn chart.
-#[derive(Clone, Debug, Default, PartialEq)]
+#[derive(Clone, Debug, Default)]
 pub struct Geometry {
     /// Cartesian plot areas (scatter: one; splom: one per drawn off-diagonal cell).
     pub plots: Vec<Plot>,
@@ -94,6 +94,8 @@ pub struct Geometry {
     pub axes: Vec<ParallelAxis>,
     /// A hyperbolic tree's disk.
     pub disk: Option<Disk>,
+    /// A splom's diagonal cells (histograms or densities), to draw again for a selection.
+    pub diagonals: Option<super::splom::Diagonals>,
 }
 
 impl Geometry {

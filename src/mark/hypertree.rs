@@ -201,7 +201,7 @@ pub fn draw_with_view(
 /// The node nearest the disk's centre.
 fn nearest_centre(positions: &[[f64; 2]]) -> Option<usize> {
     let norm = |z: &[f64; 2]| z[0] * z[0] + z[1] * z[1];
-    (0..positions.len()).filter(|&n| norm(&positions[n]).is_finite()).min_by(|&a, &b| {
-        norm(&positions[a]).total_cmp(&norm(&positions[b]))
-    })
+    (0..positions.len())
+        .filter(|&n| norm(&positions[n]).is_finite())
+        .min_by(|&a, &b| norm(&positions[a]).total_cmp(&norm(&positions[b])))
 }

@@ -154,12 +154,16 @@ pub fn draw_with_geometry(
 
     let mut items = vec![canvas.background()];
     let mut geometry = Geometry::default();
+    let mut diagonals: Vec<(usize, Rect, Scale, std::sync::OnceLock<Option<u32>>)> = Vec::new();
     for i in 0..columns.len() {
         for j in 0..columns.len() {
             if !shown(i, j) {
                 continue;
             }
             let cell = grid.cell(i, j);
+            if i == j && !density {
+                diagonals.push((i, cell, grid.x[i].clone(), std::sync::OnceLock::new()));
+            }
             if i != j {
                 geometry.plots.push(Plot {
                     rect: cell,
@@ -169,7 +173,7 @@ pub fn draw_with_geometry(
             }
             items.push(Item::new(Role::Grid, Shape::Rect(cell), Style::stroke(theme.grid, 1.0)).labelled("cell"));
             if i == j {
-                items.extend(diagonal_cell(options, &grid, i, &columns[i].0, values[i], &paint, &theme));
+                items.extend(diagonal_cell(options, cell, &grid.x[i], &columns[i].0, values[i], &paint, &theme));
                 continue;
             }
             items.extend(axis::grid(&grid.x[j], Side::Bottom, cell, &theme));
@@ -193,6 +197,18 @@ pub fn draw_with_geometry(
         }
     }
     items.extend(grid.axes(&axes, layout, &theme));
+    if !diagonals.is_empty() {
+        geometry.diagonals = Some(Diagonals {
+            options: options.clone(),
+            cells: diagonals,
+            channels: columns.iter().map(|(o, _)| o.clone()).collect(),
+            colors: colors.clone(),
+            radius,
+            opacity,
+            rows: rows.clone(),
+            theme: theme.clone(),
+        });
+    }
 
     let fields: Vec<&str> = columns.iter().map(|(o, _)| o.field.as_str()).collect();
     let mut derived = Derived::of_rows(rows, &fields);
@@ -203,6 +219,72 @@ pub fn draw_with_geometry(
         derived.push("selected", DerivedColumn::Selected(h.selected.clone()));
     }
     Ok((ChartOutput { scene: canvas.scene(chart, items, None), derived, warnings, geojson: None }, geometry))
+}
+
+/// What it takes to draw a splom's diagonal cells again for another selection (the explorer
+/// relights them as a brush moves, with the same code that drew them).
+#[derive(Clone, Debug)]
+pub struct Diagonals {
+    options: SplomOptions,
+    /// Column index, cell rectangle and scale of each diagonal cell drawn, and its histogram's
+    /// bin count once known (it depends on every drawn row only, so a selection drawn again
+    /// bins the same way without sorting the column again).
+    cells: Vec<(usize, Rect, Scale, std::sync::OnceLock<Option<u32>>)>,
+    channels: Vec<ChannelOptions>,
+    colors: ColorEncoding,
+    radius: f64,
+    opacity: f64,
+    rows: Vec<u32>,
+    theme: Theme,
+}
+
+impl Diagonals {
+    /// The diagonal cell containing `p`, by index into the cells drawn.
+    pub fn cell_at(&self, p: Point) -> Option<usize> {
+        self.cells.iter().position(|(_, r, _, _)| p.x >= r.x && p.x <= r.right() && p.y >= r.y && p.y <= r.bottom())
+    }
+
+    /// The data marks of every diagonal cell (in the order of [`Diagonals::cell_at`]) with the
+    /// rows of `selected` (one flag per table row) lit: the grey distribution of every drawn row
+    /// under the selected rows' coloured ones, as `draw` makes them for a selection. The cells
+    /// are drawn in parallel.
+    pub fn marks(&self, table: &Table, name: &str, selected: &[bool]) -> Vec<Vec<Item>> {
+        let selection =
+            crate::spec::Selection { data: String::new(), range: None, categories: None, combine: None, invert: None };
+        let h = Highlight { name: name.to_string(), selection, selected: selected.to_vec() };
+        let split = h.split(&self.rows);
+        let paint = CellPaint {
+            colors: &self.colors,
+            radius: self.radius,
+            opacity: self.opacity,
+            highlight: Some(&h),
+            split: Some(&split),
+            rows: &self.rows,
+        };
+        self.cells
+            .par_iter()
+            .map(|(i, rect, scale, bins)| {
+                let Some(channel) = self.channels.get(*i) else { return Vec::new() };
+                let Some(values) = table.column(&channel.field).and_then(|c| c.numbers()) else { return Vec::new() };
+                let bins = *bins.get_or_init(|| {
+                    match (self.options.diagonal.unwrap_or(Diagonal::Histogram), self.options.bins) {
+                        (Diagonal::Histogram, None) => {
+                            let all: Vec<f64> =
+                                self.rows.iter().filter_map(|&r| values.get(r as usize).copied()).collect();
+                            let (lo, hi) = scale.domain();
+                            u32::try_from(freedman_diaconis_bins(&all, lo, hi, 8, 50)).ok()
+                        }
+                        (_, bins) => bins,
+                    }
+                });
+                let options = SplomOptions { bins, ..self.options.clone() };
+                diagonal_cell(&options, *rect, scale, channel, values, &paint, &self.theme)
+                    .into_iter()
+                    .filter(|item| item.role == Role::DataMark)
+                    .collect()
+            })
+            .collect()
+    }
 }
 
 /// What an off-diagonal cell draws.
@@ -363,15 +445,13 @@ impl CellPaint<'_> {
 /// over grey context), or just its name.
 fn diagonal_cell(
     options: &SplomOptions,
-    grid: &Grid,
-    i: usize,
+    cell: Rect,
+    scale: &Scale,
     channel: &ChannelOptions,
     values: &[f64],
     paint: &CellPaint,
     theme: &Theme,
 ) -> Vec<Item> {
-    let cell = grid.cell(i, i);
-    let scale = &grid.x[i];
     let (lo, hi) = scale.domain();
     let mut items = Vec::new();
     if let Some(h) = paint.highlight {

@@ -1,4 +1,6 @@
-//! Renderers: turn a [`Scene`](crate::scene::Scene) into SVG text or a PNG raster.
+//! Renderers: turn a [`Scene`](crate::scene::Scene) into SVG text or a PNG raster; [`tiles`]
+//! cuts a scene into raster tiles for the explorer window, and `egui` (feature `explore`)
+//! paints them.
 //!
 //! Both backends draw text with the embedded font of [`crate::text`], skip items whose
 //! coordinates are not finite, and never fail on a valid scene — the only error is a PNG canvas

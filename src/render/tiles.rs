@@ -372,11 +372,18 @@ mod tests {
             background: Color::WHITE,
             title: None,
             items: vec![
-                Item::new(Role::Grid, Shape::Rect(Rect::new(10.0, 10.0, 130.0, 80.0)), Style::stroke(Color::BLACK, 1.0)),
+                Item::new(
+                    Role::Grid,
+                    Shape::Rect(Rect::new(10.0, 10.0, 130.0, 80.0)),
+                    Style::stroke(Color::BLACK, 1.0),
+                ),
                 Item::group(Role::DataMark, vec![marks], Some(Rect::new(10.0, 10.0, 130.0, 80.0))),
                 Item::new(
                     Role::Axis,
-                    Shape::Path(vec![PathCmd::MoveTo(Point::new(10.0, 95.0)), PathCmd::LineTo(Point::new(140.0, 95.0))]),
+                    Shape::Path(vec![
+                        PathCmd::MoveTo(Point::new(10.0, 95.0)),
+                        PathCmd::LineTo(Point::new(140.0, 95.0)),
+                    ]),
                     Style::stroke(Color::BLACK, 1.0),
                 ),
                 Item::text(

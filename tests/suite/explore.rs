@@ -2,9 +2,9 @@
 //! clicks and keys go through egui as a user's would, and the tests read the window's labels and
 //! the session's state.
 
+use eframe::egui::{self, Event, Key, Modifiers, PointerButton, Pos2};
 use egui_kittest::kittest::Queryable;
 use egui_kittest::{Harness, HarnessBuilder};
-use eframe::egui::{self, Event, Key, Modifiers, PointerButton, Pos2};
 
 use dataink::explore::app::ExploreApp;
 use dataink::explore::brush::Mode;
@@ -73,8 +73,18 @@ fn drag(h: &mut Harness<'static, ExploreApp>, from: Pos2, to: Pos2, modifiers: M
 /// Click at `at`.
 fn click(h: &mut Harness<'static, ExploreApp>, at: Pos2) {
     h.event(Event::PointerMoved(at));
-    h.event(Event::PointerButton { pos: at, button: PointerButton::Primary, pressed: true, modifiers: Modifiers::NONE });
-    h.event(Event::PointerButton { pos: at, button: PointerButton::Primary, pressed: false, modifiers: Modifiers::NONE });
+    h.event(Event::PointerButton {
+        pos: at,
+        button: PointerButton::Primary,
+        pressed: true,
+        modifiers: Modifiers::NONE,
+    });
+    h.event(Event::PointerButton {
+        pos: at,
+        button: PointerButton::Primary,
+        pressed: false,
+        modifiers: Modifiers::NONE,
+    });
     h.step();
     h.run();
 }
@@ -164,7 +174,13 @@ fn a_saved_single_brush_renders_the_same_rows_from_the_spec() {
     let mut session = Session::new(fx.load().expect("the spec loads"), 1.0);
     let axis = session.charts[1].geometry.axes[1].clone();
     let (y0, y1) = (axis.top + 30.0, axis.top + 150.0);
-    session.brush(1, Target::Axis(1), dataink::scene::Point::new(axis.x, y0), dataink::scene::Point::new(axis.x, y1), Mode::Replace);
+    session.brush(
+        1,
+        Target::Axis(1),
+        dataink::scene::Point::new(axis.x, y0),
+        dataink::scene::Point::new(axis.x, y1),
+        Mode::Replace,
+    );
     session.end_brush(1);
     let lit = session.mask("t").expect("a selection");
     let out = fx.dir.path().join("saved");
@@ -204,8 +220,18 @@ fn clicking_a_hyperbolic_tree_node_brings_it_to_the_centre() {
     let c = moved.center;
     h.event(Event::PointerMoved(screen(&h, 0, c.x + 40.0, c.y)));
     for _ in 0..2 {
-        h.event(Event::PointerButton { pos: screen(&h, 0, c.x + 40.0, c.y), button: PointerButton::Primary, pressed: true, modifiers: Modifiers::NONE });
-        h.event(Event::PointerButton { pos: screen(&h, 0, c.x + 40.0, c.y), button: PointerButton::Primary, pressed: false, modifiers: Modifiers::NONE });
+        h.event(Event::PointerButton {
+            pos: screen(&h, 0, c.x + 40.0, c.y),
+            button: PointerButton::Primary,
+            pressed: true,
+            modifiers: Modifiers::NONE,
+        });
+        h.event(Event::PointerButton {
+            pos: screen(&h, 0, c.x + 40.0, c.y),
+            button: PointerButton::Primary,
+            pressed: false,
+            modifiers: Modifiers::NONE,
+        });
     }
     h.step();
     h.run();
