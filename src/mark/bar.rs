@@ -254,7 +254,6 @@ fn check_scales(chart: &Chart, index: usize, options: &BarOptions, y_col: &Colum
     }
 }
 
-
 /// The colour channel read as categories: a numeric column without `type` is grouped by its
 /// distinct values; `type = "continuous"` is an error, since groups need categories.
 fn grouping_channel(

@@ -177,7 +177,8 @@ pub fn draw_network(chart: &Chart, index: usize, input: NetworkInput, look: &Loo
     let mut warnings = input.warnings;
     if hidden > 0 {
         let verb = if hidden == 1 { "was" } else { "were" };
-        warnings.push(format!("chart \"{}\": {hidden} node {labels_word} {verb} left out to avoid overlaps", chart.name));
+        warnings
+            .push(format!("chart \"{}\": {hidden} node {labels_word} {verb} left out to avoid overlaps", chart.name));
     }
     let scene = canvas.scene(chart, items, note.as_deref());
     Ok(ChartOutput { scene, derived, warnings, geojson: None })

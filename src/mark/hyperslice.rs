@@ -91,8 +91,10 @@ pub fn draw(chart: &Chart, options: &HypersliceOptions, index: usize, table: &Ta
     let (lo, hi) = encode::color_domain(&map, zmin, zmax, z_opts.midpoint);
 
     let z_title = title_with_unit(z_opts.title.as_deref().unwrap_or(&z_opts.field), z_opts.unit.as_deref());
-    let canvas =
-        frame::PanelCanvas::new(chart, encode::shown_legends(Legend::ColorBar { title: z_title, map: map.clone(), domain: (lo, hi) }, &z_opts));
+    let canvas = frame::PanelCanvas::new(
+        chart,
+        encode::shown_legends(Legend::ColorBar { title: z_title, map: map.clone(), domain: (lo, hi) }, &z_opts),
+    );
     let (width, theme, title_h, caption_h, room, legend_w) =
         (canvas.width, canvas.theme.clone(), canvas.title_h, canvas.caption_h, canvas.room, canvas.legend_w);
     let m = theme.margin;

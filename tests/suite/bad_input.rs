@@ -1,7 +1,6 @@
 //! The bad-input checklist of DESIGN.md for specs, data and scales: each case asserts the exact
 //! diagnostic (message, position and hint) or the documented fallback.
 
-
 use crate::common::Fixture;
 use dataink::data::PathPolicy;
 

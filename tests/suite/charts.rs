@@ -1,6 +1,5 @@
 //! Chart kinds against known answers: geometry that can be computed by hand.
 
-
 use crate::common::Fixture;
 
 const PROJECTILE: &str = r#"

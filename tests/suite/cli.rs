@@ -1,6 +1,5 @@
 //! The command-line tool end to end: the README's gallery command, exit codes, help and schema.
 
-
 use std::process::Command;
 
 use crate::common::{assert_svg_parses, root};

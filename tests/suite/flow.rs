@@ -1,7 +1,6 @@
 //! The `flow` kind on analytic fields with known answers: critical points and their classes,
 //! streamlines staying in the domain, unsteady traces, and bad input.
 
-
 use crate::common::Fixture;
 use dataink::mark::{ChartOutput, DerivedColumn};
 

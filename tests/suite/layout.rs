@@ -1,7 +1,6 @@
 //! Layout invariants of every gallery chart: text stays on the canvas, no two texts overlap, every
 //! chart has a title, axis titles and tick labels, and colour encodings get a legend.
 
-
 use dataink::data::PathPolicy;
 use dataink::pipeline;
 use dataink::scene::{Rect, Role, Scene, Shape};

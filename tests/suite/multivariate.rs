@@ -1,7 +1,6 @@
 //! Multivariate kinds (splom, parallel, daisy, faces, segments) and selections: linking by row
 //! identity, geometric invariants, and bad input giving the documented results.
 
-
 use crate::common::Fixture;
 use dataink::mark::ChartOutput;
 use dataink::scene::{Item, Shape};

@@ -1,7 +1,6 @@
 //! Hierarchy and network kinds (treemap, hypertree, graph, linkmap): geometric invariants of the
 //! drawn charts, determinism, and bad input giving the documented errors.
 
-
 use crate::common::Fixture;
 use dataink::mark::{ChartOutput, DerivedColumn};
 use dataink::scene::{Role, Shape};
