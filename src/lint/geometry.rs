@@ -14,6 +14,8 @@ pub struct PlacedText<'a> {
     pub text: &'a Text,
     /// Its glyph box in canvas units.
     pub bounds: Rect,
+    /// The scene item that draws it (to ask what was painted before it).
+    pub item: &'a Item,
 }
 
 /// What a reader calls text of this role, for messages.
@@ -56,6 +58,7 @@ pub fn texts(scene: &Scene) -> Vec<PlacedText<'_>> {
                 label: item.label.as_deref(),
                 text: t,
                 bounds: crate::text::bounds(t),
+                item,
             });
         }
     });

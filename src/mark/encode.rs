@@ -113,11 +113,23 @@ pub fn finite_rows(chart: &str, rows: usize, numeric: &[(&str, &Column)]) -> (Ve
         })
         .collect();
     let warning = format!(
-        "chart \"{chart}\": dropped {} of {rows} rows with missing or non-finite values ({})",
+        "chart \"{chart}\": dropped {} of {rows} rows{DROPPED_SUFFIX} ({})",
         rows - kept.len(),
         details.join("; ")
     );
     (kept, Some(warning))
+}
+
+/// What follows the counts in [`finite_rows`]'s warning.
+const DROPPED_SUFFIX: &str = " with missing or non-finite values";
+
+/// The counts `(dropped, rows)` of a warning written by [`finite_rows`], or `None` for any
+/// other warning (lint rules read it back from a chart's warnings).
+pub fn dropped_rows(warning: &str) -> Option<(usize, usize)> {
+    let (_, rest) = warning.split_once(": dropped ")?;
+    let (counts, _) = rest.split_once(DROPPED_SUFFIX)?;
+    let (dropped, rows) = counts.strip_suffix(" rows")?.split_once(" of ")?;
+    Some((dropped.parse().ok()?, rows.parse().ok()?))
 }
 
 /// The rows a chart draws: the rows finite in every numeric column of `numeric` and in the
@@ -570,4 +582,18 @@ fn number_categories(values: &[f64]) -> Categories {
         .map(|v| distinct.binary_search_by(|d| d.total_cmp(v)).map(|i| i as u32).unwrap_or(Categories::MISSING))
         .collect();
     Categories { levels, codes }
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn the_dropped_rows_warning_reads_back() {
+        use crate::data::{ColumnValues, Table};
+        let table = Table::from_columns([("v", ColumnValues::Number(vec![1.0, f64::NAN, 3.0, f64::INFINITY]))]);
+        let column = table.column("v").expect("column v");
+        let (kept, warning) = super::finite_rows("c", 4, &[("v", column)]);
+        assert_eq!(kept, [0, 2]);
+        assert_eq!(warning.as_deref().and_then(super::dropped_rows), Some((2, 4)));
+        assert_eq!(super::dropped_rows("chart \"c\": 3 node labels were left out"), None);
+    }
 }

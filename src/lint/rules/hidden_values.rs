@@ -73,9 +73,9 @@ fn check_dropped(s: &Subject<'_>) -> Vec<Issue> {
     s.output
         .warnings
         .iter()
-        .filter(|w| w.contains(" dropped ") && w.contains("non-finite"))
-        .filter(|w| !caption_states_count(s, w))
-        .map(|w| {
+        .filter_map(|w| crate::mark::encode::dropped_rows(w).map(|counts| (w, counts)))
+        .filter(|(_, (dropped, _))| !caption_states_count(s, *dropped))
+        .map(|(w, _)| {
             let message = w.split_once("\": ").map_or(w.as_str(), |(_, m)| m).to_string();
             Issue::new(
                 "data",
@@ -87,12 +87,14 @@ fn check_dropped(s: &Subject<'_>) -> Vec<Issue> {
         .collect()
 }
 
-/// Whether the chart's caption states the number of dropped rows from the warning
-/// (`dropped 14 of 406 rows ...`), which tells the reader what is missing.
-fn caption_states_count(s: &Subject<'_>, warning: &str) -> bool {
-    let count = warning.split_once(" dropped ").and_then(|(_, rest)| rest.split_whitespace().next());
-    let (Some(count), Some(caption)) = (count, s.chart.caption.as_deref()) else { return false };
-    caption.split(|c: char| !c.is_ascii_digit()).any(|word| word == count)
+/// Whether the chart's caption states the number of dropped rows, which tells the reader what
+/// is missing.
+fn caption_states_count(s: &Subject<'_>, dropped: usize) -> bool {
+    let count = dropped.to_string();
+    s.chart
+        .caption
+        .as_deref()
+        .is_some_and(|caption| caption.split(|c: char| !c.is_ascii_digit()).any(|word| word == count))
 }
 
 fn check_domain(s: &Subject<'_>) -> Vec<Issue> {

@@ -5,7 +5,6 @@ use super::text_overlap::short;
 use crate::guide::color::contrast_ratio;
 use crate::lint::geometry::{colour_under, texts};
 use crate::lint::{Category, Issue, Rule, Severity, Subject};
-use crate::scene::{Item, Shape};
 
 /// Text at least this large (CSS pixels, 18 pt) needs only the large-text ratio.
 const LARGE_TEXT_PX: f64 = 24.0;
@@ -26,20 +25,11 @@ pub static RULE: Rule = Rule {
 
 fn check(s: &Subject<'_>) -> Vec<Issue> {
     let scene = &s.output.scene;
-    // Text items by identity, to find what was painted before each.
-    let mut items: Vec<&Item> = Vec::new();
-    scene.walk(|item| {
-        if matches!(item.shape, Shape::Text(_)) {
-            items.push(item);
-        }
-    });
     let placed = texts(scene);
     let mut low = Vec::new();
-    for (t, item) in
-        placed.iter().zip(items.iter().filter(|i| matches!(&i.shape, Shape::Text(t) if !t.content.trim().is_empty())))
-    {
+    for t in &placed {
         let (cx, cy) = (t.bounds.x + t.bounds.w / 2.0, t.bounds.y + t.bounds.h / 2.0);
-        let under = colour_under(scene, cx, cy, item);
+        let under = colour_under(scene, cx, cy, t.item);
         let fg = crate::lint::geometry::blend(t.text.color, under);
         let ratio = contrast_ratio(fg, under);
         let needed = if t.text.size >= LARGE_TEXT_PX { LARGE_RATIO } else { NORMAL_RATIO };
