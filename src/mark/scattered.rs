@@ -96,7 +96,8 @@ pub fn draw(chart: &Chart, options: &ScatteredOptions, index: usize, table: &Tab
         let mut cmds = Vec::with_capacity(tin.triangles().len() * 4);
         let pts = tin.points();
         for tri in tin.triangles() {
-            let (Some(&a), Some(&b), Some(&c)) = (pts.get(tri[0]), pts.get(tri[1]), pts.get(tri[2])) else { continue };
+            let [a, b, c] = tri.map(|i| i as usize);
+            let (Some(&a), Some(&b), Some(&c)) = (pts.get(a), pts.get(b), pts.get(c)) else { continue };
             cmds.extend([
                 PathCmd::MoveTo(to_px(a)),
                 PathCmd::LineTo(to_px(b)),
@@ -127,7 +128,7 @@ pub fn draw(chart: &Chart, options: &ScatteredOptions, index: usize, table: &Tab
         if options.fill == Some(false) {
             // Without the interpolant, each tile takes its point's colour: nearest-neighbour
             // interpolation, the Dirichlet tessellation's own reading of the data.
-            for ((cell, &z), &input) in cells.iter().zip(tin.values()).zip(tin.rows()) {
+            for ((cell, &z), input) in cells.iter().zip(tin.values()).zip(tin.rows()) {
                 let mut cell_cmds = Vec::with_capacity(cell.len() + 1);
                 for (k, &p) in cell.iter().enumerate() {
                     cell_cmds.push(if k == 0 { PathCmd::MoveTo(to_px(p)) } else { PathCmd::LineTo(to_px(p)) });
@@ -214,8 +215,9 @@ fn fill_raster(tin: &Triangulation, plot: Rect, x: &Scale, y: &Scale, color_of: 
     // Pixel coordinates relative to the raster's top-left corner.
     let px = |p: (f64, f64)| ((x.map(p.0) - plot.x) * w as f64 / plot.w, (y.map(p.1) - plot.y) * h as f64 / plot.h);
     for tri in tin.triangles() {
-        let (Some(&a), Some(&b), Some(&c)) = (pts.get(tri[0]), pts.get(tri[1]), pts.get(tri[2])) else { continue };
-        let (Some(&za), Some(&zb), Some(&zc)) = (vals.get(tri[0]), vals.get(tri[1]), vals.get(tri[2])) else {
+        let [ia, ib, ic] = tri.map(|i| i as usize);
+        let (Some(&a), Some(&b), Some(&c)) = (pts.get(ia), pts.get(ib), pts.get(ic)) else { continue };
+        let (Some(&za), Some(&zb), Some(&zc)) = (vals.get(ia), vals.get(ib), vals.get(ic)) else {
             continue;
         };
         let (pa, pb, pc) = (px(a), px(b), px(c));

@@ -109,10 +109,10 @@ pub(super) fn contour_lines(tin: &Triangulation, levels: &[f64]) -> Result<Vec<T
 }
 
 /// The corner values of a triangle, or `None` for a hole (a missing value).
-fn corner_values(tin: &Triangulation, tri: &[usize; 3]) -> Option<[f64; 3]> {
+fn corner_values(tin: &Triangulation, tri: &[u32; 3]) -> Option<[f64; 3]> {
     let mut z = [0.0; 3];
     for (zk, &v) in z.iter_mut().zip(tri) {
-        *zk = *tin.values.get(v)?;
+        *zk = *tin.values.get(v as usize)?;
         if zk.is_nan() {
             return None;
         }
@@ -168,7 +168,7 @@ impl Tracer<'_> {
         let Some(tri) = self.tin.triangles.get(t) else {
             return (f64::NAN, f64::NAN);
         };
-        let (u, w) = (tri[k % 3], tri[(k + 1) % 3]);
+        let (u, w) = (tri[k % 3] as usize, tri[(k + 1) % 3] as usize);
         let (lo, hi) = (u.min(w), u.max(w));
         let (Some(&p), Some(&q), Some(&zp), Some(&zq)) =
             (self.tin.points.get(lo), self.tin.points.get(hi), self.tin.values.get(lo), self.tin.values.get(hi))

@@ -32,15 +32,23 @@
 //! - **Size.** At most [`MAX_POINTS`] points; contouring is capped by [`MAX_LEVELS`] and
 //!   [`MAX_CROSSINGS`], checked before anything large is allocated.
 //!
-//! Speed: spade's bulk loader (a circle sweep) does the work. Large inputs are handed to it
-//! already in its sweep order (sorted on two threads, which saves it its own comparison sort),
-//! and the flat triangle list is copied out on a few threads; the neighbour table contours need
-//! is copied on first use. The bulk loader's seed (the points nearest the centre, inserted until
-//! they are not all on one line) costs time quadratic in its length, so when many points near
-//! the centre may be collinear the triangulation is built by insertion instead, starting from
-//! an exactly non-collinear triangle; all-collinear input never reaches spade's line code.
+//! Speed: spade's bulk loader (a circle sweep) does the work. From [`SPLIT_MIN`] points on, with
+//! two threads available, the points left and right of the median x are triangulated at the same
+//! time and only the seam between them is triangulated again (see `split`, which also explains
+//! why the result is still the Delaunay triangulation; a stitched mesh that fails its checks is
+//! thrown away and the points are triangulated in one piece). Large inputs are handed to spade
+//! already in its sweep order, which saves it its own comparison sort. The triangles and their
+//! neighbours are copied out of spade's structure into flat arrays; point location walks them
+//! from a coarse grid of start triangles with exact orientation tests. The bulk loader's seed
+//! (the points nearest the centre, inserted until they are not all on one line) costs time
+//! quadratic in its length, so when many points near the centre may be collinear the
+//! triangulation is built by insertion instead, starting from an exactly non-collinear
+//! triangle; all-collinear input never reaches spade's line code.
 
 mod contour;
+mod locate;
+mod mesh;
+mod split;
 #[cfg(test)]
 mod tests;
 mod voronoi;
@@ -48,8 +56,10 @@ mod voronoi;
 use std::fmt;
 use std::sync::OnceLock;
 
-use spade::handles::FixedVertexHandle;
-use spade::{DelaunayTriangulation, HasPosition, Point2, PositionInTriangulation, Triangulation as _};
+use spade::{DelaunayTriangulation, HasPosition, Point2, Triangulation as _};
+
+use self::locate::{Hit, Locator};
+use self::mesh::Mesh;
 
 use crate::enrich::grid::{Grid, GridError};
 
@@ -67,6 +77,10 @@ pub const MAX_CROSSINGS: usize = 1 << 26;
 /// When more than this many points nearest the centre may lie on one line, spade's bulk loader
 /// would spend quadratic time on them (its seed), so the triangulation is built by insertion.
 const SEED_LIMIT: usize = 1024;
+
+/// From this many points on, and with at least two threads, the points are triangulated in two
+/// halves at once and stitched (see `split`); below it the split costs more than it saves.
+const SPLIT_MIN: usize = 1 << 16;
 
 /// "No triangle" in the neighbour table.
 const NONE: u32 = u32::MAX;
@@ -285,18 +299,19 @@ impl Frame {
 pub struct Triangulation {
     points: Vec<(f64, f64)>,
     values: Vec<f64>,
+    /// The input row of each point; empty when there were no duplicates (point `i` is row `i`).
     rows: Vec<usize>,
-    triangles: Vec<[usize; 3]>,
+    triangles: Vec<[u32; 3]>,
     /// `neighbors[t][k]`: the triangle across edge `k` (from corner `k` to corner `k + 1`) of
-    /// triangle `t`, or [`NONE`] on the hull. Copied out of spade's structure when first needed.
-    neighbors: OnceLock<Vec<[u32; 3]>>,
+    /// triangle `t`, or [`NONE`] on the hull.
+    neighbors: Vec<[u32; 3]>,
     hull: Vec<usize>,
     merged: usize,
     frame: Frame,
     /// Bounding box of the points in the frame: `(xmin, ymin, xmax, ymax)`.
     bbox: (f64, f64, f64, f64),
-    /// The spade triangulation (vertex data names the point); `None` when degenerate.
-    dt: Option<DelaunayTriangulation<Site>>,
+    /// Start triangles for point location, built on the first [`Triangulation::interpolate`].
+    locator: OnceLock<Locator>,
 }
 
 impl Triangulation {
@@ -308,136 +323,115 @@ impl Triangulation {
     /// ([`Triangulation::is_degenerate`]). Takes about `O(n log n)` time, also for collinear,
     /// cocircular or heavily duplicated input.
     pub fn new(points: &[(f64, f64)], values: &[f64]) -> Result<Triangulation, ScatteredError> {
+        Triangulation::new_split_from(points, values, SPLIT_MIN)
+    }
+
+    /// [`Triangulation::new`], splitting the work in two halves from `split_min` points on.
+    fn new_split_from(
+        points: &[(f64, f64)],
+        values: &[f64],
+        split_min: usize,
+    ) -> Result<Triangulation, ScatteredError> {
         if points.len() != values.len() {
             return Err(ScatteredError::LengthMismatch { points: points.len(), values: values.len() });
         }
         if points.len() > MAX_POINTS {
             return Err(ScatteredError::TooManyPoints { count: points.len(), max: MAX_POINTS });
         }
-        let mut max_abs = 0.0f64;
-        for (index, &(x, y)) in points.iter().enumerate() {
-            if !(x.is_finite() && y.is_finite()) {
-                return Err(ScatteredError::NonFiniteCoordinate { index, x, y });
-            }
-            max_abs = max_abs.max(x.abs()).max(y.abs());
+        // One branch-free pass for the bounding box; a second finds the first bad row if any.
+        let mut finite = true;
+        let (mut x0, mut y0, mut x1, mut y1) = (f64::INFINITY, f64::INFINITY, f64::NEG_INFINITY, f64::NEG_INFINITY);
+        for &(x, y) in points {
+            finite &= x.is_finite() & y.is_finite();
+            x0 = if x < x0 { x } else { x0 };
+            y0 = if y < y0 { y } else { y0 };
+            x1 = if x > x1 { x } else { x1 };
+            y1 = if y > y1 { y } else { y1 };
         }
+        if !finite
+            && let Some((index, &(x, y))) =
+                points.iter().enumerate().find(|(_, p)| !(p.0.is_finite() && p.1.is_finite()))
+        {
+            return Err(ScatteredError::NonFiniteCoordinate { index, x, y });
+        }
+        let max_abs = if points.is_empty() { 0.0 } else { x0.abs().max(y0.abs()).max(x1.abs()).max(y1.abs()) };
         let frame = Frame::for_magnitude(max_abs);
-        // Every row goes to spade (it merges duplicates); the vertex data names the row for now.
-        let sites: Vec<Site> = points
-            .iter()
-            .enumerate()
-            .map(|(row, &(x, y))| Site { pos: Point2::new(frame.to_unit(x), frame.to_unit(y)), pt: row as u32 })
-            .collect();
-        let bbox = sites.iter().fold((f64::INFINITY, f64::INFINITY, f64::NEG_INFINITY, f64::NEG_INFINITY), |b, s| {
-            (b.0.min(s.pos.x), b.1.min(s.pos.y), b.2.max(s.pos.x), b.3.max(s.pos.y))
-        });
+        // The frame map is monotone, so this is the bounding box of the points in the frame.
+        let bbox = (frame.to_unit(x0), frame.to_unit(y0), frame.to_unit(x1), frame.to_unit(y1));
 
-        let mut dt = build(sites)?.filter(|dt| dt.num_inner_faces() > 0);
+        // Every row goes to spade (it merges duplicates); the vertex data names the row for now.
+        let mesh = triangulate(Sites { points, frame }, split_min)?;
         let clean = |v: f64| if v.is_finite() { v } else { f64::NAN };
         let mut tin = Triangulation {
             points: Vec::new(),
             values: Vec::new(),
             rows: Vec::new(),
             triangles: Vec::new(),
-            neighbors: OnceLock::new(),
+            neighbors: Vec::new(),
             hull: Vec::new(),
             merged: 0,
             frame,
             bbox,
-            dt: None,
+            locator: OnceLock::new(),
         };
-        if dt.as_ref().is_some_and(|dt| dt.num_vertices() == points.len()) {
-            // No duplicates: every row is a point, under its own index.
-            tin.points = points.to_vec();
-            tin.values = values.iter().map(|&v| clean(v)).collect();
-            tin.rows = (0..points.len()).collect();
-        } else {
-            // Duplicates were merged (spade keeps an arbitrary one of each), or there is no
-            // triangulation to tell: find the first row of every position, keep those rows in
-            // input order, and point spade's vertices at them.
-            let first = first_rows(points, frame);
-            let mut pt_of_row = vec![NONE; points.len()];
-            for (row, (((slot, &f), &p), &v)) in pt_of_row.iter_mut().zip(&first).zip(points).zip(values).enumerate() {
-                if f as usize == row {
-                    *slot = tin.rows.len() as u32;
-                    tin.rows.push(row);
-                    tin.points.push(p);
-                    tin.values.push(clean(v));
-                }
+        let mesh = match mesh {
+            Some(whole) if whole.0.vertices == points.len() => {
+                // No duplicates: every row is a point, under its own index.
+                tin.points = points.to_vec();
+                tin.values = values.iter().map(|&v| clean(v)).collect();
+                // `rows` stays empty: every point is its own row.
+                Some(whole)
             }
-            tin.merged = points.len() - tin.rows.len();
-            if let Some(dt) = &mut dt {
-                let handles: Vec<FixedVertexHandle> = dt.fixed_vertices().collect();
-                for v in handles {
-                    let site = dt.vertex_data_mut(v);
-                    let f = first.get(site.pt as usize).copied().unwrap_or(site.pt);
-                    site.pt = pt_of_row.get(f as usize).copied().unwrap_or(NONE);
+            mesh => {
+                // Duplicates were merged (spade keeps an arbitrary one of each), or there is no
+                // triangulation to tell: find the first row of every position, keep those rows
+                // in input order, and point the corners at them.
+                let first = first_rows(points, frame);
+                let mut pt_of_row = vec![NONE; points.len()];
+                for (row, (((slot, &f), &p), &v)) in
+                    pt_of_row.iter_mut().zip(&first).zip(points).zip(values).enumerate()
+                {
+                    if f as usize == row {
+                        *slot = tin.rows.len() as u32;
+                        tin.rows.push(row);
+                        tin.points.push(p);
+                        tin.values.push(clean(v));
+                    }
                 }
+                tin.merged = points.len() - tin.rows.len();
+                let point_of = |row: u32| {
+                    let f = first.get(row as usize).copied().unwrap_or(NONE);
+                    pt_of_row.get(f as usize).copied().unwrap_or(NONE)
+                };
+                mesh.map(|(mut mesh, mut hull)| {
+                    for tri in &mut mesh.triangles {
+                        *tri = tri.map(point_of);
+                    }
+                    for corner in &mut hull {
+                        *corner = point_of(*corner as u32) as usize;
+                    }
+                    // Start the ring at its smallest point again, as without duplicates.
+                    if let Some(start) = hull.iter().enumerate().min_by_key(|&(_, &p)| p).map(|(k, _)| k) {
+                        hull.rotate_left(start);
+                    }
+                    (mesh, hull)
+                })
             }
-        }
-        if let Some(dt) = dt {
-            tin.extract(&dt);
-            tin.dt = Some(dt);
-        }
+        };
+        let Some((mut mesh, mut hull)) = mesh else {
+            return Ok(tin);
+        };
+        tin.triangles = std::mem::take(&mut mesh.triangles);
+        tin.neighbors = std::mem::take(&mut mesh.neighbors);
+        tin.hull = std::mem::take(&mut hull);
         Ok(tin)
     }
 
-    /// Copies the triangles and the hull out of spade's structure, on a few threads (the
-    /// copy is bound by memory latency, not arithmetic).
-    fn extract(&mut self, dt: &DelaunayTriangulation<Site>) {
-        let count = dt.num_inner_faces();
-        let mut triangles = vec![[0usize; 3]; count];
-        // Inner faces are numbered from 1 (0 is the outer face), so face `t + 1` is triangle `t`.
-        let fill = |part: &mut [[usize; 3]], first: usize| {
-            for (tri, face) in part.iter_mut().zip(dt.inner_faces().skip(first)) {
-                *tri = face.vertices().map(|v| v.data().pt as usize);
-            }
-        };
-        let threads = std::thread::available_parallelism().map_or(1, |n| n.get()).clamp(1, 8);
-        let chunk = count.div_ceil(threads).max(1 << 16);
-        let mut unstarted = Vec::new();
-        std::thread::scope(|scope| {
-            let mut parts = triangles.chunks_mut(chunk).enumerate();
-            let here = parts.next();
-            for (c, part) in parts {
-                if std::thread::Builder::new().spawn_scoped(scope, move || fill(part, c * chunk)).is_err() {
-                    unstarted.push(c);
-                }
-            }
-            if let Some((_, part)) = here {
-                fill(part, 0);
-            }
-        });
-        // A chunk whose thread could not be started is done here.
-        for c in unstarted {
-            let end = ((c + 1) * chunk).min(count);
-            if let Some(part) = triangles.get_mut(c * chunk..end) {
-                fill(part, c * chunk);
-            }
-        }
-        // Hull edges run clockwise around the triangulation; reverse for counter-clockwise.
-        let mut hull: Vec<usize> = dt.convex_hull().map(|e| e.from().data().pt as usize).collect();
-        hull.reverse();
-        self.triangles = triangles;
-        self.hull = hull;
-    }
-
-    /// The neighbour table (see the field), built from spade's structure on first use.
-    fn neighbor_table(&self) -> &[[u32; 3]] {
-        self.neighbors.get_or_init(|| {
-            let Some(dt) = &self.dt else {
-                return Vec::new();
-            };
-            let mut table = vec![[NONE; 3]; dt.num_inner_faces()];
-            for face in dt.inner_faces() {
-                if let Some(nb) = table.get_mut(face.fix().index().wrapping_sub(1)) {
-                    *nb = face
-                        .adjacent_edges()
-                        .map(|e| e.rev().face().as_inner().map_or(NONE, |f| f.index().wrapping_sub(1) as u32));
-                }
-            }
-            table
-        })
+    /// The position of point `i` in the frame spade and the walk see.
+    fn unit(&self, i: u32) -> (f64, f64) {
+        self.points
+            .get(i as usize)
+            .map_or((f64::NAN, f64::NAN), |&(x, y)| (self.frame.to_unit(x), self.frame.to_unit(y)))
     }
 
     /// The distinct points in input order (duplicates merged, the first row kept).
@@ -450,19 +444,24 @@ impl Triangulation {
         &self.values
     }
 
-    /// The input row of each point, increasing: `points()[i]` is `points[rows()[i]]` of the input.
-    pub fn rows(&self) -> &[usize] {
-        &self.rows
+    /// The input row of point `i`: `points()[i]` is `points[row(i)]` of the input.
+    pub fn row(&self, i: usize) -> usize {
+        if self.rows.is_empty() { i } else { self.rows.get(i).copied().unwrap_or(i) }
     }
 
-    /// Triangles as indices into [`Triangulation::points`], each counter-clockwise. Empty when
-    /// degenerate.
-    pub fn triangles(&self) -> &[[usize; 3]] {
+    /// The input row of each point, increasing (see [`Triangulation::row`]).
+    pub fn rows(&self) -> impl ExactSizeIterator<Item = usize> + '_ {
+        (0..self.points.len()).map(|i| self.row(i))
+    }
+
+    /// Triangles as indices into [`Triangulation::points`] (32 bits suffice: at most
+    /// [`MAX_POINTS`] points), each counter-clockwise. Empty when degenerate.
+    pub fn triangles(&self) -> &[[u32; 3]] {
         &self.triangles
     }
 
-    /// The convex hull as a counter-clockwise ring of point indices (first not repeated), including
-    /// points that lie on a hull edge. Empty when degenerate.
+    /// The convex hull as a counter-clockwise ring of point indices starting at the smallest (first
+    /// not repeated), including points that lie on a hull edge. Empty when degenerate.
     pub fn hull(&self) -> &[usize] {
         &self.hull
     }
@@ -479,7 +478,7 @@ impl Triangulation {
 
     /// The triangle across edge `k` (from corner `k` to corner `k + 1`) of triangle `t`.
     fn neighbor(&self, t: usize, k: usize) -> Option<usize> {
-        let n = *self.neighbor_table().get(t)?.get(k)?;
+        let n = *self.neighbors.get(t)?.get(k)?;
         (n != NONE).then_some(n as usize)
     }
 
@@ -489,40 +488,33 @@ impl Triangulation {
     /// both of whose ends have values, the value along that edge is returned). At a data point the
     /// result is its value.
     pub fn interpolate(&self, x: f64, y: f64) -> f64 {
-        let Some(dt) = &self.dt else {
+        if self.triangles.is_empty() {
             return f64::NAN;
-        };
-        let (sx, sy) = (self.frame.to_unit(x), self.frame.to_unit(y));
+        }
+        let q = (self.frame.to_unit(x), self.frame.to_unit(y));
         let (x0, y0, x1, y1) = self.bbox;
-        if !(sx >= x0 && sx <= x1 && sy >= y0 && sy <= y1) {
+        if !(q.0 >= x0 && q.0 <= x1 && q.1 >= y0 && q.1 <= y1) {
             return f64::NAN;
         }
-        let q = Point2::new(sx, sy);
-        match dt.locate(q) {
-            PositionInTriangulation::OnVertex(v) => self.value_of(dt, v),
-            PositionInTriangulation::OnEdge(e) => {
-                let e = dt.directed_edge(e);
-                let (a, b) = (e.from(), e.to());
-                let (pa, pb) = (a.position(), b.position());
-                let (dx, dy) = (pb.x - pa.x, pb.y - pa.y);
+        let value = |i: u32| self.values.get(i as usize).copied().unwrap_or(f64::NAN);
+        match self.locator.get_or_init(|| Locator::new(self)).locate(self, q) {
+            Some(Hit::Point(i)) => value(i),
+            Some(Hit::Edge(a, b)) => {
+                let (pa, pb) = (self.unit(a), self.unit(b));
+                let (dx, dy) = (pb.0 - pa.0, pb.1 - pa.1);
                 let len2 = dx * dx + dy * dy;
-                let t = if len2 > 0.0 { (((q.x - pa.x) * dx + (q.y - pa.y) * dy) / len2).clamp(0.0, 1.0) } else { 0.0 };
-                let (za, zb) = (self.value_of(dt, a.fix()), self.value_of(dt, b.fix()));
-                lerp(za, zb, t)
+                let t = if len2 > 0.0 { (((q.0 - pa.0) * dx + (q.1 - pa.1) * dy) / len2).clamp(0.0, 1.0) } else { 0.0 };
+                lerp(value(a), value(b), t)
             }
-            PositionInTriangulation::OnFace(f) => {
-                let [a, b, c] = dt.face(f).vertices();
-                let (p0, p1, p2) = (a.position(), b.position(), c.position());
-                let z = [self.value_of(dt, a.fix()), self.value_of(dt, b.fix()), self.value_of(dt, c.fix())];
-                barycentric(p0, p1, p2, q, z)
+            Some(Hit::Face(t)) => {
+                let Some(&tri) = self.triangles.get(t) else {
+                    return f64::NAN;
+                };
+                let [p0, p1, p2] = tri.map(|i| self.unit(i));
+                barycentric(p0, p1, p2, q, tri.map(value))
             }
-            PositionInTriangulation::OutsideOfConvexHull(_) | PositionInTriangulation::NoTriangulation => f64::NAN,
+            None => f64::NAN,
         }
-    }
-
-    /// The value of the point a spade vertex stands for.
-    fn value_of(&self, dt: &DelaunayTriangulation<Site>, v: FixedVertexHandle) -> f64 {
-        self.values.get(dt.vertex(v).data().pt as usize).copied().unwrap_or(f64::NAN)
     }
 
     /// Contour lines of the linear TIN at each of `levels`, ordered by level. Non-finite levels
@@ -568,10 +560,10 @@ fn lerp(a: f64, b: f64, t: f64) -> f64 {
 }
 
 /// The plane through `(p_i, z_i)` evaluated at `q`.
-fn barycentric(p0: Point2<f64>, p1: Point2<f64>, p2: Point2<f64>, q: Point2<f64>, z: [f64; 3]) -> f64 {
-    let (d1x, d1y) = (p1.x - p0.x, p1.y - p0.y);
-    let (d2x, d2y) = (p2.x - p0.x, p2.y - p0.y);
-    let (qx, qy) = (q.x - p0.x, q.y - p0.y);
+fn barycentric(p0: (f64, f64), p1: (f64, f64), p2: (f64, f64), q: (f64, f64), z: [f64; 3]) -> f64 {
+    let (d1x, d1y) = (p1.0 - p0.0, p1.1 - p0.1);
+    let (d2x, d2y) = (p2.0 - p0.0, p2.1 - p0.1);
+    let (qx, qy) = (q.0 - p0.0, q.1 - p0.1);
     let det = d1x * d2y - d1y * d2x;
     if det == 0.0 {
         return f64::NAN;
@@ -607,9 +599,64 @@ fn first_rows(points: &[(f64, f64)], frame: Frame) -> Vec<u32> {
     first
 }
 
-/// Triangulates the sites (duplicates allowed: spade merges them). `None` when fewer than three
-/// sites or when all are collinear and the insertion path found that out.
-fn build(sites: Vec<Site>) -> Result<Option<DelaunayTriangulation<Site>>, ScatteredError> {
+/// The input points as spade sees them: site `i` is row `i` placed in the frame.
+#[derive(Debug, Clone, Copy)]
+struct Sites<'a> {
+    points: &'a [(f64, f64)],
+    frame: Frame,
+}
+
+impl Sites<'_> {
+    /// Number of rows.
+    fn len(&self) -> usize {
+        self.points.len()
+    }
+
+    /// The site of row `row`.
+    fn get(&self, row: usize) -> Option<Site> {
+        self.points.get(row).map(|&(x, y)| self.site(row, x, y))
+    }
+
+    /// Every site, by row.
+    fn iter(&self) -> impl Iterator<Item = Site> + '_ {
+        self.points.iter().enumerate().map(|(row, &(x, y))| self.site(row, x, y))
+    }
+
+    fn site(&self, row: usize, x: f64, y: f64) -> Site {
+        Site { pos: Point2::new(self.frame.to_unit(x), self.frame.to_unit(y)), pt: row as u32 }
+    }
+}
+
+/// Triangulates the sites (duplicates allowed) into a mesh and its hull
+/// ring: in two halves at once from `split_min` points on when two threads are available,
+/// otherwise (or when the split does not apply) in one piece. `None` when there are no
+/// triangles (fewer than three distinct points, or all collinear).
+fn triangulate(sites: Sites<'_>, split_min: usize) -> Result<Option<(Mesh, Vec<usize>)>, ScatteredError> {
+    let threads = std::thread::available_parallelism().map_or(1, |n| n.get()).clamp(1, 8);
+    if sites.len() >= split_min
+        && threads >= 2
+        && let Some(done) = split::triangulate(sites)?
+    {
+        return Ok(Some(done));
+    }
+    let Some(dt) = build(sites.iter().collect(), threads)? else {
+        return Ok(None);
+    };
+    let mesh = Mesh::from_spade(&dt, threads);
+    drop(dt);
+    if mesh.triangles.is_empty() {
+        return Ok(None);
+    }
+    let hull = mesh.hull().ok_or_else(|| ScatteredError::Triangulator {
+        message: "the edges without a neighbour do not form one hull ring".to_string(),
+    })?;
+    Ok(Some((mesh, hull)))
+}
+
+/// Triangulates the sites (duplicates allowed: spade merges them), presorting large inputs on up
+/// to `threads` threads. `None` when fewer than three sites or when all are collinear and the
+/// insertion path found that out.
+fn build(sites: Vec<Site>, threads: usize) -> Result<Option<DelaunayTriangulation<Site>>, ScatteredError> {
     let spade_err = |e: spade::InsertionError| ScatteredError::Triangulator { message: format!("{e:?}") };
     if sites.len() < 3 {
         return Ok(None);
@@ -620,8 +667,8 @@ fn build(sites: Vec<Site>) -> Result<Option<DelaunayTriangulation<Site>>, Scatte
         return Ok(None);
     };
     if prefix <= SEED_LIMIT {
-        // Presorting pays off only for large inputs (it runs on two threads).
-        let sites = if sites.len() >= 1 << 16 { sweep_sorted(&sites, centre) } else { sites };
+        // Presorting pays off only for large inputs.
+        let sites = if sites.len() >= 1 << 16 { sweep_sorted(&sites, centre, threads) } else { sites };
         return Ok(Some(DelaunayTriangulation::<Site>::bulk_load(sites).map_err(spade_err)?));
     }
     // Many points nearest the centre (the bulk loader's seed) may be collinear: find, exactly,
@@ -669,40 +716,21 @@ fn centroid(sites: &[Site]) -> (f64, f64) {
 
 /// The sites in the order spade's bulk loader sorts them into (decreasing distance from their
 /// mean, ties by increasing x, then y). spade sorts again, but finds a sorted input in one linear
-/// pass; sorting plain integer keys here, on two threads, is faster than its comparison sort.
+/// pass; sorting plain integer keys here (on two threads when `threads` allows) is faster than
+/// its comparison sort.
 /// spade recomputes the mean in this order, which can differ in the last bits from the mean
 /// used here; a pair that swaps because of that only costs spade a full sort.
-fn sweep_sorted(sites: &[Site], (cx, cy): (f64, f64)) -> Vec<Site> {
+fn sweep_sorted(sites: &[Site], (cx, cy): (f64, f64), threads: usize) -> Vec<Site> {
     // Same arithmetic as spade's `distance_2`; the complement of the (non-negative) distance's
     // bits sorts by decreasing distance.
     let key = |p: Point2<f64>| !((cx - p.x) * (cx - p.x) + (cy - p.y) * (cy - p.y)).to_bits();
     let mut keyed: Vec<(u64, u32)> = sites.iter().enumerate().map(|(i, s)| (key(s.pos), i as u32)).collect();
-    let mid = keyed.len() / 2;
-    let (lo, hi) = keyed.split_at_mut(mid);
-    let started = std::thread::scope(|scope| {
-        let started = std::thread::Builder::new().spawn_scoped(scope, || lo.sort_unstable()).is_ok();
-        hi.sort_unstable();
-        started
-    });
-    if !started && let Some(lo) = keyed.get_mut(..mid) {
-        lo.sort_unstable();
-    }
-    // Merge the halves.
-    let (lo, hi) = keyed.split_at(mid);
-    let mut merged: Vec<(u64, u32)> = Vec::with_capacity(keyed.len());
-    let (mut i, mut j) = (0, 0);
-    while let (Some(&a), Some(&b)) = (lo.get(i), hi.get(j)) {
-        if a <= b {
-            merged.push(a);
-            i += 1;
-        } else {
-            merged.push(b);
-            j += 1;
-        }
-    }
-    merged.extend_from_slice(lo.get(i..).unwrap_or_default());
-    merged.extend_from_slice(hi.get(j..).unwrap_or_default());
-    drop(keyed);
+    let mut merged = if threads < 2 {
+        keyed.sort_unstable();
+        keyed
+    } else {
+        sort_on_two_threads(keyed)
+    };
     let pos = |i: u32| sites.get(i as usize).map_or(Point2::new(0.0, 0.0), |s| s.pos);
     // Equal distances (rare): by x, then y.
     let mut start = 0;
@@ -719,6 +747,11 @@ fn sweep_sorted(sites: &[Site], (cx, cy): (f64, f64)) -> Vec<Site> {
         start += len;
     }
     // Gather (random reads, so two threads help).
+    if threads < 2 {
+        let mut out = Vec::with_capacity(merged.len());
+        out.extend(merged.iter().filter_map(|&(_, i)| sites.get(i as usize).copied()));
+        return out;
+    }
     let mut out = vec![Site { pos: Point2::new(0.0, 0.0), pt: 0 }; merged.len()];
     let gather = |part: &mut [Site], order: &[(u64, u32)]| {
         for (slot, &(_, i)) in part.iter_mut().zip(order) {
@@ -742,6 +775,35 @@ fn sweep_sorted(sites: &[Site], (cx, cy): (f64, f64)) -> Vec<Site> {
         gather(part, order);
     }
     out
+}
+
+/// `keyed` sorted: each half on its own thread, then merged.
+fn sort_on_two_threads(mut keyed: Vec<(u64, u32)>) -> Vec<(u64, u32)> {
+    let mid = keyed.len() / 2;
+    let (lo, hi) = keyed.split_at_mut(mid);
+    let started = std::thread::scope(|scope| {
+        let started = std::thread::Builder::new().spawn_scoped(scope, || lo.sort_unstable()).is_ok();
+        hi.sort_unstable();
+        started
+    });
+    if !started && let Some(lo) = keyed.get_mut(..mid) {
+        lo.sort_unstable();
+    }
+    let (lo, hi) = keyed.split_at(mid);
+    let mut merged: Vec<(u64, u32)> = Vec::with_capacity(keyed.len());
+    let (mut i, mut j) = (0, 0);
+    while let (Some(&a), Some(&b)) = (lo.get(i), hi.get(j)) {
+        if a <= b {
+            merged.push(a);
+            i += 1;
+        } else {
+            merged.push(b);
+            j += 1;
+        }
+    }
+    merged.extend_from_slice(lo.get(i..).unwrap_or_default());
+    merged.extend_from_slice(hi.get(j..).unwrap_or_default());
+    merged
 }
 
 /// The bulk loader's seed: it inserts points by increasing distance from their mean until they

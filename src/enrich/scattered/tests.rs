@@ -27,8 +27,8 @@ fn tin_of(points: &[(f64, f64)]) -> Triangulation {
     Triangulation::new(points, &values).unwrap()
 }
 
-fn corners(tin: &Triangulation, t: &[usize; 3]) -> [(f64, f64); 3] {
-    t.map(|i| tin.points()[i])
+fn corners(tin: &Triangulation, t: &[u32; 3]) -> [(f64, f64); 3] {
+    t.map(|i| tin.points()[i as usize])
 }
 
 /// Twice the signed area of a triangle, relative to its first corner.
@@ -64,7 +64,7 @@ fn assert_empty_circles(tin: &Triangulation) {
         let [a, b, c] = corners(tin, t);
         let (centre, r2) = circumcircle(a, b, c);
         for (i, &p) in tin.points().iter().enumerate() {
-            if t.contains(&i) {
+            if t.contains(&(i as u32)) {
                 continue;
             }
             assert!(dist2(p, centre) >= r2 * (1.0 - 1e-9), "point {i} {p:?} inside the circumcircle of {t:?}");
@@ -81,7 +81,7 @@ fn assert_locally_delaunay(tin: &Triangulation) {
         for k in 0..3 {
             let Some(n) = tin.neighbor(t, k) else { continue };
             let far = tin.triangles()[n].iter().copied().find(|v| !tri.contains(v)).unwrap();
-            let p = tin.points()[far];
+            let p = tin.points()[far as usize];
             assert!(dist2(p, centre) >= r2 * (1.0 - 1e-9), "edge {k} of triangle {t} is not Delaunay");
         }
     }
@@ -92,6 +92,17 @@ fn assert_ccw_triangles(tin: &Triangulation) {
         let [a, b, c] = corners(tin, t);
         assert!(cross(a, b, c) > 0.0, "triangle {t:?} is not counter-clockwise");
     }
+}
+
+/// The summed signed area of all triangles.
+fn triangle_area(tin: &Triangulation) -> f64 {
+    tin.triangles()
+        .iter()
+        .map(|t| {
+            let [a, b, c] = corners(tin, t);
+            cross(a, b, c) / 2.0
+        })
+        .sum()
 }
 
 fn hull_ring(tin: &Triangulation) -> Vec<(f64, f64)> {
@@ -152,14 +163,7 @@ fn hull_is_convex_and_its_area_is_the_sum_of_triangle_areas() {
         }
         let hull_area = ring_area(&ring);
         assert!(hull_area > 0.0, "hull is not counter-clockwise");
-        let tri_area: f64 = tin
-            .triangles()
-            .iter()
-            .map(|t| {
-                let [a, b, c] = corners(&tin, t);
-                cross(a, b, c) / 2.0
-            })
-            .sum();
+        let tri_area: f64 = triangle_area(&tin);
         assert!((hull_area - tri_area).abs() <= 1e-9 * hull_area, "{hull_area} vs {tri_area}");
         // Every point is inside or on the hull.
         for &p in tin.points() {
@@ -355,7 +359,7 @@ fn missing_values_make_holes() {
     values[hole] = f64::INFINITY; // stored as missing
     let tin = Triangulation::new(&pts, &values).unwrap();
     assert!(tin.values()[hole].is_nan());
-    let star: Vec<&[usize; 3]> = tin.triangles().iter().filter(|t| t.contains(&hole)).collect();
+    let star: Vec<&[u32; 3]> = tin.triangles().iter().filter(|t| t.contains(&(hole as u32))).collect();
     assert!(star.len() >= 3);
     for t in &star {
         let [a, b, c] = corners(&tin, t);
@@ -555,14 +559,7 @@ fn lattice_points_with_cocircular_quads() {
     let (n, h) = (pts.len(), tin.hull().len());
     assert_eq!(h, 4 * (m - 1));
     assert_eq!(tin.triangles().len(), 2 * n - h - 2);
-    let area: f64 = tin
-        .triangles()
-        .iter()
-        .map(|t| {
-            let [a, b, c] = corners(&tin, t);
-            cross(a, b, c) / 2.0
-        })
-        .sum();
+    let area: f64 = triangle_area(&tin);
     assert_eq!(area, ((m - 1) * (m - 1)) as f64);
     assert_locally_delaunay(&tin);
     // Interpolation of f = x is exact on the lattice.
@@ -577,7 +574,7 @@ fn duplicates_are_merged_keeping_the_first_row() {
     let vals = [10.0, 11.0, 12.0, 13.0, 14.0, 15.0, 16.0];
     let tin = Triangulation::new(&pts, &vals).unwrap();
     assert_eq!(tin.merged_duplicates(), 3);
-    assert_eq!(tin.rows(), &[0, 1, 2, 5]);
+    assert_eq!(tin.rows().collect::<Vec<_>>(), [0, 1, 2, 5]);
     assert_eq!(tin.points(), &[(0.0, 0.0), (1.0, 0.0), (0.0, 1.0), (1.0, 1.0)]);
     assert_eq!(tin.values(), &[10.0, 11.0, 12.0, 15.0]);
     assert_eq!(tin.triangles().len(), 2);
@@ -601,9 +598,9 @@ fn duplicates_are_merged_keeping_the_first_row() {
     let b = tin_of(&doubled);
     assert_eq!(b.merged_duplicates(), 200);
     assert_eq!(b.points(), a.points());
-    assert_eq!(b.rows(), &(0..200).collect::<Vec<_>>()[..]);
+    assert_eq!(b.rows().collect::<Vec<_>>(), (0..200).collect::<Vec<_>>());
     let sorted = |t: &Triangulation| {
-        let mut v: Vec<[usize; 3]> = t
+        let mut v: Vec<[u32; 3]> = t
             .triangles()
             .iter()
             .map(|t| {
@@ -712,7 +709,7 @@ fn heavy_duplication_is_fast_and_keeps_first_rows() {
     let start = std::time::Instant::now();
     let tin = Triangulation::new(&pts, &values).unwrap();
     assert_eq!(tin.merged_duplicates(), n - 3);
-    assert_eq!(tin.rows(), &[0, 1, 2]);
+    assert_eq!(tin.rows().collect::<Vec<_>>(), [0, 1, 2]);
     assert_eq!(tin.values(), &[0.0, 1.0, 2.0]);
     assert_eq!(tin.triangles().len(), 1);
     let [a, b, c] = corners(&tin, &tin.triangles()[0]);
@@ -727,33 +724,35 @@ fn heavy_duplication_is_fast_and_keeps_first_rows() {
 
 #[test]
 fn presort_matches_spades_bulk_load_order() {
-    let site = |(x, y): (f64, f64), pt: u32| Site { pos: Point2::new(x, y), pt };
-    let rows = |v: Vec<Site>| v.iter().map(|s| s.pt).collect::<Vec<_>>();
-    // Mean (7/6, 0): decreasing distance, ties by x then y; identical points stay, in row order.
-    let pts = [(0.0, 0.0), (2.0, 0.0), (1.0, 1.0), (1.0, -1.0), (1.0, 0.0), (2.0, 0.0)];
-    let sites: Vec<Site> = pts.iter().enumerate().map(|(i, &p)| site(p, i as u32)).collect();
-    assert_eq!(rows(sweep_sorted(&sites, centroid(&sites))), vec![0, 3, 2, 1, 5, 4]);
-    // Distances that differ only in the last bit.
-    let b = 1.0 + f64::EPSILON;
-    let pts = [(1.0, 0.0), (-1.0, 0.0), (0.0, b), (0.0, -b)];
-    let sites: Vec<Site> = pts.iter().enumerate().map(|(i, &p)| site(p, i as u32)).collect();
-    assert_eq!(rows(sweep_sorted(&sites, centroid(&sites))), vec![3, 2, 1, 0]);
-    // Random points: sorted under spade's key, with the mean spade computes from this order.
-    let mut rng = Rng::new(14);
-    let sites: Vec<Site> = random_points(&mut rng, 20_000, 1.0, (0.0, 0.0))
-        .into_iter()
-        .enumerate()
-        .map(|(i, p)| site(p, i as u32))
-        .collect();
-    let sorted = sweep_sorted(&sites, centroid(&sites));
-    let mut kept = rows(sorted.clone());
-    kept.sort_unstable();
-    assert_eq!(kept, (0..20_000).collect::<Vec<u32>>());
-    let (sx, sy) = sorted.iter().fold((0.0, 0.0), |(x, y), s| (x + s.pos.x, y + s.pos.y));
-    let inv = 1.0 / sorted.len() as f64;
-    let c = Point2::new(sx * inv, sy * inv);
-    let key = |s: &Site| (std::cmp::Reverse(c.distance_2(s.pos).to_bits()), s.pos.x.to_bits(), s.pos.y.to_bits());
-    assert!(sorted.windows(2).all(|w| key(&w[0]) <= key(&w[1])));
+    for threads in [1, 2] {
+        let site = |(x, y): (f64, f64), pt: u32| Site { pos: Point2::new(x, y), pt };
+        let rows = |v: Vec<Site>| v.iter().map(|s| s.pt).collect::<Vec<_>>();
+        // Mean (7/6, 0): decreasing distance, ties by x then y; identical points stay, in row order.
+        let pts = [(0.0, 0.0), (2.0, 0.0), (1.0, 1.0), (1.0, -1.0), (1.0, 0.0), (2.0, 0.0)];
+        let sites: Vec<Site> = pts.iter().enumerate().map(|(i, &p)| site(p, i as u32)).collect();
+        assert_eq!(rows(sweep_sorted(&sites, centroid(&sites), threads)), vec![0, 3, 2, 1, 5, 4]);
+        // Distances that differ only in the last bit.
+        let b = 1.0 + f64::EPSILON;
+        let pts = [(1.0, 0.0), (-1.0, 0.0), (0.0, b), (0.0, -b)];
+        let sites: Vec<Site> = pts.iter().enumerate().map(|(i, &p)| site(p, i as u32)).collect();
+        assert_eq!(rows(sweep_sorted(&sites, centroid(&sites), threads)), vec![3, 2, 1, 0]);
+        // Random points: sorted under spade's key, with the mean spade computes from this order.
+        let mut rng = Rng::new(14);
+        let sites: Vec<Site> = random_points(&mut rng, 20_000, 1.0, (0.0, 0.0))
+            .into_iter()
+            .enumerate()
+            .map(|(i, p)| site(p, i as u32))
+            .collect();
+        let sorted = sweep_sorted(&sites, centroid(&sites), threads);
+        let mut kept = rows(sorted.clone());
+        kept.sort_unstable();
+        assert_eq!(kept, (0..20_000).collect::<Vec<u32>>());
+        let (sx, sy) = sorted.iter().fold((0.0, 0.0), |(x, y), s| (x + s.pos.x, y + s.pos.y));
+        let inv = 1.0 / sorted.len() as f64;
+        let c = Point2::new(sx * inv, sy * inv);
+        let key = |s: &Site| (std::cmp::Reverse(c.distance_2(s.pos).to_bits()), s.pos.x.to_bits(), s.pos.y.to_bits());
+        assert!(sorted.windows(2).all(|w| key(&w[0]) <= key(&w[1])));
+    }
 }
 
 #[test]
@@ -840,4 +839,136 @@ fn timing_degenerate_inputs() {
         .collect();
     let tin = time("200,000 on a circle", &circle);
     assert_eq!(tin.triangles().len(), 200_000 - 2);
+    // Every point is on the hull, so the seam is all points: the split does the work twice.
+    let start = std::time::Instant::now();
+    let tin = Triangulation::new_split_from(&circle, &vec![0.0; circle.len()], usize::MAX).unwrap();
+    println!("200,000 on a circle, in one piece: {:.3} s", start.elapsed().as_secs_f64());
+    assert_eq!(tin.triangles().len(), 200_000 - 2);
+}
+
+/// The sites [`Triangulation::new`] hands to the triangulator.
+fn sites_of(points: &[(f64, f64)]) -> Sites<'_> {
+    let frame = Frame::for_magnitude(points.iter().fold(0.0f64, |m, p| m.max(p.0.abs()).max(p.1.abs())));
+    Sites { points, frame }
+}
+
+/// Each triangle rotated to start at its smallest corner (orientation kept), all sorted.
+fn canonical_triangles(tin: &Triangulation) -> Vec<[u32; 3]> {
+    let mut all: Vec<[u32; 3]> = tin
+        .triangles()
+        .iter()
+        .map(|t| {
+            let k = (0..3).min_by_key(|&k| t[k]).unwrap();
+            [t[k], t[(k + 1) % 3], t[(k + 2) % 3]]
+        })
+        .collect();
+    all.sort_unstable();
+    all
+}
+
+/// Across edge `k` of every triangle lies a triangle holding the reverse edge, whose neighbour
+/// across it is the first triangle; hull edges (no neighbour) are exactly the hull ring's edges.
+fn assert_neighbours_match(tin: &Triangulation) {
+    let mut hull_edges = 0;
+    for (t, tri) in tin.triangles().iter().enumerate() {
+        for k in 0..3 {
+            let (a, b) = (tri[k], tri[(k + 1) % 3]);
+            match tin.neighbor(t, k) {
+                None => hull_edges += 1,
+                Some(n) => {
+                    let other = tin.triangles()[n];
+                    let j = (0..3).find(|&j| other[j] == b && other[(j + 1) % 3] == a);
+                    let j = j.unwrap_or_else(|| panic!("triangle {n} across edge {k} of {t} lacks the reverse edge"));
+                    assert_eq!(tin.neighbor(n, j), Some(t));
+                }
+            }
+        }
+    }
+    assert_eq!(hull_edges, tin.hull().len());
+}
+
+#[test]
+fn split_halves_give_the_same_triangulation_as_one_piece() {
+    let mut rng = Rng::new(77);
+    let uniform = random_points(&mut rng, 6000, 1.0, (0.0, 0.0));
+    // A dense cluster on the split line inside a sparse cloud: long seam triangles.
+    let mut clustered = random_points(&mut rng, 500, 100.0, (-50.0, -50.0));
+    clustered.extend(random_points(&mut rng, 4000, 1.0, (-0.5, -0.5)));
+    // Repeated rows on both sides of the line.
+    let mut repeated = random_points(&mut rng, 3000, 1.0, (0.0, 0.0));
+    repeated.extend_from_within(..1500);
+    for pts in [&uniform, &clustered, &repeated] {
+        assert!(split::triangulate(sites_of(pts)).unwrap().is_some(), "the stitched mesh passed its checks");
+        let values: Vec<f64> = pts.iter().map(|p| p.0 - 2.0 * p.1).collect();
+        let one = Triangulation::new_split_from(pts, &values, usize::MAX).unwrap();
+        let two = Triangulation::new_split_from(pts, &values, 0).unwrap();
+        assert_eq!(canonical_triangles(&two), canonical_triangles(&one));
+        assert_eq!(two.hull(), one.hull());
+        assert_eq!((two.points(), two.merged_duplicates()), (one.points(), one.merged_duplicates()));
+        assert!(two.rows().eq(one.rows()));
+        assert_neighbours_match(&two);
+        assert_locally_delaunay(&two);
+        let (lo, hi) = pts
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), p| (lo.min(p.0).min(p.1), hi.max(p.0).max(p.1)));
+        let mut inside = 0;
+        for _ in 0..400 {
+            let (x, y) = (lo + (hi - lo) * rng.next(), lo + (hi - lo) * rng.next());
+            let (a, b) = (one.interpolate(x, y), two.interpolate(x, y));
+            assert!((a - b).abs() <= 1e-12 * a.abs().max(1.0) || (a.is_nan() && b.is_nan()), "({x}, {y}): {a} vs {b}");
+            inside += usize::from(a.is_finite());
+        }
+        assert!(inside > 100);
+    }
+}
+
+#[test]
+fn split_halves_stay_valid_on_degenerate_input() {
+    let m = 40;
+    let lattice: Vec<(f64, f64)> = (0..m * m).map(|i| ((i % m) as f64, (i / m) as f64)).collect();
+    let circle: Vec<(f64, f64)> = (0..500)
+        .map(|i| {
+            let a = i as f64 * std::f64::consts::TAU / 500.0;
+            (a.cos(), a.sin())
+        })
+        .collect();
+    // Two vertical lines: each half is collinear, so the split gives up.
+    let lines: Vec<(f64, f64)> = (0..400).map(|i| ((i % 2) as f64, (i / 2) as f64)).collect();
+    // A square's edges densely sampled around a few inner points: many collinear hull points.
+    let mut square: Vec<(f64, f64)> = (0..200)
+        .flat_map(|i| {
+            let t = i as f64 / 200.0;
+            [(t, 0.0), (1.0, t), (1.0 - t, 1.0), (0.0, 1.0 - t)]
+        })
+        .collect();
+    square.extend([(0.3, 0.4), (0.5, 0.5), (0.7, 0.45), (0.45, 0.8)]);
+    for pts in [&lattice, &circle, &lines, &square] {
+        let tin = Triangulation::new_split_from(pts, &vec![0.0; pts.len()], 0).unwrap();
+        let (n, h) = (tin.points().len(), tin.hull().len());
+        assert_eq!(tin.triangles().len(), 2 * n - h - 2);
+        assert_ccw_triangles(&tin);
+        assert_neighbours_match(&tin);
+        assert_locally_delaunay(&tin);
+        let area: f64 = triangle_area(&tin);
+        assert!((area - ring_area(&hull_ring(&tin))).abs() < 1e-9 * area.abs().max(1.0));
+    }
+    assert!(split::triangulate(sites_of(&lines)).unwrap().is_none());
+    // A lattice (cocircular quads everywhere) and a square with many collinear hull points still
+    // stitch rather than fall back.
+    assert!(split::triangulate(sites_of(&lattice)).unwrap().is_some());
+    assert!(split::triangulate(sites_of(&square)).unwrap().is_some());
+}
+
+#[test]
+fn split_halves_work_at_extreme_scales() {
+    let mut rng = Rng::new(31);
+    for scale in [1e-250, 1e250] {
+        let pts = random_points(&mut rng, 3000, scale, (-scale / 2.0, 0.0));
+        assert!(split::triangulate(sites_of(&pts)).unwrap().is_some());
+        let values = vec![1.0; pts.len()];
+        let one = Triangulation::new_split_from(&pts, &values, usize::MAX).unwrap();
+        let two = Triangulation::new_split_from(&pts, &values, 0).unwrap();
+        assert_eq!(canonical_triangles(&two), canonical_triangles(&one));
+        assert_eq!(two.hull(), one.hull());
+    }
 }

@@ -11,8 +11,7 @@
 //! rectangle have magnitudes at most 1, and relative to the cell's own point, which keeps
 //! bisector arithmetic well inside the `f64` range.
 
-use spade::Triangulation as _;
-
+use super::mesh::point_neighbours;
 use super::{Frame, ScatteredError, Triangulation};
 
 type Ring = Vec<(f64, f64)>;
@@ -48,31 +47,30 @@ pub(super) fn cells(tin: &Triangulation, clip: (f64, f64, f64, f64)) -> Result<V
         Some(poly.into_iter().map(|(x, y)| (frame.to_data(x + p.0), frame.to_data(y + p.1))).collect())
     };
 
-    match &tin.dt {
-        Some(dt) => {
-            for v in dt.vertices() {
-                let i = v.data().pt as usize;
-                neighbours.clear();
-                neighbours.extend(v.out_edges().map(|e| e.to().data().pt as usize));
-                if let (Some(ring), Some(slot)) = (cell(i, &neighbours), out.get_mut(i)) {
-                    *slot = ring;
-                }
+    if tin.triangles.is_empty() {
+        // Collinear (or fewer than three points): neighbours along the line.
+        let mut along: Vec<usize> = (0..sites.len()).collect();
+        along.sort_by(|&a, &b| {
+            let (pa, pb) = (sites.get(a).copied().unwrap_or_default(), sites.get(b).copied().unwrap_or_default());
+            pa.0.total_cmp(&pb.0).then(pa.1.total_cmp(&pb.1))
+        });
+        for (k, &i) in along.iter().enumerate() {
+            neighbours.clear();
+            neighbours.extend(k.checked_sub(1).and_then(|k| along.get(k)).copied());
+            neighbours.extend(along.get(k + 1).copied());
+            if let (Some(ring), Some(slot)) = (cell(i, &neighbours), out.get_mut(i)) {
+                *slot = ring;
             }
         }
-        None => {
-            // Collinear (or fewer than three points): neighbours along the line.
-            let mut along: Vec<usize> = (0..sites.len()).collect();
-            along.sort_by(|&a, &b| {
-                let (pa, pb) = (sites.get(a).copied().unwrap_or_default(), sites.get(b).copied().unwrap_or_default());
-                pa.0.total_cmp(&pb.0).then(pa.1.total_cmp(&pb.1))
-            });
-            for (k, &i) in along.iter().enumerate() {
-                neighbours.clear();
-                neighbours.extend(k.checked_sub(1).and_then(|k| along.get(k)).copied());
-                neighbours.extend(along.get(k + 1).copied());
-                if let (Some(ring), Some(slot)) = (cell(i, &neighbours), out.get_mut(i)) {
-                    *slot = ring;
-                }
+    } else {
+        let (offsets, list) = point_neighbours(&tin.triangles, &tin.neighbors, sites.len());
+        for (i, (slot, bounds)) in out.iter_mut().zip(offsets.windows(2)).enumerate() {
+            neighbours.clear();
+            if let (Some(&from), Some(&to)) = (bounds.first(), bounds.get(1)) {
+                neighbours.extend(list.get(from..to).unwrap_or_default().iter().map(|&j| j as usize));
+            }
+            if let Some(ring) = cell(i, &neighbours) {
+                *slot = ring;
             }
         }
     }
