@@ -54,20 +54,6 @@ impl Mesh {
         Mesh { triangles, neighbors, vertices: dt.num_vertices() }
     }
 
-    /// The hull as a counter-clockwise ring of corners (first not repeated), walked along the
-    /// edges with no triangle across them; see [`hull_ring`].
-    pub fn hull(&self) -> Option<Vec<usize>> {
-        let mut edges = Vec::new();
-        for (tri, nb) in self.triangles.iter().zip(&self.neighbors) {
-            for k in 0..3 {
-                if nb[k] == NONE {
-                    edges.push((tri[k] as usize, tri[(k + 1) % 3] as usize));
-                }
-            }
-        }
-        hull_ring(&edges)
-    }
-
     /// `true` when the counts obey Euler's relation for a triangulated convex region whose hull
     /// ring has `hull` corners: `T = 2V − 2 − h`.
     pub fn euler_holds(&self, hull: usize) -> bool {

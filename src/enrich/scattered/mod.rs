@@ -643,13 +643,16 @@ fn triangulate(sites: Sites<'_>, split_min: usize) -> Result<Option<(Mesh, Vec<u
         return Ok(None);
     };
     let mesh = Mesh::from_spade(&dt, threads);
-    drop(dt);
     if mesh.triangles.is_empty() {
         return Ok(None);
     }
-    let hull = mesh.hull().ok_or_else(|| ScatteredError::Triangulator {
-        message: "the edges without a neighbour do not form one hull ring".to_string(),
-    })?;
+    // Hull edges run clockwise around spade's triangulation; reverse for counter-clockwise and
+    // start at the smallest point, as the split does.
+    let mut hull: Vec<usize> = dt.convex_hull().map(|e| e.from().data().pt as usize).collect();
+    hull.reverse();
+    if let Some(start) = hull.iter().enumerate().min_by_key(|&(_, &p)| p).map(|(k, _)| k) {
+        hull.rotate_left(start);
+    }
     Ok(Some((mesh, hull)))
 }
 
@@ -825,15 +828,20 @@ fn seed_prefix(sites: &[Site], (cx, cy): (f64, f64)) -> Option<(usize, usize, us
     let a = sites.get(ia)?.pos;
     let ib = nearest(Some(a))?;
     let b = sites.get(ib)?.pos;
-    let certainly_off = |p: Point2<f64>| {
-        let left = (b.x - a.x) * (p.y - a.y);
-        let right = (b.y - a.y) * (p.x - a.x);
-        let detsum = left.abs() + right.abs();
-        detsum > 1e-280 && (left - right).abs() > 1e-14 * detsum
-    };
-    let reach = sites.iter().filter(|s| certainly_off(s.pos)).map(|s| dist(s.pos)).fold(f64::INFINITY, f64::min);
+    let reach =
+        sites.iter().filter(|s| certainly_off_line(a, b, s.pos)).map(|s| dist(s.pos)).fold(f64::INFINITY, f64::min);
     let prefix = sites.iter().filter(|s| dist(s.pos) <= reach).count();
     Some((ia, ib, prefix))
+}
+
+/// `true` when `p` is certainly off the line through `a` and `b`: the floating-point orientation
+/// clears a conservative error bound (frame coordinates, magnitudes below 1). `false` may still
+/// be off the line, by a hair.
+fn certainly_off_line(a: Point2<f64>, b: Point2<f64>, p: Point2<f64>) -> bool {
+    let left = (b.x - a.x) * (p.y - a.y);
+    let right = (b.y - a.y) * (p.x - a.x);
+    let detsum = left.abs() + right.abs();
+    detsum > 1e-280 && (left - right).abs() > 1e-14 * detsum
 }
 
 /// `sites` sorted along a Z-order curve over their bounding box.

@@ -32,9 +32,8 @@ use std::collections::HashMap;
 
 use spade::{Point2, Triangulation as _};
 
-use super::locate::orient;
 use super::mesh::{Mesh, copy_faces, hull_ring};
-use super::{NONE, ScatteredError, Site, Sites, build};
+use super::{NONE, ScatteredError, Site, Sites, build, certainly_off_line};
 
 /// Slack around the split line in frame coordinates (magnitudes below 1): a circle within it of
 /// the line counts as reaching the other side, which only grows the seam.
@@ -111,8 +110,10 @@ fn split_line(sites: Sites<'_>) -> f64 {
     xs.select_nth_unstable_by(mid, f64::total_cmp).1.to_owned()
 }
 
-/// `true` when the sites `keep` selects are not all on one line (decided exactly). For almost
-/// any data the first few sites settle it.
+/// `true` when some site `keep` selects is certainly off the line through the first two distinct
+/// ones (floating point with a safe error bound, so a half with almost all points on one line
+/// counts as a line). For almost any data the first few sites settle it; for points on one line
+/// it costs one pass without exact arithmetic.
 fn spans_a_plane(sites: Sites<'_>, keep: impl Fn(&Site) -> bool) -> bool {
     let mut chosen = sites.iter().filter(|s| keep(s));
     let Some(a) = chosen.next() else {
@@ -121,8 +122,7 @@ fn spans_a_plane(sites: Sites<'_>, keep: impl Fn(&Site) -> bool) -> bool {
     let Some(b) = chosen.by_ref().find(|s| s.pos != a.pos) else {
         return false;
     };
-    let xy = |p: Point2<f64>| (p.x, p.y);
-    chosen.any(|c| orient(xy(a.pos), xy(b.pos), xy(c.pos)) != 0.0)
+    chosen.any(|c| certainly_off_line(a.pos, b.pos, c.pos))
 }
 
 /// Triangulates one half into `triangles` and `neighbors`, and keeps its settled triangles at

@@ -807,6 +807,13 @@ fn timing_one_million_points() {
     let start = std::time::Instant::now();
     let lines = tin.contour_lines(&levels).unwrap();
     println!("contours (9 levels): {:.3} s ({} lines)", start.elapsed().as_secs_f64(), lines.len());
+    let start = std::time::Instant::now();
+    let sum: f64 = (0..1_000_000).map(|_| tin.interpolate(rng.next(), rng.next())).filter(|v| v.is_finite()).sum();
+    println!("interpolate at 1,000,000 random places: {:.3} s (sum {sum:.1})", start.elapsed().as_secs_f64());
+    let axis: Vec<f64> = (0..1000).map(|i| (i as f64 + 0.5) / 1000.0).collect();
+    let start = std::time::Instant::now();
+    let grid = tin.resample(&axis, &axis).unwrap();
+    println!("resample onto 1000 x 1000: {:.3} s ({} nodes)", start.elapsed().as_secs_f64(), grid.values().len());
     println!("Triangulation::new, 1,000,000 random points: best of 3 = {best:.3} s");
 }
 
