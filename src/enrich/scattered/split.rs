@@ -60,10 +60,9 @@ struct Half {
     vertices: usize,
 }
 
-/// Triangulates `sites` in two halves on two threads and returns the
-/// mesh and its hull ring. `Ok(None)` when the split does not apply (a half with under three
-/// points, or collinear) or the stitched mesh fails its checks; the caller then triangulates in
-/// one piece.
+/// Triangulates `sites` in two halves on two threads and returns the mesh and its hull ring.
+/// `Ok(None)` when the split does not apply (a half with under three points, or on one line) or
+/// the stitched mesh fails its checks; the caller then triangulates in one piece.
 pub(super) fn triangulate(sites: Sites<'_>) -> Result<Option<(Mesh, Vec<usize>)>, ScatteredError> {
     if sites.len() < 8 {
         return Ok(None);
