@@ -25,8 +25,8 @@
 //!
 //! Cost: the seam is small for ordinary data (about 3,200 of 1,000,000 uniform random points).
 //! When nearly every point is on the hull of its half (points on one circle), the seam is all
-//! points and the work is done about twice over: 200,000 points on a circle take 0.50 s this way
-//! against 0.12 s in one piece.
+//! points: the halves' work is wasted and the seam is triangulated whole, so 200,000 points on a
+//! circle take 0.50 s this way against about 0.1 s in one piece.
 
 use std::collections::HashMap;
 
