@@ -846,7 +846,7 @@ fn timing_degenerate_inputs() {
         .collect();
     let tin = time("200,000 on a circle", &circle);
     assert_eq!(tin.triangles().len(), 200_000 - 2);
-    // Every point is on the hull, so the seam is all points: the split does the work twice.
+    // Every point is on the hull: the split is not tried, so this is the same path as above.
     let start = std::time::Instant::now();
     let tin = Triangulation::new_split_from(&circle, &vec![0.0; circle.len()], usize::MAX).unwrap();
     println!("200,000 on a circle, in one piece: {:.3} s", start.elapsed().as_secs_f64());
@@ -960,6 +960,11 @@ fn split_halves_stay_valid_on_degenerate_input() {
         assert!((area - ring_area(&hull_ring(&tin))).abs() < 1e-9 * area.abs().max(1.0));
     }
     assert!(split::triangulate(sites_of(&lines)).unwrap().is_none());
+    // Every point of the circle is on the hull: the split would do the work twice, so it is not tried.
+    assert!(split::hull_share(sites_of(&circle)) > 0.99);
+    assert!(split::triangulate(sites_of(&circle)).unwrap().is_none());
+    let mut rng = Rng::new(5);
+    assert!(split::hull_share(sites_of(&random_points(&mut rng, 5000, 1.0, (0.0, 0.0)))) < 0.1);
     // A lattice (cocircular quads everywhere) and a square with many collinear hull points still
     // stitch rather than fall back.
     assert!(split::triangulate(sites_of(&lattice)).unwrap().is_some());
