@@ -674,6 +674,13 @@ fn build(sites: Vec<Site>, threads: usize) -> Result<Option<DelaunayTriangulatio
         let sites = if sites.len() >= 1 << 16 { sweep_sorted(&sites, centre, threads) } else { sites };
         return Ok(Some(DelaunayTriangulation::<Site>::bulk_load(sites).map_err(spade_err)?));
     }
+    // The bound is loose when many points share the smallest rounded distance (points on a ring
+    // around the centre): count the seed in the sweep order instead.
+    let sorted = sweep_sorted(&sites, centre, threads);
+    if seed_length(&sorted) <= SEED_LIMIT {
+        return Ok(Some(DelaunayTriangulation::<Site>::bulk_load(sorted).map_err(spade_err)?));
+    }
+    drop(sorted);
     // Many points nearest the centre (the bulk loader's seed) may be collinear: find, exactly,
     // a point off the line through the two nearest, or learn that all points are collinear.
     let (Some(&a), Some(&b)) = (sites.get(ia), sites.get(ib)) else {
@@ -832,6 +839,30 @@ fn seed_prefix(sites: &[Site], (cx, cy): (f64, f64)) -> Option<(usize, usize, us
         sites.iter().filter(|s| certainly_off_line(a, b, s.pos)).map(|s| dist(s.pos)).fold(f64::INFINITY, f64::min);
     let prefix = sites.iter().filter(|s| dist(s.pos) <= reach).count();
     Some((ia, ib, prefix))
+}
+
+/// How many sites spade's bulk loader inserts for its seed, given them in its sweep order: it pops
+/// the nearest first until the last three distinct positions are not on one line (exact test;
+/// spade also wants their mean inside a face, which can only add a few more).
+fn seed_length(sorted: &[Site]) -> usize {
+    let mut last: [Option<Point2<f64>>; 3] = [None; 3];
+    for (popped, site) in sorted.iter().rev().enumerate() {
+        if last[2] == Some(site.pos) {
+            // A repeated position (equal positions are adjacent in this order) adds no vertex.
+            continue;
+        }
+        last = [last[1], last[2], Some(site.pos)];
+        if let [Some(a), Some(b), Some(c)] = last
+            && robust::orient2d(
+                robust::Coord { x: a.x, y: a.y },
+                robust::Coord { x: b.x, y: b.y },
+                robust::Coord { x: c.x, y: c.y },
+            ) != 0.0
+        {
+            return popped + 1;
+        }
+    }
+    sorted.len()
 }
 
 /// `true` when `p` is certainly off the line through `a` and `b`: the floating-point orientation

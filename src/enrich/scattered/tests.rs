@@ -851,6 +851,19 @@ fn timing_degenerate_inputs() {
     let tin = Triangulation::new_split_from(&circle, &vec![0.0; circle.len()], usize::MAX).unwrap();
     println!("200,000 on a circle, in one piece: {:.3} s", start.elapsed().as_secs_f64());
     assert_eq!(tin.triangles().len(), 200_000 - 2);
+    // Two concentric rings: half of any sample is on its hull, so the split is not tried (its
+    // halves would be arcs, slow for spade's bulk loader).
+    let rings: Vec<(f64, f64)> = (0..200_000)
+        .map(|i| {
+            let a = (i / 2) as f64 * std::f64::consts::TAU / 100_000.0;
+            let r = if i % 2 == 0 { 1.0 } else { 0.5 };
+            (r * a.cos(), r * a.sin())
+        })
+        .collect();
+    time("two rings of 100,000", &rings);
+    let start = std::time::Instant::now();
+    Triangulation::new_split_from(&rings, &vec![0.0; rings.len()], usize::MAX).unwrap();
+    println!("two rings of 100,000, in one piece: {:.3} s", start.elapsed().as_secs_f64());
 }
 
 /// The sites [`Triangulation::new`] hands to the triangulator.
@@ -964,7 +977,17 @@ fn split_halves_stay_valid_on_degenerate_input() {
     assert!(split::hull_share(sites_of(&circle)) > 0.99);
     assert!(split::triangulate(sites_of(&circle)).unwrap().is_none());
     let mut rng = Rng::new(5);
-    assert!(split::hull_share(sites_of(&random_points(&mut rng, 5000, 1.0, (0.0, 0.0)))) < 0.1);
+    assert!(split::hull_share(sites_of(&random_points(&mut rng, 5000, 1.0, (0.0, 0.0)))) < 0.05);
+    // Three interleaved rings (row i on ring i % 3): a third of any sample is on the outer one.
+    let rings: Vec<(f64, f64)> = (0..30_000)
+        .map(|i| {
+            let (a, r) = ((i / 3) as f64 * std::f64::consts::TAU / 10_000.0, 1.0 - 0.2 * (i % 3) as f64);
+            (r * a.cos(), r * a.sin())
+        })
+        .collect();
+    let share = split::hull_share(sites_of(&rings));
+    assert!((share - 1.0 / 3.0).abs() < 0.05, "{share}");
+    assert!(split::triangulate(sites_of(&rings)).unwrap().is_none());
     // A lattice (cocircular quads everywhere) and a square with many collinear hull points still
     // stitch rather than fall back.
     assert!(split::triangulate(sites_of(&lattice)).unwrap().is_some());
@@ -983,4 +1006,31 @@ fn split_halves_work_at_extreme_scales() {
         assert_eq!(canonical_triangles(&two), canonical_triangles(&one));
         assert_eq!(two.hull(), one.hull());
     }
+}
+
+#[test]
+fn rings_around_the_centre_take_the_bulk_loader() {
+    // Many points of the inner ring share the smallest rounded distance from the mean, so the
+    // cheap seed bound is loose; counted in the sweep order the seed is three points.
+    let rings: Vec<(f64, f64)> = (0..20_000)
+        .map(|i| {
+            let a = (i / 2) as f64 * std::f64::consts::TAU / 10_000.0;
+            let r = if i % 2 == 0 { 1.0 } else { 0.5 };
+            (r * a.cos(), r * a.sin())
+        })
+        .collect();
+    let sites: Vec<Site> = sites_of(&rings).iter().collect();
+    let centre = centroid(&sites);
+    let (_, _, prefix) = seed_prefix(&sites, centre).unwrap();
+    // (141 here; 1,310 for 200,000 points, over SEED_LIMIT, which used to send them to the slow
+    // insertion path: 10.7 s instead of 0.6 s.)
+    assert!(prefix > 100, "the bound is loose here ({prefix})");
+    assert_eq!(seed_length(&sweep_sorted(&sites, centre, 1)), 3);
+    let tin = tin_of(&rings);
+    let (n, h) = (tin.points().len(), tin.hull().len());
+    assert_eq!(tin.triangles().len(), 2 * n - h - 2);
+    assert_locally_delaunay(&tin);
+    // Collinear points come out as a long seed.
+    let line: Vec<Site> = (0..50).map(|i| Site { pos: Point2::new(i as f64 / 64.0, 0.0), pt: i }).collect();
+    assert_eq!(seed_length(&line), 50);
 }
