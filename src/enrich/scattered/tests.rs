@@ -94,6 +94,19 @@ fn assert_ccw_triangles(tin: &Triangulation) {
     }
 }
 
+/// `per_ring` points evenly spaced on each circle of the given radii around the origin, the
+/// rings interleaved (row `i` is on ring `i % radii.len()`).
+fn concentric_rings(per_ring: usize, radii: &[f64]) -> Vec<(f64, f64)> {
+    let k = radii.len();
+    (0..per_ring * k)
+        .map(|i| {
+            let a = (i / k) as f64 * std::f64::consts::TAU / per_ring as f64;
+            let r = radii[i % k];
+            (r * a.cos(), r * a.sin())
+        })
+        .collect()
+}
+
 /// The summed signed area of all triangles.
 fn triangle_area(tin: &Triangulation) -> f64 {
     tin.triangles()
@@ -853,13 +866,7 @@ fn timing_degenerate_inputs() {
     assert_eq!(tin.triangles().len(), 200_000 - 2);
     // Two concentric rings: half of any sample is on its hull, so the split is not tried (its
     // halves would be arcs, slow for spade's bulk loader).
-    let rings: Vec<(f64, f64)> = (0..200_000)
-        .map(|i| {
-            let a = (i / 2) as f64 * std::f64::consts::TAU / 100_000.0;
-            let r = if i % 2 == 0 { 1.0 } else { 0.5 };
-            (r * a.cos(), r * a.sin())
-        })
-        .collect();
+    let rings = concentric_rings(100_000, &[1.0, 0.5]);
     time("two rings of 100,000", &rings);
     let start = std::time::Instant::now();
     Triangulation::new_split_from(&rings, &vec![0.0; rings.len()], usize::MAX).unwrap();
@@ -978,13 +985,8 @@ fn split_halves_stay_valid_on_degenerate_input() {
     assert!(split::triangulate(sites_of(&circle)).unwrap().is_none());
     let mut rng = Rng::new(5);
     assert!(split::hull_share(sites_of(&random_points(&mut rng, 5000, 1.0, (0.0, 0.0)))) < 0.05);
-    // Three interleaved rings (row i on ring i % 3): a third of any sample is on the outer one.
-    let rings: Vec<(f64, f64)> = (0..30_000)
-        .map(|i| {
-            let (a, r) = ((i / 3) as f64 * std::f64::consts::TAU / 10_000.0, 1.0 - 0.2 * (i % 3) as f64);
-            (r * a.cos(), r * a.sin())
-        })
-        .collect();
+    // Three interleaved rings: a third of any sample is on the outer one.
+    let rings = concentric_rings(10_000, &[1.0, 0.8, 0.6]);
     let share = split::hull_share(sites_of(&rings));
     assert!((share - 1.0 / 3.0).abs() < 0.05, "{share}");
     assert!(split::triangulate(sites_of(&rings)).unwrap().is_none());
@@ -1012,13 +1014,7 @@ fn split_halves_work_at_extreme_scales() {
 fn rings_around_the_centre_take_the_bulk_loader() {
     // Many points of the inner ring share the smallest rounded distance from the mean, so the
     // cheap seed bound is loose; counted in the sweep order the seed is three points.
-    let rings: Vec<(f64, f64)> = (0..20_000)
-        .map(|i| {
-            let a = (i / 2) as f64 * std::f64::consts::TAU / 10_000.0;
-            let r = if i % 2 == 0 { 1.0 } else { 0.5 };
-            (r * a.cos(), r * a.sin())
-        })
-        .collect();
+    let rings = concentric_rings(10_000, &[1.0, 0.5]);
     let sites: Vec<Site> = sites_of(&rings).iter().collect();
     let centre = centroid(&sites);
     let (_, _, prefix) = seed_prefix(&sites, centre).unwrap();
