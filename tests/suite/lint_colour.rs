@@ -99,11 +99,10 @@ fn rainbow_map_on_a_grid_and_cyclic_ends() {
     assert!(lint_findings(&image(r#"{ field = "z", scheme = "magma" }"#), files, "CL001").is_empty());
 }
 
-#[test]
-fn rainbow_map_as_a_chart_level_scheme() {
-    let spec = |scheme: &str| {
-        format!(
-            r#"
+/// A circle-segments chart of `data.csv` with a chart-level colour scheme.
+fn segments_with_scheme(scheme: &str) -> String {
+    format!(
+        r#"
 [data.d]
 path = "data.csv"
 
@@ -115,8 +114,12 @@ title = "Segments"
 columns = ["x", "y", "v"]
 scheme = "{scheme}"
 "#
-        )
-    };
+    )
+}
+
+#[test]
+fn rainbow_map_as_a_chart_level_scheme() {
+    let spec = segments_with_scheme;
     let data = points(3);
     let files: &[(&str, &[u8])] = &[("data.csv", &data)];
     let f = lint_findings(&spec("rainbow"), files, "CL001");
@@ -160,22 +163,7 @@ fn diverging_midpoint_outside_the_data() {
 
 #[test]
 fn diverging_chart_level_scheme_has_no_midpoint() {
-    let spec = |scheme: &str| {
-        format!(
-            r#"
-[data.d]
-path = "data.csv"
-
-[[chart]]
-name = "segments"
-kind = "segments"
-data = "d"
-title = "Segments"
-columns = ["x", "y", "v"]
-scheme = "{scheme}"
-"#
-        )
-    };
+    let spec = segments_with_scheme;
     let data = points(3);
     let files: &[(&str, &[u8])] = &[("data.csv", &data)];
     let f = lint_findings(&spec("puor"), files, "CL002");

@@ -119,6 +119,6 @@ fn hit(tin: &Triangulation, t: usize, side: [f64; 3]) -> Hit {
 }
 
 /// Positive when `c` is left of the line from `a` to `b`, zero on it (exact).
-fn orient(a: (f64, f64), b: (f64, f64), c: (f64, f64)) -> f64 {
+pub(super) fn orient(a: (f64, f64), b: (f64, f64), c: (f64, f64)) -> f64 {
     orient2d(Coord { x: a.0, y: a.1 }, Coord { x: b.0, y: b.1 }, Coord { x: c.0, y: c.1 })
 }

@@ -78,6 +78,10 @@ pub const MAX_CROSSINGS: usize = 1 << 26;
 /// would spend quadratic time on them (its seed), so the triangulation is built by insertion.
 const SEED_LIMIT: usize = 1024;
 
+/// From this many points on, sites reach spade already in its sweep order (sorting integer keys
+/// here beats its comparison sort only for large inputs).
+const PRESORT_MIN: usize = 1 << 16;
+
 /// From this many points on, and with at least two threads, the points are triangulated in two
 /// halves at once and stitched (see `split`); below it the split costs more than it saves.
 const SPLIT_MIN: usize = 1 << 16;
@@ -321,7 +325,8 @@ impl Triangulation {
     /// or there are more than [`MAX_POINTS`] points. Duplicates are merged (first row wins);
     /// fewer than three distinct points or collinear points give an `Ok` result with no triangles
     /// ([`Triangulation::is_degenerate`]). Takes about `O(n log n)` time, also for collinear,
-    /// cocircular or heavily duplicated input.
+    /// cocircular or heavily duplicated input, with one known exception: spade's bulk loader slows
+    /// down sharply on a few long concentric arcs (two half-rings of 40,000 points take 1.3 s).
     pub fn new(points: &[(f64, f64)], values: &[f64]) -> Result<Triangulation, ScatteredError> {
         Triangulation::new_split_from(points, values, SPLIT_MIN)
     }
@@ -410,20 +415,17 @@ impl Triangulation {
                     for corner in &mut hull {
                         *corner = point_of(*corner as u32) as usize;
                     }
-                    // Start the ring at its smallest point again, as without duplicates.
-                    if let Some(start) = hull.iter().enumerate().min_by_key(|&(_, &p)| p).map(|(k, _)| k) {
-                        hull.rotate_left(start);
-                    }
+                    // Renamed corners: start the ring at its smallest point again.
+                    start_at_smallest(&mut hull);
                     (mesh, hull)
                 })
             }
         };
-        let Some((mut mesh, mut hull)) = mesh else {
-            return Ok(tin);
-        };
-        tin.triangles = std::mem::take(&mut mesh.triangles);
-        tin.neighbors = std::mem::take(&mut mesh.neighbors);
-        tin.hull = std::mem::take(&mut hull);
+        if let Some((mesh, hull)) = mesh {
+            tin.triangles = mesh.triangles;
+            tin.neighbors = mesh.neighbors;
+            tin.hull = hull;
+        }
         Ok(tin)
     }
 
@@ -650,10 +652,16 @@ fn triangulate(sites: Sites<'_>, split_min: usize) -> Result<Option<(Mesh, Vec<u
     // start at the smallest point, as the split does.
     let mut hull: Vec<usize> = dt.convex_hull().map(|e| e.from().data().pt as usize).collect();
     hull.reverse();
-    if let Some(start) = hull.iter().enumerate().min_by_key(|&(_, &p)| p).map(|(k, _)| k) {
-        hull.rotate_left(start);
-    }
+    start_at_smallest(&mut hull);
     Ok(Some((mesh, hull)))
+}
+
+/// Rotates a ring so that it starts at its smallest element (the hull's order, whichever way it
+/// was found).
+fn start_at_smallest(ring: &mut [usize]) {
+    if let Some(start) = ring.iter().enumerate().min_by_key(|&(_, &p)| p).map(|(k, _)| k) {
+        ring.rotate_left(start);
+    }
 }
 
 /// Triangulates the sites (duplicates allowed: spade merges them), presorting large inputs on up
@@ -665,22 +673,29 @@ fn build(sites: Vec<Site>, threads: usize) -> Result<Option<DelaunayTriangulatio
         return Ok(None);
     }
     let centre = centroid(&sites);
-    let Some((ia, ib, prefix)) = seed_prefix(&sites, centre) else {
+    let bulk_load = |sites: Vec<Site>| Ok(Some(DelaunayTriangulation::<Site>::bulk_load(sites).map_err(spade_err)?));
+    // The bulk loader's seed (see `seed_length`) costs time quadratic in its length. Small inputs
+    // are usually cleared by a cheap bound and sorted by spade itself.
+    if sites.len() < PRESORT_MIN {
+        match seed_prefix(&sites, centre) {
+            None => return Ok(None),
+            Some((_, _, prefix)) if prefix <= SEED_LIMIT => return bulk_load(sites),
+            // The bound is loose when many points share the smallest rounded distance (a ring
+            // around the centre): count the seed exactly below.
+            Some(_) => {}
+        }
+    }
+    // Sorted in the loader's sweep order (large inputs always: it saves spade its own sort), the
+    // seed can be counted exactly.
+    let sorted = sweep_sorted(&sites, centre, threads);
+    if seed_length(&sorted) <= SEED_LIMIT {
+        return bulk_load(sorted);
+    }
+    drop(sorted);
+    let Some((ia, ib, _)) = seed_prefix(&sites, centre) else {
         // At most two distinct positions: nothing to triangulate.
         return Ok(None);
     };
-    if prefix <= SEED_LIMIT {
-        // Presorting pays off only for large inputs.
-        let sites = if sites.len() >= 1 << 16 { sweep_sorted(&sites, centre, threads) } else { sites };
-        return Ok(Some(DelaunayTriangulation::<Site>::bulk_load(sites).map_err(spade_err)?));
-    }
-    // The bound is loose when many points share the smallest rounded distance (points on a ring
-    // around the centre): count the seed in the sweep order instead.
-    let sorted = sweep_sorted(&sites, centre, threads);
-    if seed_length(&sorted) <= SEED_LIMIT {
-        return Ok(Some(DelaunayTriangulation::<Site>::bulk_load(sorted).map_err(spade_err)?));
-    }
-    drop(sorted);
     // Many points nearest the centre (the bulk loader's seed) may be collinear: find, exactly,
     // a point off the line through the two nearest, or learn that all points are collinear.
     let (Some(&a), Some(&b)) = (sites.get(ia), sites.get(ib)) else {
@@ -853,11 +868,7 @@ fn seed_length(sorted: &[Site]) -> usize {
         }
         last = [last[1], last[2], Some(site.pos)];
         if let [Some(a), Some(b), Some(c)] = last
-            && robust::orient2d(
-                robust::Coord { x: a.x, y: a.y },
-                robust::Coord { x: b.x, y: b.y },
-                robust::Coord { x: c.x, y: c.y },
-            ) != 0.0
+            && locate::orient((a.x, a.y), (b.x, b.y), (c.x, c.y)) != 0.0
         {
             return popped + 1;
         }
