@@ -250,14 +250,17 @@ fn stitch(
     let Some(dt) = build(seam_sites, 1)? else {
         return Ok(None);
     };
+    // Seam triangles whose circle crosses the line are kept, numbered after the settled ones.
+    let total = l.settled + r.settled;
     let faces = dt.num_inner_faces();
-    let mut seam = Mesh { triangles: vec![[0; 3]; faces], neighbors: vec![[NONE; 3]; faces], vertices: 0 };
-    let mut crossing = Vec::with_capacity(faces);
-    copy_faces(&dt, 0, &mut seam.triangles, &mut seam.neighbors, |corners, names| {
-        crossing.push(
-            circle_reach(corners, names, m - SLACK) != Reach::Left
-                && circle_reach(corners, names, m + SLACK) != Reach::Right,
-        );
+    let (mut seam_triangles, mut seam_neighbors) = (vec![[0; 3]; faces], vec![[NONE; 3]; faces]);
+    let mut index = Vec::with_capacity(faces);
+    let mut kept = total as u32;
+    copy_faces(&dt, 0, &mut seam_triangles, &mut seam_neighbors, |corners, names| {
+        let crossing = circle_reach(corners, names, m - SLACK) != Reach::Left
+            && circle_reach(corners, names, m + SLACK) != Reach::Right;
+        index.push(if crossing { kept } else { NONE });
+        kept += u32::from(crossing);
     });
     drop(dt);
 
@@ -269,7 +272,6 @@ fn stitch(
     }
     mesh.triangles.copy_within(right.clone(), l.settled);
     mesh.neighbors.copy_within(right, l.settled);
-    let total = l.settled + r.settled;
     for nb in mesh.neighbors.get_mut(l.settled..total).unwrap_or_default() {
         *nb = nb.map(|n| if n == NONE { NONE } else { n + shift });
     }
@@ -278,17 +280,8 @@ fn stitch(
     let mut open = l.open;
     open.extend(r.open.iter().map(|&(t, k)| (t + shift, k)));
 
-    // Seam triangles whose circle crosses the line, with their neighbours among themselves.
-    let mut index = vec![NONE; crossing.len()];
-    let mut kept = total as u32;
-    for (slot, &ok) in index.iter_mut().zip(&crossing) {
-        if ok {
-            *slot = kept;
-            kept += 1;
-        }
-    }
-    for ((tri, nb), &ok) in seam.triangles.iter().zip(&seam.neighbors).zip(&crossing) {
-        if !ok {
+    for ((tri, nb), &new_index) in seam_triangles.iter().zip(&seam_neighbors).zip(&index) {
+        if new_index == NONE {
             continue;
         }
         let t = mesh.triangles.len() as u32;
