@@ -1154,8 +1154,9 @@ fn lowercase_first(text: &str) -> String {
     first.to_lowercase().chain(text.chars().skip(1)).collect()
 }
 
-/// User text for a message: control characters escaped, at most 40 characters.
-fn shorten(text: &str) -> String {
+/// User text for a message: control characters escaped, at most 40 characters (spec errors and
+/// lint findings).
+pub(crate) fn shorten(text: &str) -> String {
     let mut out = String::new();
     for c in text.chars().take(40) {
         if c.is_control() {

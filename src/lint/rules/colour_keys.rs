@@ -31,7 +31,7 @@ impl ColourKey {
     /// How a message names the legend: `legend "Species"` or `legend`.
     pub fn element(&self) -> String {
         match &self.title {
-            Some(t) => format!("legend \"{}\"", super::text_overlap::short(t)),
+            Some(t) => format!("legend \"{}\"", crate::spec::validate::shorten(t)),
             None => "legend".to_string(),
         }
     }

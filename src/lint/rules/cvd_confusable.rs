@@ -110,7 +110,7 @@ fn issue(legend: &ColourKey, key: &str) -> Option<Issue> {
     let (Some((la, ca)), Some((lb, cb))) = (legend.entries.get(c.pair.0), legend.entries.get(c.pair.1)) else {
         return None;
     };
-    let (la, lb) = (super::text_overlap::short(la), super::text_overlap::short(lb));
+    let (la, lb) = (crate::spec::validate::shorten(la), crate::spec::validate::shorten(lb));
     let others = match c.count.saturating_sub(1) {
         0 => String::new(),
         1 => format!("; 1 more pair is below {THRESHOLD}"),

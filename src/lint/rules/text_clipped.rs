@@ -1,9 +1,9 @@
 //! LB003 `text-clipped`: text that runs off the canvas is cut in every output.
 
-use super::text_overlap::short;
 use crate::lint::geometry::texts;
 use crate::lint::{Category, Issue, Rule, Severity, Subject};
 use crate::scene::Rect;
+use crate::spec::validate::shorten;
 
 /// The rule.
 pub static RULE: Rule = Rule {
@@ -30,7 +30,7 @@ fn check(s: &Subject<'_>) -> Vec<Issue> {
                 "",
                 format!(
                     "\"{}\" runs {cut:.0} px past the edge of the {}×{} canvas",
-                    short(&t.text.content),
+                    shorten(&t.text.content),
                     canvas.w,
                     canvas.h
                 ),

@@ -1,10 +1,10 @@
 //! LB005 `low-contrast-text`: text must stand out from what is painted under it (WCAG 2:
 //! 4.5:1 for normal text, 3:1 for large text).
 
-use super::text_overlap::short;
 use crate::guide::color::contrast_ratio;
 use crate::lint::geometry::{colour_under, texts};
 use crate::lint::{Category, Issue, Rule, Severity, Subject};
+use crate::spec::validate::shorten;
 
 /// Text at least this large (CSS pixels, 18 pt) needs only the large-text ratio.
 const LARGE_TEXT_PX: f64 = 24.0;
@@ -45,7 +45,7 @@ fn check(s: &Subject<'_>) -> Vec<Issue> {
                 "",
                 format!(
                     "\"{}\" ({} on {}) has a contrast of {ratio:.2}:1, below {needed}:1",
-                    short(&t.text.content),
+                    shorten(&t.text.content),
                     t.text.color.hex(),
                     under.hex()
                 ),

@@ -2,6 +2,7 @@
 
 use crate::lint::geometry::{overlapping_pairs, texts};
 use crate::lint::{Category, Issue, Rule, Severity, Subject};
+use crate::spec::validate::shorten;
 
 /// The rule.
 pub static RULE: Rule = Rule {
@@ -30,9 +31,9 @@ fn check(s: &Subject<'_>) -> Vec<Issue> {
                 format!(
                     "the {} \"{}\" overlaps the {} \"{}\" at ({:.0}, {:.0})",
                     a.element(),
-                    short(&a.text.content),
+                    shorten(&a.text.content),
                     b.element(),
-                    short(&b.text.content),
+                    shorten(&b.text.content),
                     a.bounds.x.max(b.bounds.x),
                     a.bounds.y.max(b.bounds.y)
                 ),
@@ -47,15 +48,6 @@ fn check(s: &Subject<'_>) -> Vec<Issue> {
             format!("{} more pairs of overlapping texts", pairs.len() - LISTED),
             "make the chart larger (`size`) or the text smaller (`font_size`)",
         ));
-    }
-    out
-}
-
-/// At most 40 characters of a text, for messages.
-pub(crate) fn short(s: &str) -> String {
-    let mut out: String = s.chars().take(40).collect();
-    if s.chars().count() > 40 {
-        out.push('…');
     }
     out
 }

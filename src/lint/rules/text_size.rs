@@ -1,8 +1,8 @@
 //! LB004 `text-too-small`: text below a legible size at the output scale.
 
-use super::text_overlap::short;
 use crate::lint::geometry::texts;
 use crate::lint::{Category, Issue, Rule, Severity, Subject};
+use crate::spec::validate::shorten;
 
 /// Smallest legible text in CSS pixels (about 6.75 pt); SVG and 1× PNG show it at this size.
 pub const MIN_TEXT_PX: f64 = crate::guide::theme::MIN_TEXT_SIZE;
@@ -29,7 +29,7 @@ fn check(s: &Subject<'_>) -> Vec<Issue> {
             "{} text{} smaller than {MIN_TEXT_PX} px; the smallest is \"{}\" at {:.1} px",
             small.len(),
             if small.len() == 1 { " is" } else { "s are" },
-            short(&smallest.text.content),
+            shorten(&smallest.text.content),
             smallest.text.size
         ),
         "raise `font_size` (12 is the default) or make the chart larger",
