@@ -265,11 +265,8 @@ pub fn darken(color: Color, amount: f64) -> Color {
 
 /// WCAG relative luminance of an opaque colour (0 black, 1 white).
 pub fn relative_luminance(color: Color) -> f64 {
-    let channel = |c: u8| {
-        let c = c as f64 / 255.0;
-        if c <= 0.04045 { c / 12.92 } else { ((c + 0.055) / 1.055).powf(2.4) }
-    };
-    0.2126 * channel(color.r) + 0.7152 * channel(color.g) + 0.0722 * channel(color.b)
+    let [r, g, b] = crate::guide::colour_science::linear_rgb(color);
+    0.2126 * r + 0.7152 * g + 0.0722 * b
 }
 
 /// WCAG contrast ratio of two colours (1 to 21).
