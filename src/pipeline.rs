@@ -89,8 +89,30 @@ pub fn load(spec_path: &Path, policy: PathPolicy) -> Result<Loaded, Failed> {
     };
     let needed = needed_columns(&json);
     let mut tables = BTreeMap::new();
+    let plans = timed("plan data", || data::transform::build_plans(&sources, &doc, &spec_dir, policy, false));
+    diagnostics.extend(plans.errors.iter().map(|e| data::transform::to_diagnostic(e, &doc, &source.text)));
     for (name, source_spec) in &sources {
         let wanted: Option<Vec<String>> = needed.get(name).map(|set| set.iter().cloned().collect());
+        if plans.failed.contains(name) {
+            continue;
+        }
+        if let Some(frame) = plans.frames.get(name) {
+            match timed(&format!("load data \"{name}\""), || collect_source(frame, wanted.as_deref(), name)) {
+                Ok(table) => {
+                    tables.insert(name.clone(), table);
+                }
+                Err(message) => {
+                    let key = if source_spec.transform.is_some() { "transform" } else { "from" };
+                    let path = data::transform::plan::source_path(name, key);
+                    diagnostics.push(
+                        Diagnostic::error(format!("data \"{name}\": {message}"))
+                            .with_hint("`dataink data SPEC NAME` shows the rows after each source's transforms")
+                            .at_opt(doc.span_of(&path)),
+                    );
+                }
+            }
+            continue;
+        }
         match timed(&format!("load data \"{name}\""), || {
             data::load_source(source_spec, &spec_dir, policy, wanted.as_deref())
         }) {
@@ -120,6 +142,135 @@ pub fn load(spec_path: &Path, policy: PathPolicy) -> Result<Loaded, Failed> {
         Some(spec) if !has_errors => Ok(Loaded { source, spec, doc, tables, highlights, warnings: diagnostics }),
         _ => Err(Failed { source, diagnostics }),
     }
+}
+
+/// A data source as its charts see it: the schema and first rows after its transforms.
+#[derive(Debug)]
+pub struct SourcePreview {
+    /// The source's name.
+    pub name: String,
+    /// Column names and types.
+    pub schema: Vec<(String, String)>,
+    /// Rows after the transforms.
+    pub rows: usize,
+    /// The first rows, as a text table.
+    pub head: String,
+}
+
+/// The sources of a spec (or only `only`) after their transforms, with the first `rows` rows.
+/// Only the spec's `[data]` tables need to be valid: charts are not checked.
+pub fn preview_sources(
+    spec_path: &Path,
+    policy: PathPolicy,
+    only: Option<&str>,
+    rows: usize,
+) -> Result<Vec<SourcePreview>, Failed> {
+    let fail = |source: SourceFile, diagnostics| Failed { source, diagnostics };
+    let source = match SourceFile::read(spec_path) {
+        Ok(s) => s,
+        Err(e) => {
+            let d = Diagnostic::error(format!("cannot read spec file `{}`: {e}", spec_path.display()));
+            return Err(fail(SourceFile::new(spec_path, String::new()), vec![d]));
+        }
+    };
+    let checked = spec::check(&source);
+    let Some(doc) = checked.doc else { return Err(fail(source, checked.diagnostics)) };
+    let sources = match &checked.spec {
+        Some(s) => s.data.clone(),
+        None => valid_sources(&doc.to_json()),
+    };
+    let data_errors: Vec<Diagnostic> = checked
+        .diagnostics
+        .into_iter()
+        .filter(|d| d.is_error() && d.span.as_ref().is_some_and(|sp| in_data_table(&doc, sp.start)))
+        .collect();
+    if !data_errors.is_empty() {
+        return Err(fail(source, data_errors));
+    }
+    if let Some(name) = only
+        && !sources.contains_key(name)
+    {
+        let known: Vec<&str> = sources.keys().map(String::as_str).collect();
+        let d = Diagnostic::error(format!("no data source \"{name}\" in the spec")).with_hint(spec::suggest::hint(
+            name,
+            &known,
+            "data sources",
+            true,
+        ));
+        return Err(fail(source, vec![d]));
+    }
+    let spec_dir = spec_path.parent().map(Path::to_path_buf).unwrap_or_else(|| PathBuf::from("."));
+    let plans = data::transform::build_plans(&sources, &doc, &spec_dir, policy, true);
+    let mut diagnostics: Vec<Diagnostic> =
+        plans.errors.iter().map(|e| data::transform::to_diagnostic(e, &doc, &source.text)).collect();
+    let mut out = Vec::new();
+    for (name, frame) in &plans.frames {
+        if only.is_some_and(|o| o != name) {
+            continue;
+        }
+        let mut lf = frame.clone();
+        let result = lf.collect_schema().and_then(|schema| {
+            let count = frame.clone().select([polars::prelude::len()]).collect()?;
+            let n = count.columns().first().and_then(|c| c.get(0).ok()).and_then(|v| v.extract::<usize>()).unwrap_or(0);
+            let head = frame.clone().limit(rows as polars::prelude::IdxSize).collect()?;
+            Ok((schema, n, head))
+        });
+        match result {
+            Ok((schema, n, head)) => out.push(SourcePreview {
+                name: name.clone(),
+                schema: schema.iter().map(|(k, v)| (k.to_string(), v.to_string())).collect(),
+                rows: n,
+                head: format!("{head}"),
+            }),
+            Err(e) => diagnostics.push(
+                Diagnostic::error(format!("data \"{name}\": {}", data::transform::first_line(&e.to_string())))
+                    .at_opt(doc.span_of(&[PathSeg::Key("data".into()), PathSeg::Key(name.clone())])),
+            ),
+        }
+    }
+    if diagnostics.iter().any(Diagnostic::is_error) {
+        return Err(fail(source, diagnostics));
+    }
+    Ok(out)
+}
+
+/// Whether a byte offset lies inside one of the spec's `[data.NAME]` tables.
+fn in_data_table(doc: &SpecDoc, offset: usize) -> bool {
+    let Some(data) = doc.get(&[PathSeg::Key("data".into())]) else { return false };
+    data.entries().iter().any(|e| {
+        let start = e.key_span.start.min(e.value.span.start);
+        let end = value_end(&e.value);
+        (start..=end).contains(&offset)
+    })
+}
+
+/// The last byte a value or anything below it covers.
+fn value_end(value: &spec::SpannedValue) -> usize {
+    let own = value.span.end;
+    let inner = match &value.kind {
+        spec::ValueKind::Table(entries) => entries.iter().map(|e| value_end(&e.value)).max(),
+        spec::ValueKind::Array(items) => items.iter().map(value_end).max(),
+        _ => None,
+    };
+    inner.map_or(own, |i| i.max(own))
+}
+
+/// Run a source's plan, reading only the columns its charts use when they all exist (else every
+/// column, so a missing-column diagnostic can list the real ones).
+fn collect_source(frame: &polars::prelude::LazyFrame, wanted: Option<&[String]>, name: &str) -> Result<Table, String> {
+    use polars::prelude::col;
+    let mut lf = frame.clone();
+    let schema = lf.collect_schema().map_err(|e| data::transform::first_line(&e.to_string()))?;
+    if let Some(columns) = wanted
+        && !columns.is_empty()
+        && columns.iter().all(|c| schema.contains(c))
+    {
+        lf = lf.select(columns.iter().map(|c| col(c.as_str())).collect::<Vec<_>>());
+    }
+    let df =
+        lf.collect().map_err(|e| format!("the transforms fail: {}", data::transform::first_line(&e.to_string())))?;
+    data::load::frame_to_table(&df, &format!("data \"{name}\" after its transforms"))
+        .map_err(|e| format!("{e}; {}", e.hint()))
 }
 
 /// Evaluate every selection of a valid spec against its loaded table; problems (unknown columns,

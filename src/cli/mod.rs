@@ -115,6 +115,23 @@ enum Command {
         #[arg(long)]
         allow_outside_paths: bool,
     },
+    /// Print each data source of a spec as its charts see it: the columns and their types, the
+    /// number of rows and the first rows, after the source's transforms.
+    #[command(after_help = format!(
+        "Only the spec's [data] tables need to be valid; charts are not checked.\n\nExamples:\n  dataink data examples/gallery.toml\n  dataink data spec.toml cars --rows 20\n\n{EXIT_CODES}"
+    ))]
+    Data {
+        /// The spec file (TOML).
+        spec: PathBuf,
+        /// Only this data source.
+        source: Option<String>,
+        /// How many rows to show.
+        #[arg(long, default_value_t = 10)]
+        rows: usize,
+        /// Allow data paths outside the spec's folder (absolute, or climbing out with `..`).
+        #[arg(long)]
+        allow_outside_paths: bool,
+    },
     /// Print the JSON Schema of the spec format (for editor completion and validation).
     #[command(after_help = "Example:\n  dataink schema > dataink.schema.json")]
     Schema,
@@ -270,6 +287,29 @@ fn report(
 }
 
 /// `dataink lint --rules`: every rule, one per line.
+/// `dataink data`: each source's schema and first rows after its transforms.
+fn data_preview(spec: &std::path::Path, only: Option<&str>, rows: usize, policy: PathPolicy) -> ExitCode {
+    match pipeline::preview_sources(spec, policy, only, rows.min(10_000)) {
+        Ok(previews) => {
+            let mut text = String::new();
+            for p in previews {
+                text.push_str(&format!("data \"{}\": {} rows, {} columns\n", p.name, p.rows, p.schema.len()));
+                for (name, dtype) in &p.schema {
+                    text.push_str(&format!("  {name}: {dtype}\n"));
+                }
+                text.push_str(&p.head);
+                text.push_str("\n\n");
+            }
+            print!("{text}");
+            ExitCode::SUCCESS
+        }
+        Err(failed) => {
+            eprint!("{}", failed.render());
+            ExitCode::from(2)
+        }
+    }
+}
+
 fn list_rules() -> ExitCode {
     for r in dataink::lint::rules::ALL {
         println!("{}  {:<28} {:<8} {:<11} {}", r.code, r.name, r.severity.name(), r.category.name(), r.summary);
@@ -292,6 +332,10 @@ pub fn run() -> ExitCode {
             }
         },
         Command::Lint { rules: true, .. } => list_rules(),
+        Command::Data { spec, source, rows, allow_outside_paths } => {
+            let policy = if allow_outside_paths { PathPolicy::AllowOutside } else { PathPolicy::InsideSpecFolder };
+            data_preview(&spec, source.as_deref(), rows, policy)
+        }
         Command::Explore { spec, out, allow_outside_paths } => {
             let policy = if allow_outside_paths { PathPolicy::AllowOutside } else { PathPolicy::InsideSpecFolder };
             explore(&spec, out, policy)

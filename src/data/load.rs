@@ -158,21 +158,23 @@ pub fn load_source(
                 _ => load_file(&resolved, format, separator, None),
             }
         }
-        (None, Some(values)) => {
-            let bytes = serde_json::to_vec(values).map_err(|e| LoadError::Parse {
-                origin: "inline values".into(),
-                format: DataFormat::Json,
-                message: e.to_string(),
-            })?;
-            let df = JsonReader::new(Cursor::new(bytes))
-                .with_json_format(JsonFormat::Json)
-                .infer_schema_len(None)
-                .finish()
-                .map_err(|e| parse_error("inline values", DataFormat::Json, e))?;
-            frame_to_table(&df, "inline values")
-        }
+        (None, Some(values)) => frame_to_table(&inline_frame(values)?, "inline values"),
         _ => Err(LoadError::NoSource),
     }
+}
+
+/// Inline `values` rows as a frame.
+pub fn inline_frame(values: &[std::collections::BTreeMap<String, serde_json::Value>]) -> Result<DataFrame, LoadError> {
+    let bytes = serde_json::to_vec(values).map_err(|e| LoadError::Parse {
+        origin: "inline values".into(),
+        format: DataFormat::Json,
+        message: e.to_string(),
+    })?;
+    JsonReader::new(Cursor::new(bytes))
+        .with_json_format(JsonFormat::Json)
+        .infer_schema_len(None)
+        .finish()
+        .map_err(|e| parse_error("inline values", DataFormat::Json, e))
 }
 
 /// Load a file of a known format, optionally only some of its columns (CSV and Parquet).
@@ -182,6 +184,18 @@ pub fn load_file(
     separator: u8,
     columns: Option<&[String]>,
 ) -> Result<Table, LoadError> {
+    let df = read_frame(path, format, separator, columns)?;
+    frame_to_table(&df, &format!("`{}`", path.display()))
+}
+
+/// Read a CSV, Parquet or JSON file into a frame, optionally only some of its columns (CSV and
+/// Parquet).
+pub fn read_frame(
+    path: &Path,
+    format: DataFormat,
+    separator: u8,
+    columns: Option<&[String]>,
+) -> Result<DataFrame, LoadError> {
     let file = File::open(path).map_err(|e| match e.kind() {
         std::io::ErrorKind::NotFound => LoadError::NotFound(path.to_path_buf()),
         _ => LoadError::Io(path.to_path_buf(), e),
@@ -210,7 +224,7 @@ pub fn load_file(
         }
     }
     .map_err(|e| parse_error(&origin, format, e))?;
-    frame_to_table(&df, &origin)
+    Ok(df)
 }
 
 fn parse_error(origin: &str, format: DataFormat, e: PolarsError) -> LoadError {

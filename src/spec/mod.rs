@@ -10,12 +10,14 @@ pub mod diagnostic;
 pub mod schema;
 pub mod source;
 pub mod suggest;
+pub mod transform;
 pub mod types;
 pub mod validate;
 
 pub use diagnostic::{Diagnostic, Severity, SourceFile, render_all};
 pub use schema::spec_schema;
 pub use source::{PathSeg, SpannedValue, SpecDoc, TableEntry, ValueKind};
+pub use transform::TransformStep;
 pub use types::*;
 
 /// A spec that passed every check, with its parsed text for pointing at places later.
@@ -325,7 +327,7 @@ y = "y"
         assert_eq!(
             messages,
             [
-                "error: `data.a` has neither `path` nor `values`",
+                "error: `data.a` has none of `path`, `values` or `from`",
                 "error: `data.b` has both `path` and `values`",
                 "error: `delimiter` must be exactly 1 character, found 2 characters",
                 "error: invalid chart name `a b`",
@@ -481,6 +483,8 @@ point_size = "d"
                 values: None,
                 extent: None,
                 delimiter: Some(";".to_owned()),
+                from: None,
+                transform: None,
             },
         );
         data.insert(
@@ -494,6 +498,8 @@ point_size = "d"
                 ]),
                 extent: None,
                 delimiter: None,
+                from: None,
+                transform: None,
             },
         );
         let field = |f: &str| Channel::Field(f.to_owned());

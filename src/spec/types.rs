@@ -88,7 +88,8 @@ pub enum Combine {
     Or,
 }
 
-/// Where a table comes from: a file next to the spec, or rows written inline.
+/// Where a table comes from: a file next to the spec, rows written inline, or another source;
+/// then optional transforms.
 #[derive(Clone, Debug, Deserialize, Serialize, JsonSchema, PartialEq)]
 pub struct DataSource {
     /// File path relative to the spec file (`.csv`, `.parquet`, `.json`).
@@ -110,6 +111,16 @@ pub struct DataSource {
     #[serde(default)]
     #[schemars(length(min = 1, max = 1), example = &";")]
     pub delimiter: Option<String>,
+    /// Another data source whose rows (after its own transforms) this one starts from, instead
+    /// of `path` or `values`: one file can feed several shapes.
+    #[serde(default)]
+    #[schemars(example = &"cars")]
+    pub from: Option<String>,
+    /// Steps run in order over the rows before any chart sees them, compiled into one lazy
+    /// plan with the file scan: `filter`, `calculate`, `cast`, `bin`, `aggregate`, `fold`,
+    /// `pivot`, `sort`, `sample`, `window`, `join`, `lookup`, `flatten`, `sql`.
+    #[serde(default)]
+    pub transform: Option<Vec<super::transform::TransformStep>>,
 }
 
 /// Supported file formats.

@@ -837,17 +837,18 @@ impl<'s> Walker<'s> {
             return;
         }
         let name = format!("`data.{}`", shorten(&display_key(&e.key)));
-        match (source.entry("path"), source.entry("values")) {
-            (None, None) => self.diags.push(
-                Diagnostic::error(format!("{name} has neither `path` nor `values`"))
+        let origins: Vec<&TableEntry> = ["path", "values", "from"].iter().filter_map(|k| source.entry(k)).collect();
+        match origins.as_slice() {
+            [] => self.diags.push(
+                Diagnostic::error(format!("{name} has none of `path`, `values` or `from`"))
                     .at(source.span.clone())
-                    .with_hint("add `path = \"data/iris.csv\"` (a file next to the spec) or inline rows `values = [{ x = 1, y = 2 }]`"),
+                    .with_hint("add `path = \"data/iris.csv\"` (a file next to the spec), inline rows `values = [{ x = 1, y = 2 }]` or `from = \"OTHER\"` (another source, then its own `transform`)"),
             ),
-            (Some(_), Some(values)) => self.diags.push(
-                Diagnostic::error(format!("{name} has both `path` and `values`"))
-                    .at(values.key_span.clone())
-                    .with_label("remove this or `path`")
-                    .with_hint("a data source reads a file (`path`) or holds inline rows (`values`), not both"),
+            [first, second, ..] => self.diags.push(
+                Diagnostic::error(format!("{name} has both `{}` and `{}`", first.key, second.key))
+                    .at(second.key_span.clone())
+                    .with_label(format!("remove this or `{}`", first.key))
+                    .with_hint("a data source reads a file (`path`), holds inline rows (`values`) or derives from another source (`from`): exactly one"),
             ),
             _ => {}
         }

@@ -17,3 +17,4 @@ mod lint_technique;
 mod multivariate;
 mod networks;
 mod report;
+mod transform;

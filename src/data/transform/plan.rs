@@ -1,0 +1,263 @@
+//! One lazy plan per data source that needs one: the file scan (or the rows of another source,
+//! for `from`), then the source's transform steps, built in dependency order.
+
+use std::collections::{BTreeMap, BTreeSet};
+use std::path::Path;
+
+use polars::prelude::*;
+
+use super::TransformError;
+use super::steps::{Env, apply_steps};
+use crate::data::load::{LoadError, infer_format, load_source};
+use crate::data::paths::{PathPolicy, resolve_data_path};
+use crate::spec::{DataFormat, DataSource, PathSeg, SpannedValue, SpecDoc};
+
+/// Why a source's plan could not be made.
+#[derive(Debug)]
+pub enum PlanError {
+    /// Its file (or inline values) could not be read.
+    Load {
+        /// The data source.
+        source: String,
+        /// Why.
+        error: LoadError,
+    },
+    /// A transform step, or `from`, is wrong.
+    Transform(TransformError),
+}
+
+/// The plans of a spec's sources, and every problem met making them.
+#[derive(Default)]
+pub struct SourcePlans {
+    /// The lazy plan of each source that has transforms, derives from another, or is derived from
+    /// or joined by another.
+    pub frames: BTreeMap<String, LazyFrame>,
+    /// Problems, one source's first problem each (plus every misplaced option of its steps).
+    pub errors: Vec<PlanError>,
+    /// The sources that needed a plan and have none because of a problem.
+    pub failed: BTreeSet<String>,
+}
+
+impl std::fmt::Debug for SourcePlans {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("SourcePlans")
+            .field("frames", &self.frames.keys().collect::<Vec<_>>())
+            .field("errors", &self.errors)
+            .field("failed", &self.failed)
+            .finish()
+    }
+}
+
+/// Whether a source needs a lazy plan: it transforms or derives, or others build on it.
+fn needs_plan(name: &str, source: &DataSource, referenced: &BTreeSet<String>) -> bool {
+    source.transform.as_ref().is_some_and(|t| !t.is_empty()) || source.from.is_some() || referenced.contains(name)
+}
+
+/// The other sources a source builds on: `from`, and the targets of its `join`/`lookup` steps.
+fn dependencies(source: &DataSource) -> Vec<String> {
+    let mut out: Vec<String> = source.from.iter().cloned().collect();
+    for step in source.transform.iter().flatten() {
+        out.extend(step.join.iter().chain(step.lookup.iter()).cloned());
+    }
+    out
+}
+
+/// Build the plans of every source that needs one (or of all sources, with `all`).
+pub fn build_plans(
+    sources: &BTreeMap<String, DataSource>,
+    doc: &SpecDoc,
+    spec_dir: &Path,
+    policy: PathPolicy,
+    all: bool,
+) -> SourcePlans {
+    let referenced: BTreeSet<String> = sources.values().flat_map(dependencies).collect();
+    let names: Vec<String> = sources.keys().cloned().collect();
+    let mut plans = SourcePlans::default();
+    let mut state: BTreeMap<&str, Visit> = BTreeMap::new();
+    for name in sources.keys() {
+        if all || needs_plan(name, &sources[name], &referenced) {
+            let mut stack = Vec::new();
+            visit(name, sources, doc, spec_dir, policy, &names, &mut state, &mut stack, &mut plans);
+        }
+    }
+    plans
+}
+
+#[derive(Clone, Copy, PartialEq)]
+enum Visit {
+    Active,
+    Done,
+}
+
+#[allow(clippy::too_many_arguments)]
+fn visit<'a>(
+    name: &'a str,
+    sources: &'a BTreeMap<String, DataSource>,
+    doc: &SpecDoc,
+    spec_dir: &Path,
+    policy: PathPolicy,
+    names: &[String],
+    state: &mut BTreeMap<&'a str, Visit>,
+    stack: &mut Vec<&'a str>,
+    plans: &mut SourcePlans,
+) {
+    let Some(source) = sources.get(name) else { return };
+    match state.get(name) {
+        Some(Visit::Done) => return,
+        Some(Visit::Active) => {
+            let start = stack.iter().position(|s| *s == name).unwrap_or(0);
+            let mut cycle: Vec<&str> = stack[start..].to_vec();
+            cycle.push(name);
+            let path = source_path(name, if source.from.is_some() { "from" } else { "transform" });
+            plans.errors.push(PlanError::Transform(
+                TransformError::at(path, format!("data sources build on each other in a cycle: {}", cycle.join(" → ")))
+                    .with_hint("a source may start from or join only sources that do not lead back to it"),
+            ));
+            plans.failed.insert(name.to_owned());
+            return;
+        }
+        None => {}
+    }
+    state.insert(name, Visit::Active);
+    stack.push(name);
+    for dep in dependencies(source) {
+        if let Some((key, _)) = sources.get_key_value(dep.as_str()) {
+            visit(key, sources, doc, spec_dir, policy, names, state, stack, plans);
+        }
+    }
+    stack.pop();
+    state.insert(name, Visit::Done);
+    match plan_one(name, source, doc, spec_dir, policy, names, plans) {
+        Some(frame) => {
+            plans.frames.insert(name.to_owned(), frame);
+        }
+        None => {
+            plans.failed.insert(name.to_owned());
+        }
+    }
+}
+
+fn plan_one(
+    name: &str,
+    source: &DataSource,
+    doc: &SpecDoc,
+    spec_dir: &Path,
+    policy: PathPolicy,
+    names: &[String],
+    plans: &mut SourcePlans,
+) -> Option<LazyFrame> {
+    let base = match &source.from {
+        Some(from) => match plans.frames.get(from) {
+            Some(frame) => frame.clone(),
+            None => {
+                let known: Vec<&str> = names.iter().map(String::as_str).filter(|n| *n != name).collect();
+                // A source that failed to load has its own error already.
+                if !names.iter().any(|n| n == from) {
+                    plans.errors.push(PlanError::Transform(
+                        TransformError::at(
+                            source_path(name, "from"),
+                            format!("no data source \"{from}\" to start from"),
+                        )
+                        .with_hint(crate::spec::suggest::hint(
+                            from,
+                            &known,
+                            "data sources",
+                            true,
+                        )),
+                    ));
+                }
+                return None;
+            }
+        },
+        None => match scan(source, spec_dir, policy) {
+            Ok(frame) => frame,
+            Err(error) => {
+                plans.errors.push(PlanError::Load { source: name.to_owned(), error });
+                return None;
+            }
+        },
+    };
+    let steps = doc.get(&source_path(name, "transform"));
+    let Some(items) = steps.and_then(SpannedValue::as_array) else { return Some(base) };
+    let env = Env { source: name, others: &plans.frames, names };
+    match apply_steps(base, items, &source_path(name, "transform"), &env) {
+        Ok(frame) => Some(frame),
+        Err(errors) => {
+            plans.errors.extend(errors.into_iter().map(PlanError::Transform));
+            None
+        }
+    }
+}
+
+/// The spec path `data.NAME.KEY`.
+pub fn source_path(name: &str, key: &str) -> Vec<PathSeg> {
+    vec![PathSeg::Key("data".into()), PathSeg::Key(name.to_owned()), PathSeg::Key(key.to_owned())]
+}
+
+/// The rows of a source as a lazy frame: CSV and Parquet files are scanned lazily (so the
+/// transforms' projections and predicates reach the reader); other sources are read whole.
+pub fn scan(source: &DataSource, spec_dir: &Path, policy: PathPolicy) -> Result<LazyFrame, LoadError> {
+    if let Some(path) = &source.path {
+        let resolved = resolve_data_path(spec_dir, path, policy).map_err(LoadError::Path)?;
+        let format = source.format.or_else(|| infer_format(&resolved));
+        let text = resolved.to_string_lossy().into_owned();
+        // Empty and missing files go to the readers below, which say what is wrong.
+        let readable = std::fs::metadata(&resolved).is_ok_and(|m| m.is_file() && m.len() > 0);
+        let lazy = match format {
+            Some(DataFormat::Csv) if readable => {
+                let separator = source.delimiter.as_deref().and_then(|d| d.bytes().next()).unwrap_or_else(|| {
+                    if resolved.extension().is_some_and(|e| e.eq_ignore_ascii_case("tsv")) { b'\t' } else { b',' }
+                });
+                let lf = LazyCsvReader::new(PlRefPath::new(text.as_str()))
+                    .with_has_header(true)
+                    .with_infer_schema_length(Some(10_000))
+                    .with_try_parse_dates(true)
+                    .map_parse_options(|p| p.with_separator(separator))
+                    .finish();
+                Some(lf)
+            }
+            Some(DataFormat::Parquet) if readable => {
+                Some(LazyFrame::scan_parquet(PlRefPath::new(text.as_str()), ScanArgsParquet::default()))
+            }
+            _ => None,
+        };
+        if let Some(lf) = lazy {
+            let origin = format!("`{}`", resolved.display());
+            let mut lf = lf.map_err(|e| LoadError::Parse {
+                origin: origin.clone(),
+                format: format.unwrap_or(DataFormat::Csv),
+                message: e.to_string(),
+            })?;
+            // Check the file now (header, schema), so a bad file is a load error, not a step's.
+            let schema = lf.collect_schema().map_err(|e| LoadError::Parse {
+                origin,
+                format: format.unwrap_or(DataFormat::Csv),
+                message: e.to_string().lines().next().unwrap_or("").to_owned(),
+            })?;
+            // A byte-order mark is not part of the first column's name.
+            if let Some(first) = schema.iter_names().next()
+                && let Some(clean) = first.strip_prefix('\u{feff}')
+            {
+                lf = lf.rename([first.as_str()], [clean], true);
+            }
+            return Ok(lf);
+        }
+    }
+    // JSON records and inline rows stay frames, so list columns can still be flattened.
+    if let Some(values) = &source.values {
+        return Ok(crate::data::load::inline_frame(values)?.lazy());
+    }
+    if let Some(path) = &source.path {
+        let resolved = resolve_data_path(spec_dir, path, policy).map_err(LoadError::Path)?;
+        if source.format.or_else(|| infer_format(&resolved)) == Some(DataFormat::Json) {
+            return Ok(crate::data::load::read_frame(&resolved, DataFormat::Json, b',', None)?.lazy());
+        }
+    }
+    let table = load_source(source, spec_dir, policy, None)?;
+    let frame = crate::data::frame::table_to_frame(&table).map_err(|e| LoadError::Parse {
+        origin: "the source".into(),
+        format: source.format.unwrap_or(DataFormat::Json),
+        message: e.to_string(),
+    })?;
+    Ok(frame.lazy())
+}
