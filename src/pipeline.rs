@@ -538,6 +538,21 @@ pub struct Rendered {
     pub lint: ChartLint,
 }
 
+/// Why [`render_all`] failed, with the charts it still drew and wrote (their files exist).
+#[derive(Debug, Default)]
+pub struct RenderFailure {
+    /// The charts written before or beside the failures, in spec order.
+    pub rendered: Vec<Rendered>,
+    /// Every problem: a chart that could not be drawn or written, or one that stopped all of them.
+    pub diagnostics: Vec<Diagnostic>,
+}
+
+impl From<Vec<Diagnostic>> for RenderFailure {
+    fn from(diagnostics: Vec<Diagnostic>) -> RenderFailure {
+        RenderFailure { rendered: Vec::new(), diagnostics }
+    }
+}
+
 /// One chart drawn and linted.
 #[derive(Debug)]
 pub struct Linted {
@@ -645,11 +660,12 @@ pub fn mark_diagnostic(loaded: &Loaded, error: &MarkError) -> Diagnostic {
 }
 
 /// Draw and write the selected charts in parallel. `progress` is called once per finished chart.
+/// When some charts fail, the others are still written and the failure lists them.
 pub fn render_all(
     loaded: &Loaded,
     options: &RenderOptions,
     progress: &(dyn Fn(&str) + Sync),
-) -> Result<Vec<Rendered>, Vec<Diagnostic>> {
+) -> Result<Vec<Rendered>, RenderFailure> {
     let selected = select_charts(&loaded.spec, &options.charts).map_err(|d| vec![d])?;
     // Check every canvas before any drawing allocates it.
     let mut problems = Vec::new();
@@ -670,13 +686,14 @@ pub fn render_all(
         }
     }
     if !problems.is_empty() {
-        return Err(problems);
+        return Err(problems.into());
     }
     if let Err(e) = std::fs::create_dir_all(&options.out_dir) {
         return Err(vec![Diagnostic::error(format!(
             "cannot create output folder `{}`: {e}",
             options.out_dir.display()
-        ))]);
+        ))]
+        .into());
     }
     let results: Vec<Result<Rendered, Diagnostic>> = selected
         .par_iter()
@@ -699,7 +716,7 @@ pub fn render_all(
             Err(d) => errors.push(d),
         }
     }
-    if errors.is_empty() { Ok(rendered) } else { Err(errors) }
+    if errors.is_empty() { Ok(rendered) } else { Err(RenderFailure { rendered, diagnostics: errors }) }
 }
 
 fn write_chart(

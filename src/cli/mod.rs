@@ -1,5 +1,7 @@
 //! Command-line interface: argument parsing and exit codes. Thin: all work is in the library.
 
+mod output;
+
 use std::io::IsTerminal;
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -7,6 +9,7 @@ use std::process::ExitCode;
 use clap::{Parser, Subcommand, ValueEnum};
 use dataink::data::PathPolicy;
 use dataink::pipeline::{self, Formats, RenderOptions};
+use output::{errln, errs, outln};
 
 const EXIT_CODES: &str = "Exit codes:\n  0  success\n  1  lint errors found (`dataink lint`, `dataink report`; with --deny-warnings, warnings too)\n  2  bad input (spec, data) or failure";
 
@@ -145,15 +148,15 @@ fn explore(spec: &std::path::Path, out: PathBuf, policy: PathPolicy) -> ExitCode
         Err(code) => return code,
     };
     for w in &loaded.warnings {
-        eprint!("{}", loaded.source.render(w));
+        errs!("{}", loaded.source.render(w));
     }
     let title = format!("dataink explore — {}", spec.display());
     let session = dataink::explore::Session::new(loaded, 1.0);
     match dataink::explore::app::run(session, out, &title) {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
-            eprintln!("error: cannot open the window: {e}");
-            eprintln!("hint: `dataink explore` needs a display (X11) with OpenGL; `dataink render` works without one");
+            errln!("error: cannot open the window: {e}");
+            errln!("hint: `dataink explore` needs a display (X11) with OpenGL; `dataink render` works without one");
             ExitCode::from(2)
         }
     }
@@ -162,10 +165,10 @@ fn explore(spec: &std::path::Path, out: PathBuf, policy: PathPolicy) -> ExitCode
 /// `dataink explore` in a build without the window: say how to get it.
 #[cfg(not(feature = "explore"))]
 fn explore(_spec: &std::path::Path, _out: PathBuf, _policy: PathPolicy) -> ExitCode {
-    eprintln!("error: this dataink was built without the interactive window");
-    eprintln!("hint: build it with the `explore` feature:");
-    eprintln!("  cargo run --release --features explore -- explore SPEC");
-    eprintln!("  cargo install --path . --features explore");
+    errln!("error: this dataink was built without the interactive window");
+    errln!("hint: build it with the `explore` feature:");
+    errln!("  cargo run --release --features explore -- explore SPEC");
+    errln!("  cargo install --path . --features explore");
     ExitCode::from(2)
 }
 
@@ -197,9 +200,9 @@ enum LintFormat {
 /// Load a spec, printing every problem on failure.
 fn load_or_report(spec: &std::path::Path, policy: PathPolicy) -> Result<pipeline::Loaded, ExitCode> {
     pipeline::load(spec, policy).map_err(|failed| {
-        eprint!("{}", failed.render());
+        errs!("{}", failed.render());
         let errors = failed.diagnostics.iter().filter(|d| d.is_error()).count();
-        eprintln!("error: {} problem{} in `{}`", errors, if errors == 1 { "" } else { "s" }, spec.display());
+        errln!("error: {} problem{} in `{}`", errors, if errors == 1 { "" } else { "s" }, spec.display());
         ExitCode::from(2)
     })
 }
@@ -208,7 +211,7 @@ fn load_or_report(spec: &std::path::Path, policy: PathPolicy) -> Result<pipeline
 fn draw_and_lint_or_report(loaded: &pipeline::Loaded, charts: &[String]) -> Result<Vec<pipeline::Linted>, ExitCode> {
     pipeline::draw_and_lint(loaded, charts).map_err(|diagnostics| {
         for d in &diagnostics {
-            eprint!("{}", loaded.source.render(d));
+            errs!("{}", loaded.source.render(d));
         }
         ExitCode::from(2)
     })
@@ -238,7 +241,7 @@ fn lint(
         LintFormat::Sarif => dataink::lint::output::sarif(&path, &results),
         LintFormat::Junit => dataink::lint::output::junit(&path, &results, deny_warnings),
     };
-    println!("{}", text.trim_end());
+    outln!("{}", text.trim_end());
     if dataink::lint::fails(&results, deny_warnings) { ExitCode::from(1) } else { ExitCode::SUCCESS }
 }
 
@@ -254,7 +257,7 @@ fn report(
     let html_template = match template.map(dataink::report::TemplateSource::read).transpose() {
         Ok(t) => t,
         Err(e) => {
-            eprintln!("error: {e}");
+            errln!("error: {e}");
             return ExitCode::from(2);
         }
     };
@@ -263,7 +266,7 @@ fn report(
         Err(code) => return code,
     };
     for w in &loaded.warnings {
-        eprint!("{}", loaded.source.render(w));
+        errs!("{}", loaded.source.render(w));
     }
     let linted = match draw_and_lint_or_report(&loaded, charts) {
         Ok(l) => l,
@@ -276,11 +279,11 @@ fn report(
     match written {
         Ok((passed, files)) => {
             let files: Vec<String> = files.iter().map(|f| f.display().to_string()).collect();
-            eprintln!("wrote {}", files.join(", "));
+            errln!("wrote {}", files.join(", "));
             if passed { ExitCode::SUCCESS } else { ExitCode::from(1) }
         }
         Err(e) => {
-            eprintln!("error: {e}");
+            errln!("error: {e}");
             ExitCode::from(2)
         }
     }
@@ -312,7 +315,7 @@ fn data_preview(spec: &std::path::Path, only: Option<&str>, rows: usize, policy:
 
 fn list_rules() -> ExitCode {
     for r in dataink::lint::rules::ALL {
-        println!("{}  {:<28} {:<8} {:<11} {}", r.code, r.name, r.severity.name(), r.category.name(), r.summary);
+        outln!("{}  {:<28} {:<8} {:<11} {}", r.code, r.name, r.severity.name(), r.category.name(), r.summary);
     }
     ExitCode::SUCCESS
 }
@@ -323,11 +326,11 @@ pub fn run() -> ExitCode {
     match cli.command {
         Command::Schema => match serde_json::to_string_pretty(&dataink::spec::spec_schema()) {
             Ok(text) => {
-                println!("{text}");
+                outln!("{text}");
                 ExitCode::SUCCESS
             }
             Err(e) => {
-                eprintln!("error: {e}");
+                errln!("error: {e}");
                 ExitCode::from(2)
             }
         },
@@ -349,12 +352,12 @@ pub fn run() -> ExitCode {
             report(&spec, &out, template.as_deref(), &chart, deny_warnings, policy)
         }
         Command::Lint { spec: None, .. } => {
-            eprintln!("error: give a spec file to lint, or --rules");
+            errln!("error: give a spec file to lint, or --rules");
             ExitCode::from(2)
         }
         Command::Render { spec, out, format, chart, scale, allow_outside_paths, quiet } => {
             if !scale.is_finite() || scale <= 0.0 || scale > 16.0 {
-                eprintln!("error: --scale must be a number in (0, 16], got {scale}");
+                errln!("error: --scale must be a number in (0, 16], got {scale}");
                 return ExitCode::from(2);
             }
             let policy = if allow_outside_paths { PathPolicy::AllowOutside } else { PathPolicy::InsideSpecFolder };
@@ -364,7 +367,7 @@ pub fn run() -> ExitCode {
             };
             if !quiet {
                 for w in &loaded.warnings {
-                    eprint!("{}", loaded.source.render(w));
+                    errs!("{}", loaded.source.render(w));
                 }
             }
             let formats = Formats {
@@ -380,27 +383,24 @@ pub fn run() -> ExitCode {
                 bar.inc(1);
             });
             bar.finish_and_clear();
-            match result {
-                Ok(rendered) => {
-                    for r in &rendered {
-                        if !quiet {
-                            for w in &r.warnings {
-                                eprintln!("warning: {w}");
-                            }
-                            let files: Vec<String> = r.files.iter().map(|f| f.display().to_string()).collect();
-                            eprintln!("wrote {}", files.join(", "));
-                            eprintln!("lint {}", r.lint.summary_line());
-                        }
+            let (rendered, diagnostics) = match result {
+                Ok(rendered) => (rendered, Vec::new()),
+                Err(failure) => (failure.rendered, failure.diagnostics),
+            };
+            if !quiet {
+                for r in &rendered {
+                    for w in &r.warnings {
+                        errln!("warning: {w}");
                     }
-                    ExitCode::SUCCESS
-                }
-                Err(diagnostics) => {
-                    for d in &diagnostics {
-                        eprint!("{}", loaded.source.render(d));
-                    }
-                    ExitCode::from(2)
+                    let files: Vec<String> = r.files.iter().map(|f| f.display().to_string()).collect();
+                    errln!("wrote {}", files.join(", "));
+                    errln!("lint {}", r.lint.summary_line());
                 }
             }
+            for d in &diagnostics {
+                errs!("{}", loaded.source.render(d));
+            }
+            if diagnostics.is_empty() { ExitCode::SUCCESS } else { ExitCode::from(2) }
         }
     }
 }

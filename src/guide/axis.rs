@@ -188,11 +188,12 @@ pub fn draw_within(
     items
 }
 
-/// An axis title with its unit: "Petal length (cm)".
+/// An axis title with its unit: "Petal length (cm)". A title that already says the unit in
+/// parentheses ("Temperature (°C)") is kept as it is.
 pub fn title_with_unit(title: &str, unit: Option<&str>) -> String {
     match unit.map(str::trim).filter(|u| !u.is_empty()) {
-        Some(u) => format!("{title} ({u})"),
-        None => title.to_string(),
+        Some(u) if !title.contains(&format!("({u})")) => format!("{title} ({u})"),
+        _ => title.to_string(),
     }
 }
 
@@ -205,5 +206,7 @@ mod tests {
         assert_eq!(title_with_unit("Petal length", Some("cm")), "Petal length (cm)");
         assert_eq!(title_with_unit("Count", None), "Count");
         assert_eq!(title_with_unit("Count", Some("  ")), "Count");
+        assert_eq!(title_with_unit("Temperature (°C)", Some("°C")), "Temperature (°C)");
+        assert_eq!(title_with_unit("Mass (g) per bird", Some(" g ")), "Mass (g) per bird");
     }
 }

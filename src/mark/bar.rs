@@ -15,7 +15,7 @@ use crate::guide::layout::{Domain, PositionAxis};
 use crate::guide::legend::Symbol;
 use crate::guide::scale::{BandScale, Scale};
 use crate::guide::time::format_timestamp;
-use crate::scene::{Item, PathCmd, Point, Rect, Role, Shape, Style};
+use crate::scene::{Color, Item, PathCmd, Point, Rect, Role, Shape, Style};
 use crate::spec::{BarOptions, Chart, ColorChannel, ColorOptions, ColorType, ScaleKind};
 
 /// Gap between the bars of one group, as a fraction of a bar's step.
@@ -146,12 +146,16 @@ pub fn draw(chart: &Chart, options: &BarOptions, index: usize, table: &Table) ->
             Err(_) => (start, band.bandwidth() / ng as f64),
         }
     };
+    let (lo, hi) = (d0.min(d1), d0.max(d1));
     let mut marks = Vec::with_capacity(bars.len() + 1);
     let mut narrowest = f64::INFINITY;
+    let mut clipped = 0usize;
     for b in &bars {
         let (x, w) = slot_of(b);
         narrowest = narrowest.min(w);
-        let top = frame.y.map(b.sum);
+        // A sum beyond the domain is drawn up to the domain's end and marked as cut there.
+        let end = b.sum.max(lo).min(hi);
+        let top = frame.y.map(end);
         let (y0, y1) = (base_px.min(top), base_px.max(top));
         // A zero sum has no bar; a bar at a baseline other than zero stays, even with no length,
         // so that the scene (and lint rule DI001) still sees it.
@@ -163,11 +167,26 @@ pub fn draw(chart: &Chart, options: &BarOptions, index: usize, table: &Table) ->
             None => x_keys.labels.get(b.x).cloned().unwrap_or_default(),
         };
         let fill = b.rows.first().map_or(encode::DEFAULT_MARK_COLOR, |&r| colors.color_of(r));
+        let plot_rows = (frame.plot.y, frame.plot.bottom());
+        let cut = (end != b.sum).then(|| clip_mark(x, w, top, base_px, plot_rows, (fill, theme.background)));
         marks.push(
             Item::new(Role::DataMark, Shape::Rect(Rect::new(x, y0, w, y1 - y0)), Style::fill(fill))
                 .with_rows(b.rows.clone())
-                .labelled(label),
+                .labelled(label.clone()),
         );
+        if let Some(mark) = cut {
+            clipped += 1;
+            marks.push(mark.with_rows(b.rows.clone()).labelled(format!("{CLIPPED_PREFIX}{label}")));
+        }
+    }
+    if clipped > 0 {
+        let (min, max) = encode::finite_extent(bars.iter().map(|b| b.sum)).unwrap_or((lo, hi));
+        warnings.push(format!(
+            "chart \"{}\": {clipped} of {} bars reach past the y domain [{lo}, {hi}] and are cut at its end \
+             (marked with a break); widen `domain` to cover [{min}, {max}], or remove it",
+            chart.name,
+            bars.len()
+        ));
     }
     if bars.iter().any(|b| b.sum < 0.0) && base == 0.0 {
         // Bars on both sides of zero: a zero line separates them.
@@ -202,6 +221,39 @@ pub fn draw(chart: &Chart, options: &BarOptions, index: usize, table: &Table) ->
     derived.push(&y_opts.field, DerivedColumn::Number(bars.iter().map(|b| b.sum).collect()));
     derived.push("rows", DerivedColumn::Number(bars.iter().map(|b| b.rows.len() as f64).collect()));
     Ok(ChartOutput { scene, derived, warnings, geojson: None })
+}
+
+/// What the label of a clip mark starts with; the rest is its bar's label.
+pub const CLIPPED_PREFIX: &str = "clipped: ";
+/// Distance of a clip mark from the cut end of a bar, in pixels.
+const CLIP_INSET: f64 = 7.0;
+/// Height of a clip mark's teeth, in pixels.
+const CLIP_TOOTH: f64 = 3.0;
+
+/// The mark of a bar cut at the end of the value axis: a zig-zag across the bar near the cut
+/// end (`end_px`; the bar runs from there towards `base_px`), in the background colour so that
+/// the bar looks broken; a bar too short to hold it gets the zig-zag in its own colour beside
+/// the cut, inside the plot (`plot`: its top and bottom pixel rows).
+fn clip_mark(x: f64, width: f64, end_px: f64, base_px: f64, plot: (f64, f64), colors: (Color, Color)) -> Item {
+    let (fill, background) = colors;
+    let towards_base = if base_px >= end_px { 1.0 } else { -1.0 };
+    let room = (base_px - end_px).abs();
+    let (y, color) = if room >= 2.0 * CLIP_INSET {
+        (end_px + towards_base * CLIP_INSET, background)
+    } else {
+        let (top, bottom) = (plot.0 + CLIP_TOOTH, plot.1 - CLIP_TOOTH);
+        ((end_px - towards_base * CLIP_TOOTH).max(top).min(bottom), fill)
+    };
+    let teeth = ((width / (2.0 * CLIP_TOOTH)).round() as usize).max(2);
+    let step = width / teeth as f64;
+    let cmds = (0..=teeth)
+        .map(|k| {
+            let side = if k % 2 == 0 { -0.5 } else { 0.5 };
+            let p = Point::new(x + step * k as f64, y + side * CLIP_TOOTH);
+            if k == 0 { PathCmd::MoveTo(p) } else { PathCmd::LineTo(p) }
+        })
+        .collect();
+    Item::new(Role::DataMark, Shape::Path(cmds), Style::stroke(color, 2.0))
 }
 
 /// Errors for scales a bar chart cannot draw honestly: a non-band x, a y that is text, time,

@@ -10,7 +10,6 @@ use super::frame::{self, polar, polylines};
 use super::{ChartOutput, MarkError, highlight, with_default_size};
 use crate::data::{Column, Table};
 use crate::guide::Theme;
-use crate::guide::axis::{self, Side};
 use crate::guide::layout::{LayoutError, MIN_PLOT_SIDE, PositionAxis, build_scale};
 use crate::guide::legend::{Legend, Symbol, truncate_to_width};
 use crate::guide::scale::Scale;
@@ -22,6 +21,8 @@ use crate::spec::{ChannelOptions, Chart, DaisyOptions};
 const DEFAULT_SIZE: [f64; 2] = [800.0, 600.0];
 /// Share of each column's sector left empty between arcs.
 const ARC_GAP: f64 = 0.22;
+/// Most categories a text column's arc names all of (shortening labels rather than dropping some).
+const NAMED_CATEGORIES: usize = 12;
 /// Straight pieces per curve between two arcs.
 const CURVE_STEPS: usize = 10;
 /// How far towards the centre the curves between arcs bend (0: straight chords).
@@ -153,33 +154,18 @@ impl Wheel {
             items.push(
                 arc(self.center, self.radius, a0, a1, Stroke::solid(theme.axis, 1.5)).labelled(axis.title.clone()),
             );
+            let labels = self.tick_labels(scale, theme);
             let mut ticks = Vec::new();
-            for tick in axis::visible_ticks(scale, Side::Bottom, theme) {
-                let angle = self.angle(tick.position);
-                ticks.push(PathCmd::MoveTo(polar(self.center, self.radius, angle)));
-                ticks.push(PathCmd::LineTo(polar(self.center, self.radius + theme.tick_length, angle)));
-                let at = polar(self.center, self.radius + theme.tick_length + theme.font_size * 0.3, angle);
-                let (anchor, baseline) = outward_anchor(angle);
-                items.push(Item::text(
-                    Role::TickLabel,
-                    Text {
-                        at,
-                        content: tick.label,
-                        size: theme.font_size * 0.9,
-                        anchor,
-                        baseline,
-                        angle: 0.0,
-                        color: theme.muted_text,
-                    },
-                ));
+            for (angle, _) in &labels {
+                ticks.push(PathCmd::MoveTo(polar(self.center, self.radius, *angle)));
+                ticks.push(PathCmd::LineTo(polar(self.center, self.radius + theme.tick_length, *angle)));
             }
+            // Clear of the tick labels: their width counts sideways, their height up and down.
+            let label_w =
+                labels.iter().map(|(_, t)| crate::text::measure(&t.content, t.size).width).fold(0.0, f64::max);
+            items.extend(labels.into_iter().map(|(_, text)| Item::text(Role::TickLabel, text)));
             items.push(Item::new(Role::Axis, Shape::Path(ticks), Style::stroke(theme.axis, 1.0)));
             let mid = (a0 + a1) / 2.0;
-            // Clear of the tick labels: their width counts sideways, their height up and down.
-            let label_w = axis::visible_ticks(scale, Side::Bottom, theme)
-                .iter()
-                .map(|t| crate::text::measure(&t.label, theme.font_size * 0.9).width)
-                .fold(0.0, f64::max);
             let clearance = mid.sin().abs() * label_w + mid.cos().abs() * theme.font_size;
             let at = polar(self.center, self.radius + theme.tick_length + theme.font_size * 0.9 + clearance, mid);
             let (anchor, baseline) = outward_anchor(mid);
@@ -190,6 +176,39 @@ impl Wheel {
             ));
         }
         items
+    }
+
+    /// The tick labels of one arc as drawn, each with its angle. Whether neighbours collide is
+    /// judged on the labels' boxes where they sit around the circle (labels stack on the sides
+    /// and stand side by side at the top and bottom): all ticks when none collide, else every
+    /// k-th. An arc of a text column with up to [`NAMED_CATEGORIES`] categories names every
+    /// category, shortening the labels that would collide instead of leaving some out.
+    fn tick_labels(&self, scale: &Scale, theme: &Theme) -> Vec<(f64, Text)> {
+        let size = theme.font_size * 0.9;
+        let gap = theme.font_size * 0.3;
+        let all: Vec<(f64, Text)> = scale
+            .ticks()
+            .into_iter()
+            .map(|tick| {
+                let angle = self.angle(tick.position);
+                let at = polar(self.center, self.radius + theme.tick_length + theme.font_size * 0.3, angle);
+                let (anchor, baseline) = outward_anchor(angle);
+                let text =
+                    Text { at, content: tick.label, size, anchor, baseline, angle: 0.0, color: theme.muted_text };
+                (angle, text)
+            })
+            .collect();
+        let apart = |a: &Text, b: &Text| !padded(crate::text::bounds(a), gap).intersects(&crate::text::bounds(b));
+        if matches!(scale, Scale::Band(_)) && all.len() <= NAMED_CATEGORIES {
+            return shorten_until_apart(all, &apart);
+        }
+        for step in 1..=all.len().max(1) {
+            let kept: Vec<&(f64, Text)> = all.iter().step_by(step).collect();
+            if kept.windows(2).all(|pair| apart(&pair[0].1, &pair[1].1)) {
+                return kept.into_iter().cloned().collect();
+            }
+        }
+        all.into_iter().take(1).collect()
     }
 
     /// Brushed ranges as wide translucent bands over their arcs.
@@ -210,6 +229,35 @@ impl Wheel {
         }
         items
     }
+}
+
+/// A rectangle grown by `by` on every side.
+fn padded(r: crate::scene::Rect, by: f64) -> crate::scene::Rect {
+    crate::scene::Rect::new(r.x - by, r.y - by, r.w + 2.0 * by, r.h + 2.0 * by)
+}
+
+/// Labels with the longer of each colliding neighbour pair shortened (with an ellipsis) until no
+/// neighbours collide or the labels cannot get shorter.
+fn shorten_until_apart(mut labels: Vec<(f64, Text)>, apart: &dyn Fn(&Text, &Text) -> bool) -> Vec<(f64, Text)> {
+    for _ in 0..64 {
+        let mut shortened = false;
+        for i in 1..labels.len() {
+            let (a, b) = (&labels[i - 1].1, &labels[i].1);
+            if apart(a, b) {
+                continue;
+            }
+            let width = |t: &Text| crate::text::measure(&t.content, t.size).width;
+            let longer = if width(a) >= width(b) { i - 1 } else { i };
+            let text = &mut labels[longer].1;
+            let before = text.content.clone();
+            text.content = truncate_to_width(&text.content, width(text) * 0.8, text.size);
+            shortened |= text.content != before && text.content.chars().count() > 1;
+        }
+        if !shortened {
+            break;
+        }
+    }
+    labels
 }
 
 /// Text anchoring for a label placed outside the circle at `angle`.

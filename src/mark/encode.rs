@@ -83,41 +83,67 @@ pub fn require_numeric(
 /// value in any numeric column the chart uses is dropped, and a warning says how many rows were
 /// dropped and why. Text columns never drop rows (missing text is its own category).
 pub fn finite_rows(chart: &str, rows: usize, numeric: &[(&str, &Column)]) -> (Vec<u32>, Option<String>) {
-    let slices: Vec<&[f64]> = numeric.iter().filter_map(|(_, c)| c.numbers()).collect();
-    if slices.iter().all(|s| s.len() == rows && s.iter().all(|v| v.is_finite())) {
+    placeable_rows(chart, rows, numeric, &[])
+}
+
+/// [`finite_rows`] for a chart with log axes: a value ≤ 0 in a column named in `log` (the fields
+/// on a log-scaled axis, see [`log_fields`]) cannot be placed either, so its row is dropped and
+/// counted in the same warning.
+pub fn placeable_rows(
+    chart: &str,
+    rows: usize,
+    numeric: &[(&str, &Column)],
+    log: &[&str],
+) -> (Vec<u32>, Option<String>) {
+    let slices: Vec<(&[f64], bool)> =
+        numeric.iter().filter_map(|(name, c)| Some((c.numbers()?, log.contains(name)))).collect();
+    let placeable = |v: &f64, on_log: bool| v.is_finite() && (!on_log || *v > 0.0);
+    if slices.iter().all(|(s, on_log)| s.len() == rows && s.iter().all(|v| placeable(v, *on_log))) {
         return ((0..rows as u32).collect(), None);
     }
     let mut kept = Vec::with_capacity(rows);
     for row in 0..rows {
-        if slices.iter().all(|s| s.get(row).is_some_and(|v| v.is_finite())) {
+        if slices.iter().all(|(s, on_log)| s.get(row).is_some_and(|v| placeable(v, *on_log))) {
             kept.push(row as u32);
         }
     }
     if kept.len() == rows {
         return (kept, None);
     }
+    let mut on_log_axis = false;
     let details: Vec<String> = numeric
         .iter()
         .filter_map(|(name, c)| {
-            let n = NonFinite::count(c.numbers()?);
-            (n.total() > 0).then(|| {
-                let mut parts = Vec::new();
-                if n.nan > 0 {
-                    parts.push(format!("{} missing or NaN", n.nan));
-                }
-                if n.infinite > 0 {
-                    parts.push(format!("{} infinite", n.infinite));
-                }
-                format!("`{name}`: {}", parts.join(", "))
-            })
+            let values = c.numbers()?;
+            let n = NonFinite::count(values);
+            let nonpositive =
+                if log.contains(name) { values.iter().filter(|v| v.is_finite() && **v <= 0.0).count() } else { 0 };
+            on_log_axis |= nonpositive > 0;
+            let mut parts = Vec::new();
+            if n.nan > 0 {
+                parts.push(format!("{} missing or NaN", n.nan));
+            }
+            if n.infinite > 0 {
+                parts.push(format!("{} infinite", n.infinite));
+            }
+            if nonpositive > 0 {
+                parts.push(format!("{nonpositive} ≤ 0 on a log axis"));
+            }
+            (!parts.is_empty()).then(|| format!("`{name}`: {}", parts.join(", ")))
         })
         .collect();
     let warning = format!(
-        "chart \"{chart}\": dropped {} of {rows} rows{DROPPED_SUFFIX} ({})",
+        "chart \"{chart}\": dropped {} of {rows} rows{DROPPED_SUFFIX}{} ({})",
         rows - kept.len(),
+        if on_log_axis { " or values ≤ 0 on a log axis" } else { "" },
         details.join("; ")
     );
     (kept, Some(warning))
+}
+
+/// The fields of the channels that sit on a log-scaled axis.
+pub fn log_fields<'a>(channels: &[&'a ChannelOptions]) -> Vec<&'a str> {
+    channels.iter().filter(|c| c.scale == Some(ScaleKind::Log)).map(|c| c.field.as_str()).collect()
 }
 
 /// What follows the counts in [`finite_rows`]'s warning.

@@ -86,7 +86,8 @@ pub fn draw(chart: &Chart, options: &Interp1dOptions, index: usize, table: &Tabl
     if let (Some(col), Some(field)) = (slope_col, &options.slopes) {
         numeric.push((field.as_str(), col));
     }
-    let (rows, warning) = encode::finite_rows(&chart.name, table.rows, &numeric);
+    let log = encode::log_fields(&[&x_opts, &y_opts]);
+    let (rows, warning) = encode::placeable_rows(&chart.name, table.rows, &numeric, &log);
     let warnings: Vec<String> = warning.into_iter().collect();
     if rows.is_empty() {
         return Err(encode::no_rows(chart, index, table, warnings.first().map(String::as_str)));

@@ -79,7 +79,9 @@ pub fn draw(chart: &Chart, options: &LineOptions, index: usize, table: &Table) -
     for (channel, col) in &y_cols {
         let mut used = numeric.clone();
         used.push((channel.field(), col));
-        let (kept, warning) = encode::finite_rows(&chart.name, table.rows, &used);
+        let y_opts = channel.options();
+        let log = encode::log_fields(&[&x_opts, &y_opts]);
+        let (kept, warning) = encode::placeable_rows(&chart.name, table.rows, &used, &log);
         warnings.extend(warning);
         let title = channel.options().title.unwrap_or_else(|| channel.field().to_string());
         match series_col {

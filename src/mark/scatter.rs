@@ -87,7 +87,8 @@ pub fn draw_with_geometry(
     if let (Some(col), Some(c)) = (color_numeric, &options.color) {
         numeric.push((c.field(), col));
     }
-    let (mut rows, warning) = encode::finite_rows(&chart.name, table.rows, &numeric);
+    let log = encode::log_fields(&[&x_opts, &y_opts]);
+    let (mut rows, warning) = encode::placeable_rows(&chart.name, table.rows, &numeric, &log);
     let mut warnings: Vec<String> = warning.into_iter().collect();
 
     // Marker area is proportional to the value, so negative sizes have no honest mark.

@@ -393,7 +393,7 @@ y = "y"
             "[data.d]\npath = \"d.csv\"\n[[chart]]\nname = \"c\"\ndata = \"d\"\nkind = \"line\"\nx = \"a\"\ny = 5\n";
         assert_eq!(
             errors(text)[0].message,
-            "`y` must be a string, a table or an array of strings or tables, found an integer"
+            "`y` must be an array of strings or tables, a string or a table, found an integer"
         );
     }
 

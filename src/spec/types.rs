@@ -1213,13 +1213,16 @@ macro_rules! field_channel {
 }
 
 /// A single value or a list of them.
+///
+/// A list is tried first: serde reads a struct from a sequence of its fields in order, so with
+/// `One` first a list of names `["a", "b"]` would become one channel with field `a` and title `b`.
 #[derive(Clone, Debug, Deserialize, Serialize, JsonSchema, PartialEq)]
 #[serde(untagged)]
 pub enum OneOrMany<T> {
-    /// Just one.
-    One(T),
     /// Several.
     Many(Vec<T>),
+    /// Just one.
+    One(T),
 }
 
 impl<T> OneOrMany<T> {
@@ -1284,7 +1287,7 @@ field_channel!(Channel, ChannelOptions);
 pub enum ScaleKind {
     /// Linear numbers.
     Linear,
-    /// Base-10 logarithm (all values must be > 0).
+    /// Base-10 logarithm (rows with values ≤ 0 are dropped, with a warning).
     Log,
     /// Dates and times.
     Time,

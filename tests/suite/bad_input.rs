@@ -199,10 +199,12 @@ fn corrupt_parquet_is_a_parse_error() {
 }
 
 #[test]
-fn log_scale_with_non_positive_values_names_the_smallest() {
+fn log_scale_with_a_non_positive_domain_names_the_smallest() {
+    // Rows ≤ 0 on a log axis are dropped (see `log_axis_drops_rows_it_cannot_place`); a fixed
+    // domain reaching zero or below is the spec's own mistake.
     let spec = format!(
         "[data.d]\npath = \"d.csv\"\n{}",
-        XY_CHART.replace("x = \"x\"", "x = { field = \"x\", scale = \"log\" }")
+        XY_CHART.replace("x = \"x\"", "x = { field = \"x\", scale = \"log\", domain = [-1, 10] }")
     );
     let out = Fixture::new(&spec, &[("d.csv", b"x,y\n-1,2\n0,3\n5,4\n")]).draw().expect_err("log");
     assert!(
@@ -212,6 +214,34 @@ fn log_scale_with_non_positive_values_names_the_smallest() {
         "{out}"
     );
     assert!(out.contains("spec.toml:8:5"), "{out}");
+}
+
+#[test]
+fn log_axis_drops_rows_it_cannot_place() {
+    let spec = format!(
+        "[data.d]\npath = \"d.csv\"\n{}",
+        XY_CHART.replace("x = \"x\"", "x = { field = \"x\", scale = \"log\" }")
+    );
+    let files: &[(&str, &[u8])] = &[("d.csv", b"x,y\n0,1\n-1,2\n1,3\n10,4\n100,5\n")];
+    let out = Fixture::new(&spec, files).draw().unwrap_or_else(|e| panic!("{e}"));
+    let mut drawn = Vec::new();
+    out[0].scene.walk(|item| {
+        if item.role == dataink::scene::Role::DataMark && matches!(item.shape, dataink::scene::Shape::Points(_)) {
+            drawn.extend(item.rows.iter().copied());
+        }
+    });
+    assert_eq!(drawn, [2, 3, 4], "the rows with x = 1, 10, 100");
+    assert_eq!(
+        out[0].warnings,
+        ["chart \"c\": dropped 2 of 5 rows with missing or non-finite values or values ≤ 0 on a log axis \
+          (`x`: 2 ≤ 0 on a log axis)"]
+    );
+    let di003 = crate::common::lint_findings(&spec, files, "DI003");
+    assert_eq!(di003.len(), 1, "{di003:?}");
+    assert_eq!(
+        di003[0].message,
+        "2 of 5 values of `x` are ≤ 0 and cannot be placed on the log-scaled x axis: their rows are left out"
+    );
 }
 
 #[test]

@@ -253,3 +253,58 @@ fn dates_are_categories_and_missing_text_is_its_own() {
     let labels: Vec<String> = bars(&out).into_iter().map(|b| b.0).collect();
     assert_eq!(labels, ["b", "a", "(missing)"]);
 }
+
+/// Barley-like rows (yield, variety, year, site): variety totals Manchuria 700, Glabron 450,
+/// Trebi 650.
+const BARLEY: &str = "yield,variety,year,site\n300,Manchuria,1931,Morris\n400,Manchuria,1932,Crookston\n\
+                      200,Glabron,1931,Morris\n250,Glabron,1932,Crookston\n350,Trebi,1931,Morris\n300,Trebi,1932,Crookston\n";
+
+/// The labels of the bars that carry a clip mark, from the marks' own labels.
+fn clip_marked(out: &ChartOutput) -> Vec<String> {
+    let mut found = Vec::new();
+    out.scene.walk(|item: &Item| {
+        if let (Role::DataMark, Shape::Path(_), Some(label)) = (&item.role, &item.shape, &item.label)
+            && let Some(bar) = label.strip_prefix(dataink::mark::bar::CLIPPED_PREFIX)
+        {
+            found.push(bar.to_string());
+        }
+    });
+    found
+}
+
+#[test]
+fn bars_past_a_fixed_domain_are_cut_with_a_mark_a_warning_and_di005() {
+    let extra = "x = \"variety\"\ny = { field = \"yield\", domain = [0, 600] }\n";
+    let out = draw_ok(BARLEY, extra);
+    let p = plot(&out);
+    let drawn = bars(&out);
+    let top = |name: &str| drawn.iter().find(|(l, _, _)| l == name).map(|(_, r, _)| r.y).expect("bar");
+    // The cut bars end at the top of the plot; Glabron (450) at three quarters of it.
+    assert!((top("Manchuria") - p.y).abs() < 1e-9 && (top("Trebi") - p.y).abs() < 1e-9);
+    assert!((top("Glabron") - (p.y + p.h * 0.25)).abs() < 1e-6, "{} vs {p:?}", top("Glabron"));
+    assert_eq!(clip_marked(&out), ["Manchuria", "Trebi"], "only the cut bars carry the mark");
+    assert_eq!(
+        out.warnings,
+        ["chart \"b\": 2 of 3 bars reach past the y domain [0, 600] and are cut at its end (marked with a break); \
+          widen `domain` to cover [450, 700], or remove it"]
+    );
+    let svg = dataink::render::svg::to_svg(&out.scene);
+    assert_eq!(svg.matches("clipped: ").count(), 2, "the marks reach the SVG");
+
+    let files: &[(&str, &[u8])] = &[("d.csv", BARLEY.as_bytes())];
+    let di005 = crate::common::lint_findings(&spec(extra), files, "DI005");
+    assert_eq!(di005.len(), 1, "{di005:?}");
+    assert_eq!(
+        di005[0].message,
+        "2 of 3 bars have totals outside the fixed domain [0, 600] of the y axis (totals: 450 to 700) and are cut at its end"
+    );
+}
+
+#[test]
+fn a_domain_leaving_zero_out_is_judged_by_the_bar_totals_not_the_rows() {
+    // Every row (200 to 400) lies below 450, but every total (450 to 700) is inside the domain.
+    let extra = "x = \"variety\"\ny = { field = \"yield\", domain = [450, 800] }\n";
+    let files: &[(&str, &[u8])] = &[("d.csv", BARLEY.as_bytes())];
+    assert!(crate::common::lint_findings(&spec(extra), files, "DI005").is_empty());
+    assert!(clip_marked(&draw_ok(BARLEY, extra)).is_empty());
+}

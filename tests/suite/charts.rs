@@ -324,3 +324,100 @@ series = "s"
     assert_eq!(moves.get("a"), Some(&2), "a's gap at t = 1 starts a new subpath: {moves:?}");
     assert_eq!(moves.get("b"), Some(&1), "b is drawn in one piece: {moves:?}");
 }
+
+/// A line chart over two y columns written as `y_form`: (series label, y) of each drawn path
+/// vertex in the derived CSV, the data-mark labels and the legend texts.
+fn two_y_columns(y_form: &str) -> (Vec<(String, f64)>, Vec<String>, Vec<String>) {
+    let spec = format!(
+        r#"
+[data.w]
+values = [
+  {{ date = 1, temp_max = 12.8, temp_min = 5.0 }},
+  {{ date = 2, temp_max = 10.6, temp_min = 2.8 }},
+  {{ date = 3, temp_max = 11.7, temp_min = 7.2 }},
+]
+
+[[chart]]
+name = "w"
+kind = "line"
+data = "w"
+x = "date"
+y = {y_form}
+"#
+    );
+    let rows = derived_csv(&spec).into_iter().map(|f| (f[0].clone(), f[3].parse().expect("y"))).collect();
+    let out = Fixture::new(&spec, &[]).draw().unwrap_or_else(|e| panic!("{e}"));
+    let (mut marks, mut legend) = (Vec::new(), Vec::new());
+    out[0].scene.walk(|item| match (&item.role, &item.shape) {
+        (dataink::scene::Role::DataMark, dataink::scene::Shape::Path(_)) => marks.extend(item.label.clone()),
+        (dataink::scene::Role::Legend, dataink::scene::Shape::Text(t)) => legend.push(t.content.clone()),
+        _ => {}
+    });
+    (rows, marks, legend)
+}
+
+#[test]
+fn several_y_columns_draw_one_series_each_whether_written_as_names_or_tables() {
+    let expected: Vec<(String, f64)> = [
+        ("temp_max", 12.8),
+        ("temp_max", 10.6),
+        ("temp_max", 11.7),
+        ("temp_min", 5.0),
+        ("temp_min", 2.8),
+        ("temp_min", 7.2),
+    ]
+    .iter()
+    .map(|(s, v)| (s.to_string(), *v))
+    .collect();
+    for form in [r#"["temp_max", "temp_min"]"#, r#"[{ field = "temp_max" }, { field = "temp_min" }]"#] {
+        let (rows, marks, legend) = two_y_columns(form);
+        assert_eq!(rows, expected, "derived rows for y = {form}");
+        assert_eq!(marks, ["temp_max", "temp_min"], "one path per column for y = {form}");
+        for name in ["temp_max", "temp_min"] {
+            assert!(legend.iter().any(|t| t == name), "legend names {name} for y = {form}: {legend:?}");
+        }
+    }
+}
+
+/// The axis titles of the first chart of a spec.
+fn axis_titles(spec: &str) -> Vec<String> {
+    let out = Fixture::new(spec, &[]).draw().unwrap_or_else(|e| panic!("{e}"));
+    let mut titles = Vec::new();
+    out[0].scene.walk(|item| {
+        if let (dataink::scene::Role::AxisTitle, dataink::scene::Shape::Text(t)) = (&item.role, &item.shape) {
+            titles.push(t.content.clone());
+        }
+    });
+    titles
+}
+
+#[test]
+fn a_title_that_already_names_its_unit_does_not_get_it_twice() {
+    let data = r#"
+[data.w]
+values = [{ day = 1, hi = 12.8, lo = 5.0, mass = 3750.0 }, { day = 2, hi = 10.6, lo = 2.8, mass = 3800.0 }]
+"#;
+    let line = format!(
+        r#"{data}
+[[chart]]
+name = "t"
+kind = "line"
+data = "w"
+x = "day"
+y = [{{ field = "hi", unit = "°C" }}, {{ field = "lo", unit = "°C" }}]
+y_title = "Temperature (°C)"
+"#
+    );
+    assert_eq!(axis_titles(&line), ["day", "Temperature (°C)"]);
+    let scatter = format!(
+        r#"{data}
+[[chart]]
+name = "m"
+kind = "scatter"
+data = "w"
+x = {{ field = "mass", title = "Mass (g)", unit = "g" }}
+y = {{ field = "hi", title = "High", unit = "°C" }}
+"#
+    );
+    assert_eq!(axis_titles(&scatter), ["Mass (g)", "High (°C)"]);
+}

@@ -116,3 +116,72 @@ fn three_mistakes_are_reported_in_one_run_with_exit_code_2() {
     assert!(stderr.contains("error: 3 problems in `spec.toml`"), "{stderr}");
     assert!(!dir.path().join("out").exists(), "nothing is written when the spec has errors");
 }
+
+/// Run `dataink` with `args` in `dir`, its standard output a pipe whose reading end is already
+/// closed: the exit code and standard error.
+fn run_into_closed_pipe(args: &[&str], dir: &std::path::Path) -> (Option<i32>, String) {
+    let (reader, writer) = std::io::pipe().expect("pipe");
+    drop(reader);
+    let run = dataink()
+        .args(args)
+        .current_dir(dir)
+        .stdout(writer)
+        .stderr(std::process::Stdio::piped())
+        .output()
+        .expect("run dataink");
+    (run.status.code(), String::from_utf8_lossy(&run.stderr).into_owned())
+}
+
+#[test]
+fn a_closed_standard_output_ends_every_command_quietly() {
+    let fx = crate::common::Fixture::new(
+        "[data.d]\nvalues = [{ x = 1, y = 2 }, { x = 2, y = 3 }]\n\n[[chart]]\nname = \"c\"\nkind = \"scatter\"\ndata = \"d\"\nx = \"x\"\ny = \"y\"\n",
+        &[],
+    );
+    let spec = fx.spec.to_str().expect("utf-8 path");
+    for args in [&["schema"][..], &["lint", "--rules"], &["lint", spec, "--format", "json"], &["lint", spec]] {
+        let (code, stderr) = run_into_closed_pipe(args, fx.dir.path());
+        assert_eq!(code, Some(0), "dataink {args:?}: {stderr}");
+        assert_eq!(stderr, "", "dataink {args:?} says nothing");
+    }
+}
+
+#[test]
+fn a_failing_chart_does_not_hide_the_charts_that_were_written() {
+    let fx = crate::common::Fixture::new(
+        r#"
+[data.d]
+values = [{ k = "a", v = 1.0 }, { k = "b", v = 2.0 }]
+
+[[chart]]
+name = "good"
+kind = "bar"
+data = "d"
+x = "k"
+y = "v"
+
+[[chart]]
+name = "bad"
+kind = "bar"
+data = "d"
+x = "k"
+y = { field = "v", scale = "log" }
+"#,
+        &[],
+    );
+    let out = fx.dir.path().join("out");
+    let run = dataink()
+        .args(["render", "spec.toml", "--format", "svg", "--out"])
+        .arg(&out)
+        .current_dir(fx.dir.path())
+        .output()
+        .expect("run dataink");
+    let stderr = String::from_utf8_lossy(&run.stderr);
+    assert_eq!(run.status.code(), Some(2), "{stderr}");
+    let wrote = stderr.find(&format!("wrote {}", out.join("good.svg").display())).expect(&stderr);
+    let lint = stderr.find("lint ").expect(&stderr);
+    let error = stderr.find("error: chart \"bad\": a bar's length is measured from zero").expect(&stderr);
+    assert!(wrote < lint && lint < error, "written files and their lint line come before the error:\n{stderr}");
+    assert!(out.join("good.svg").is_file());
+    assert!(!out.join("bad.svg").exists());
+}

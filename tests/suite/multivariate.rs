@@ -358,3 +358,39 @@ fn segments_order_text_alphabetically_keeping_ties_in_data_order() {
     assert_eq!(order(false), ["0", "2", "5", "7", "1", "4", "3", "6"]);
     assert_eq!(order(true), ["3", "6", "1", "4", "0", "2", "5", "7"]);
 }
+
+/// Penguin-like rows: island has three categories, Biscoe the most common (as in the Palmer
+/// penguins, where it holds 167 of 342 rows).
+const PENGUINS: &str = "species,island,bill_length_mm,bill_depth_mm,flipper_length_mm,body_mass_g\n\
+Adelie,Torgersen,39.1,18.7,181,3750\n\
+Adelie,Biscoe,37.8,18.3,174,3400\n\
+Gentoo,Biscoe,46.1,13.2,211,4500\n\
+Gentoo,Biscoe,50.0,16.3,230,5700\n\
+Chinstrap,Dream,46.5,17.9,192,3500\n\
+Adelie,Dream,39.5,16.7,178,3250\n\
+Adelie,Torgersen,40.3,18.0,195,3250\n";
+
+#[test]
+fn daisy_names_every_category_of_a_text_column() {
+    let spec = r#"
+[data.p]
+path = "p.csv"
+
+[[chart]]
+name = "d"
+kind = "daisy"
+data = "p"
+columns = ["bill_length_mm", "bill_depth_mm", "flipper_length_mm", "body_mass_g", "island", "species"]
+color = "species"
+"#;
+    let out = Fixture::new(spec, &[("p.csv", PENGUINS.as_bytes())]).draw().unwrap_or_else(|e| panic!("{e}"));
+    let mut texts = Vec::new();
+    out[0].scene.walk(|item: &Item| {
+        if let (dataink::scene::Role::TickLabel, Shape::Text(t)) = (&item.role, &item.shape) {
+            texts.push(t.content.clone());
+        }
+    });
+    for category in ["Torgersen", "Biscoe", "Dream", "Adelie", "Gentoo", "Chinstrap"] {
+        assert!(texts.iter().any(|t| t == category), "{category} is labelled: {texts:?}");
+    }
+}

@@ -1,10 +1,12 @@
 //! Rules about data the chart silently does not show: DI003 `log-nonpositive` (values ≤ 0 on a
-//! log axis), DI004 `dropped-rows` (rows left out for missing or non-finite values) and DI005
-//! `outside-domain` (rows outside a fixed axis domain, clipped away).
+//! log axis, whose rows are dropped), DI004 `dropped-rows` (rows left out for missing or
+//! non-finite values) and DI005 `outside-domain` (rows outside a fixed axis domain, clipped away;
+//! for bars, their totals).
 
 use crate::lint::chart_info::cartesian_axes;
 use crate::lint::{Category, Issue, Rule, Severity, Subject};
-use crate::spec::ScaleKind;
+use crate::mark::derived::DerivedColumn;
+use crate::spec::{ChartKind, ScaleKind};
 
 /// DI003.
 pub static LOG_NONPOSITIVE: Rule = Rule {
@@ -32,7 +34,7 @@ pub static OUTSIDE_DOMAIN: Rule = Rule {
     name: "outside-domain",
     category: Category::Integrity,
     severity: Severity::Error,
-    summary: "A fixed axis domain leaves data rows outside the plot, where they are clipped away.",
+    summary: "A fixed axis domain leaves data rows (for bars, their totals) outside the plot, where they are cut off.",
     check: check_domain,
 };
 
@@ -57,7 +59,8 @@ fn check_log(s: &Subject<'_>) -> Vec<Issue> {
                     a.name,
                     format!("{}.scale", a.key),
                     format!(
-                        "{bad} of {} values of `{}` are ≤ 0 and cannot be placed on the log-scaled {}",
+                        "{bad} of {} values of `{}` are ≤ 0 and cannot be placed on the log-scaled {}: \
+                         their rows are left out",
                         values.len(),
                         a.options.field,
                         a.name
@@ -103,21 +106,43 @@ fn check_domain(s: &Subject<'_>) -> Vec<Issue> {
         .filter_map(|a| {
             let [lo, hi] = a.options.domain?;
             let (lo, hi) = (lo.min(hi), lo.max(hi));
-            let values = finite(s, &a.options.field);
+            let totals = bar_totals(s, a.key, &a.options.field);
+            let values = totals.clone().unwrap_or_else(|| finite(s, &a.options.field));
             let outside = values.iter().filter(|v| **v < lo || **v > hi).count();
             (outside > 0).then(|| {
-                let (min, max) = values.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| (a.min(v), b.max(v)));
-                Issue::new(
-                    a.name,
-                    format!("{}.domain", a.key),
+                let (min, max) =
+                    values.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| (a.min(v), b.max(v)));
+                let n = values.len();
+                let message = if totals.is_some() {
                     format!(
-                        "{outside} of {} rows lie outside the fixed domain [{lo}, {hi}] of the {} (data: {min} to {max}) and are not shown",
-                        values.len(),
+                        "{outside} of {n} bars have totals outside the fixed domain [{lo}, {hi}] of the {} \
+                         (totals: {min} to {max}) and are cut at its end",
                         a.name
-                    ),
-                    format!("widen `domain` to cover [{min}, {max}], or remove it"),
-                )
+                    )
+                } else {
+                    format!(
+                        "{outside} of {n} rows lie outside the fixed domain [{lo}, {hi}] of the {} \
+                         (data: {min} to {max}) and are not shown",
+                        a.name
+                    )
+                };
+                let hint = format!("widen `domain` to cover [{min}, {max}], or remove it");
+                Issue::new(a.name, format!("{}.domain", a.key), message, hint)
             })
         })
         .collect()
+}
+
+/// A bar chart's y axis draws the bars' totals, not the rows: those totals (finite ones, from the
+/// chart's derived table). `None` for every other axis.
+fn bar_totals(s: &Subject<'_>, key: &str, field: &str) -> Option<Vec<f64>> {
+    if !matches!(s.chart.kind, ChartKind::Bar(_)) || key != "y" {
+        return None;
+    }
+    s.output.derived.columns.iter().find_map(|(name, column)| match column {
+        DerivedColumn::Number(totals) if name == field => {
+            Some(totals.iter().copied().filter(|v| v.is_finite()).collect())
+        }
+        _ => None,
+    })
 }
