@@ -303,11 +303,11 @@ fn data_preview(spec: &std::path::Path, only: Option<&str>, rows: usize, policy:
                 text.push_str(&p.head);
                 text.push_str("\n\n");
             }
-            print!("{text}");
+            output::out(format_args!("{text}"));
             ExitCode::SUCCESS
         }
         Err(failed) => {
-            eprint!("{}", failed.render());
+            errs!("{}", failed.render());
             ExitCode::from(2)
         }
     }
