@@ -19,7 +19,9 @@ use crate::spec::{self, Diagnostic, PathSeg, SourceFile, Spec, SpecDoc};
 pub struct Loaded {
     /// The spec file's text, for rendering diagnostics.
     pub source: SourceFile,
-    /// The typed spec.
+    /// The typed spec, with each categorical colour encoding that names no `domain` given its
+    /// column's spec-wide category order ([`mark::categorical::share_domains`]), so a category
+    /// has the same colour in every chart.
     pub spec: Spec,
     /// Positions of everything in the spec.
     pub doc: SpecDoc,
@@ -139,7 +141,10 @@ pub fn load(spec_path: &Path, policy: PathPolicy) -> Result<Loaded, Failed> {
 
     let has_errors = diagnostics.iter().any(Diagnostic::is_error);
     match checked.spec {
-        Some(spec) if !has_errors => Ok(Loaded { source, spec, doc, tables, highlights, warnings: diagnostics }),
+        Some(mut spec) if !has_errors => {
+            mark::categorical::share_domains(&mut spec.chart, &tables);
+            Ok(Loaded { source, spec, doc, tables, highlights, warnings: diagnostics })
+        }
         _ => Err(Failed { source, diagnostics }),
     }
 }
@@ -599,7 +604,9 @@ pub fn draw_and_lint(loaded: &Loaded, names: &[String]) -> Result<Vec<Linted>, V
         .collect();
     let (ok, errors): (Vec<_>, Vec<_>) = results.into_iter().partition(Result::is_ok);
     if errors.is_empty() {
-        Ok(ok.into_iter().filter_map(Result::ok).collect())
+        let mut linted: Vec<Linted> = ok.into_iter().filter_map(Result::ok).collect();
+        one_finding_per_source(loaded, linted.iter_mut().map(|l| (l.index, &mut l.lint)));
+        Ok(linted)
     } else {
         Err(errors.into_iter().filter_map(Result::err).collect())
     }
@@ -695,7 +702,7 @@ pub fn render_all(
         ))]
         .into());
     }
-    let results: Vec<Result<Rendered, Diagnostic>> = selected
+    let results: Vec<Result<(usize, Rendered), Diagnostic>> = selected
         .par_iter()
         .map(|(index, chart)| {
             let out = timed(&format!("draw chart \"{}\"", chart.name), || draw_chart(loaded, *index, chart))
@@ -705,7 +712,7 @@ pub fn render_all(
             })?;
             let lint = timed(&format!("lint chart \"{}\"", chart.name), || lint_chart(loaded, *index, chart, &out));
             progress(&chart.name);
-            Ok(Rendered { name: chart.name.clone(), files, warnings: out.warnings, lint })
+            Ok((*index, Rendered { name: chart.name.clone(), files, warnings: out.warnings, lint }))
         })
         .collect();
     let mut rendered = Vec::new();
@@ -716,7 +723,17 @@ pub fn render_all(
             Err(d) => errors.push(d),
         }
     }
+    one_finding_per_source(loaded, rendered.iter_mut().map(|(i, r)| (*i, &mut r.lint)));
+    let rendered: Vec<Rendered> = rendered.into_iter().map(|(_, r)| r).collect();
     if errors.is_empty() { Ok(rendered) } else { Err(RenderFailure { rendered, diagnostics: errors }) }
+}
+
+/// Findings about a whole data source (DI004 dropped rows) kept once per source, naming its
+/// charts, rather than once per chart; `lints` pairs each chart's index with its findings.
+fn one_finding_per_source<'l>(loaded: &Loaded, lints: impl Iterator<Item = (usize, &'l mut ChartLint)>) {
+    let mut by_source: Vec<(&str, &mut ChartLint)> =
+        lints.filter_map(|(index, lint)| Some((loaded.spec.chart.get(index)?.data.as_str(), lint))).collect();
+    lint::rules::one_dropped_rows_per_source(&mut by_source);
 }
 
 fn write_chart(

@@ -57,7 +57,8 @@ const CONTINUOUS_NAMES: [&str; 21] = [
     "rdbu", "brbg", "puor", "piyg", "prgn", "rdylbu", "spectral", "rainbow", "turbo", "sinebow",
 ];
 
-const CATEGORICAL_NAMES: [&str; 6] = ["okabe-ito", "tableau10", "category10", "set2", "dark2", "paired"];
+const CATEGORICAL_NAMES: [&str; 7] =
+    ["okabe-ito", "okabe-ito-12", "tableau10", "category10", "set2", "dark2", "paired"];
 
 /// Okabe & Ito (2008), in the order used for successive categories.
 const OKABE_ITO: [Color; 8] = [
@@ -69,6 +70,27 @@ const OKABE_ITO: [Color; 8] = [
     Color::rgb(0x56, 0xb4, 0xe9), // sky blue
     Color::rgb(0xf0, 0xe4, 0x42), // yellow
     Color::rgb(0x00, 0x00, 0x00), // black
+];
+
+/// Okabe–Ito followed by four colours chosen for dataink (a greedy farthest-point search over
+/// the sRGB cube, keeping lightness 25–85 and chroma ≥ 20 so marks stand off a white page): each
+/// added colour is at least ΔE00 14.5 from every other colour of the twelve with normal vision,
+/// simulated protanopia and simulated deuteranopia, so the palette stays above lint rule CL003's
+/// threshold (the closest pair is still Okabe–Ito's orange and yellow, 11.6). The default for
+/// more than eight treemap or hyperbolic-tree branches.
+const OKABE_ITO_12: [Color; 12] = [
+    OKABE_ITO[0],
+    OKABE_ITO[1],
+    OKABE_ITO[2],
+    OKABE_ITO[3],
+    OKABE_ITO[4],
+    OKABE_ITO[5],
+    OKABE_ITO[6],
+    OKABE_ITO[7],
+    Color::rgb(0x77, 0x22, 0x00), // dark brown
+    Color::rgb(0x77, 0x33, 0x55), // plum
+    Color::rgb(0x11, 0x00, 0xcc), // ultramarine
+    Color::rgb(0xdd, 0xcc, 0x99), // sand
 ];
 
 /// A continuous colour map from 0..=1 to colours.
@@ -146,6 +168,7 @@ pub fn categorical(name: &str) -> Option<Vec<Color>> {
     let from = |cs: &[colorous::Color]| cs.iter().map(|c| Color::rgb(c.r, c.g, c.b)).collect();
     match name.trim().to_ascii_lowercase().as_str() {
         "okabe-ito" | "okabe_ito" | "okabeito" => Some(OKABE_ITO.to_vec()),
+        "okabe-ito-12" | "okabe_ito_12" => Some(OKABE_ITO_12.to_vec()),
         "tableau10" => Some(from(&colorous::TABLEAU10)),
         "category10" => Some(from(&colorous::CATEGORY10)),
         "set2" => Some(from(&colorous::SET2)),

@@ -4,14 +4,13 @@
 use crate::data::{Categories, Column, NonFinite, Table};
 use crate::guide::axis::title_with_unit;
 use crate::guide::color::{self, ContinuousMap};
-use crate::guide::format::format_value;
 use crate::guide::layout::{Domain, PositionAxis};
 use crate::guide::legend::{Legend, Symbol};
 use crate::guide::scale::Scale;
 use crate::scene::Color;
 use crate::spec::{ChannelOptions, ColorChannel, ColorType, ScaleKind};
 
-use super::MarkError;
+use super::{MarkError, categorical};
 
 /// Grey used for rows whose colour value is missing.
 pub const MISSING_COLOR: Color = Color::rgb(0xa0, 0xa0, 0xa0);
@@ -509,43 +508,36 @@ pub fn color_encoding(
     let options = channel.options();
     let col = column(chart, index, "color", &options.field, table)?;
     let title = title_with_unit(options.title.as_deref().unwrap_or(&options.field), options.unit.as_deref());
-    let categorical = match (options.r#type, col.categories().is_some()) {
-        (Some(ColorType::Categorical), _) | (None, true) => true,
-        (Some(ColorType::Continuous), true) => {
-            return Err(MarkError::at(
-                index,
-                &["color", "type"],
-                format!(
-                    "chart \"{}\": column `{}` holds text and cannot be coloured continuously",
-                    chart.name, options.field
-                ),
-                "remove `type = \"continuous\"` or colour by a numeric column",
-            ));
-        }
-        _ => false,
-    };
-    if categorical {
-        let categories = match col.categories() {
-            Some(c) => c.clone(),
-            None => number_categories(col.numbers().unwrap_or(&[])),
-        };
-        let palette = palette(index, &["color", "scheme"], options.scheme.as_deref())?;
-        let colors: Vec<Color> = (0..categories.levels.len())
-            .map(|i| palette.get(i % palette.len().max(1)).copied().unwrap_or(MISSING_COLOR))
-            .collect();
-        let mut entries: Vec<(String, Color)> = Vec::new();
-        for level in used_levels(&categories, rows) {
-            let color = categories
-                .levels
-                .iter()
-                .position(|l| *l == level)
-                .and_then(|i| colors.get(i).copied())
-                .unwrap_or(MISSING_COLOR);
-            entries.push((level, color));
-        }
+    if options.r#type == Some(ColorType::Continuous) && col.categories().is_some() {
+        return Err(MarkError::at(
+            index,
+            &["color", "type"],
+            format!(
+                "chart \"{}\": column `{}` holds text and cannot be coloured continuously",
+                chart.name, options.field
+            ),
+            "remove `type = \"continuous\"` or colour by a numeric column",
+        ));
+    }
+    if categorical::is_categorical(&options, col) {
+        let categories = categorical::categories_of(col);
+        let (colors, entries) = categorical::assign(chart, index, &options, &categories, rows)?;
         let legend = Legend::Categorical { title, entries, symbol };
         let legend = shown_legends(legend, &options).pop();
         return Ok((ColorEncoding::Categorical { categories, colors }, legend));
+    }
+    if options.domain.is_some() || options.range.is_some() {
+        let key = if options.domain.is_some() { "domain" } else { "range" };
+        return Err(MarkError::at(
+            index,
+            &["color", key],
+            format!(
+                "chart \"{}\": `{key}` sets categorical colours, but `{}` is coloured continuously",
+                chart.name, options.field
+            ),
+            "remove `type = \"continuous\"` to colour the column's values as categories, or remove `domain` and \
+             `range`",
+        ));
     }
     let values = col.numbers().unwrap_or(&[]).to_vec();
     let map = continuous_map(index, &["color", "scheme"], options.scheme.as_deref())?;
@@ -595,19 +587,6 @@ pub fn continuous_map(index: usize, keys: &[&str], name: Option<&str>) -> Result
         let hint = crate::spec::suggest::hint(scheme, names, "continuous schemes", false);
         MarkError::at(index, keys, format!("unknown continuous colour scheme `{scheme}`"), hint)
     })
-}
-
-/// Distinct numbers as sorted categories (for `type = "categorical"` on a numeric column).
-fn number_categories(values: &[f64]) -> Categories {
-    let mut distinct: Vec<f64> = values.iter().copied().filter(|v| v.is_finite()).collect();
-    distinct.sort_by(f64::total_cmp);
-    distinct.dedup();
-    let levels: Vec<String> = distinct.iter().map(|&v| format_value(v)).collect();
-    let codes = values
-        .iter()
-        .map(|v| distinct.binary_search_by(|d| d.total_cmp(v)).map(|i| i as u32).unwrap_or(Categories::MISSING))
-        .collect();
-    Categories { levels, codes }
 }
 
 #[cfg(test)]

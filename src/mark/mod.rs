@@ -4,6 +4,7 @@
 //! encodings — live in [`encode`] so that kinds only describe their own geometry.
 
 pub mod bar;
+pub mod categorical;
 pub mod contour;
 pub mod daisy;
 pub mod derived;

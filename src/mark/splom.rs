@@ -196,7 +196,8 @@ pub fn draw_with_geometry(
             }
         }
     }
-    items.extend(grid.axes(&axes, layout, &theme));
+    let fields: Vec<&str> = columns.iter().map(|(o, _)| o.field.as_str()).collect();
+    items.extend(grid.axes(&axes, &fields, layout, &theme));
     if !diagonals.is_empty() {
         geometry.diagonals = Some(Diagonals {
             options: options.clone(),
@@ -365,8 +366,8 @@ impl Grid {
 
     /// Outer axes: each cell column's x axis under its lowest drawn cell, each cell row's y axis
     /// left of its leftmost drawn cell (the outer edges for `full` and `lower`, the diagonal for
-    /// `upper`).
-    fn axes(&self, axes: &[PositionAxis], layout: MatrixLayout, theme: &Theme) -> Vec<Item> {
+    /// `upper`). Each axis's items are labelled with its column: `x axis: FIELD`, `y axis: FIELD`.
+    fn axes(&self, axes: &[PositionAxis], fields: &[&str], layout: MatrixLayout, theme: &Theme) -> Vec<Item> {
         let k = axes.len();
         let mut items = Vec::new();
         for (c, axis) in axes.iter().enumerate() {
@@ -379,11 +380,21 @@ impl Grid {
             // Labels may reach past the outer edges, but never into a neighbouring cell's labels.
             let slack = |outer: bool| if outer { f64::INFINITY } else { self.gap * 0.3 };
             let span = (cell.x - slack(c == 0), cell.right() + slack(c == k - 1));
-            items.extend(axis::draw_within(&self.x[c], Side::Bottom, cell, Some(&title), theme, span));
+            let field = fields.get(c).copied().unwrap_or_default();
+            let of_column = |side: &str, drawn: Vec<Item>| -> Vec<Item> {
+                let (plain, named) = (format!("{side} axis"), format!("{side} axis: {field}"));
+                drawn
+                    .into_iter()
+                    .map(|item| {
+                        if item.label.as_deref() == Some(plain.as_str()) { item.labelled(named.clone()) } else { item }
+                    })
+                    .collect()
+            };
+            items.extend(of_column("x", axis::draw_within(&self.x[c], Side::Bottom, cell, Some(&title), theme, span)));
             let cell = self.cell(c, left_col);
             let title = truncate_to_width(&axis.title, self.cell_h + self.gap, theme.label_size);
             let span = (cell.y - slack(c == 0), cell.bottom() + slack(c == k - 1));
-            items.extend(axis::draw_within(&self.y[c], Side::Left, cell, Some(&title), theme, span));
+            items.extend(of_column("y", axis::draw_within(&self.y[c], Side::Left, cell, Some(&title), theme, span)));
         }
         items
     }

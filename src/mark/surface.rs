@@ -98,8 +98,8 @@ pub fn draw(chart: &Chart, options: &SurfaceOptions, index: usize, table: &Table
         z_title,
     ];
     let ranges = [projection.x_range, projection.y_range, projection.z_range];
-    for ((line, title), range) in projection.axes.iter().zip(&titles).zip(ranges) {
-        items.extend(axis_items(&projection, line, title, range, &to_px, &theme));
+    for (((line, title), range), name) in projection.axes.iter().zip(&titles).zip(ranges).zip(AXIS_NAMES) {
+        items.extend(axis_items(&projection, line, (name, title), range, &to_px, &theme));
     }
     let scene = canvas.scene(chart, items, None);
 
@@ -107,11 +107,34 @@ pub fn draw(chart: &Chart, options: &SurfaceOptions, index: usize, table: &Table
     Ok(ChartOutput { scene, derived, warnings, geojson: None })
 }
 
-/// Tick marks, tick labels and the title of one projected axis.
+/// The scene labels of the projected axes' items, in the order x, y, z.
+const AXIS_NAMES: [&str; 3] = ["x axis", "y axis", "z axis"];
+
+/// Nice tick values within `range` (at least two when a finer step gives them: a short axis
+/// over a narrow range can hold a single nice value, which shows no scale) and their step.
+fn ticks_inside(range: (f64, f64), target: usize) -> (Vec<f64>, f64) {
+    let within = |target: usize| {
+        let ticks = extended(range.0, range.1, target, false);
+        let inside: Vec<f64> =
+            ticks.values.iter().copied().filter(|v| *v >= range.0 - 1e-12 && *v <= range.1 + 1e-12).collect();
+        (inside, ticks.step)
+    };
+    let first = within(target);
+    if first.0.len() >= 2 || range.1 <= range.0 {
+        return first;
+    }
+    (target + 1..=MAX_TICKS).map(within).find(|(inside, _)| inside.len() >= 2).unwrap_or(first)
+}
+
+/// The most ticks [`ticks_inside`] asks for on one projected axis.
+const MAX_TICKS: usize = 10;
+
+/// Tick marks, tick labels and the title of one projected axis; the ticks and their labels
+/// are labelled with the axis's `name`.
 fn axis_items(
     projection: &SurfaceProjection,
     line: &AxisLine,
-    title: &str,
+    (name, title): (&str, &str),
     range: (f64, f64),
     to_px: &impl Fn((f64, f64)) -> Point,
     theme: &Theme,
@@ -120,10 +143,8 @@ fn axis_items(
     let (start, end) = (to_px(line.start), to_px(line.end));
     let length = (end.x - start.x).hypot(end.y - start.y);
     let target = ((length / (theme.font_size * 6.0)).round() as usize).clamp(2, 6);
-    let ticks = extended(range.0, range.1, target, false);
-    let inside: Vec<f64> =
-        ticks.values.iter().copied().filter(|v| *v >= range.0 - 1e-12 && *v <= range.1 + 1e-12).collect();
-    let labels = format_ticks(&inside, ticks.step);
+    let (inside, step) = ticks_inside(range, target);
+    let labels = format_ticks(&inside, step);
     // `outward` is in screen units with y up; canvas y runs down.
     let (nx, ny) = (line.outward.0, -line.outward.1);
     let anchor = if nx > 0.3 {
@@ -149,20 +170,23 @@ fn axis_items(
         cmds.push(PathCmd::MoveTo(p));
         cmds.push(PathCmd::LineTo(tip));
         widest = widest.max(measure(&label, theme.font_size).width);
-        items.push(Item::text(
-            Role::TickLabel,
-            Text {
-                at: Point::new(tip.x + nx * 3.0, tip.y + ny * 3.0),
-                content: label,
-                size: theme.font_size,
-                anchor,
-                baseline,
-                angle: 0.0,
-                color: theme.muted_text,
-            },
-        ));
+        items.push(
+            Item::text(
+                Role::TickLabel,
+                Text {
+                    at: Point::new(tip.x + nx * 3.0, tip.y + ny * 3.0),
+                    content: label,
+                    size: theme.font_size,
+                    anchor,
+                    baseline,
+                    angle: 0.0,
+                    color: theme.muted_text,
+                },
+            )
+            .labelled(name),
+        );
     }
-    items.push(Item::new(Role::Axis, Shape::Path(cmds), Style::stroke(theme.axis, 1.0)));
+    items.push(Item::new(Role::Axis, Shape::Path(cmds), Style::stroke(theme.axis, 1.0)).labelled(name));
     let mid = Point::new((start.x + end.x) / 2.0, (start.y + end.y) / 2.0);
     let away = theme.tick_length + 6.0 + if nx.abs() > 0.3 { widest } else { theme.font_size * 1.2 };
     items.push(Item::text(

@@ -93,9 +93,9 @@ impl Branches {
 const MAX_LEGEND_BRANCHES: usize = 12;
 
 /// The categorical palette of the branches: the named scheme, or Okabe–Ito for up to eight
-/// branches and ColorBrewer Paired (12 colours) above that.
+/// branches and its 12-colour extension `okabe-ito-12` above that (both pass lint rule CL003).
 pub fn branch_palette(index: usize, scheme: Option<&str>, branches: usize) -> Result<Vec<Color>, MarkError> {
-    let name = scheme.or((branches > 8).then_some("paired"));
+    let name = scheme.or((branches > 8).then_some("okabe-ito-12"));
     encode::palette(index, &["scheme"], name)
 }
 

@@ -554,6 +554,8 @@ point_size = "d"
                             r#type: Some(ColorType::Categorical),
                             midpoint: Some(0.5),
                             legend: Some(true),
+                            domain: None,
+                            range: None,
                         })),
                         point_size: Some(SizeChannel::Detailed(SizeOptions {
                             field: "petal_width".to_owned(),

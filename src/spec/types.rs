@@ -1331,6 +1331,15 @@ pub struct ColorOptions {
     /// lint rule SC004 reports that.
     #[serde(default)]
     pub legend: Option<bool>,
+    /// Categorical colours: the categories in colour and legend order, e.g. `["USA", "Japan"]`
+    /// (numbers for numeric codes). Every category drawn must be listed (default: the spec-wide
+    /// order of the column's categories, so a category has one colour in every chart).
+    #[serde(default)]
+    pub domain: Option<Vec<CategoryValue>>,
+    /// Categorical colours: one colour per `domain` entry (CSS hex such as `"#1f77b4"` or a
+    /// colour name), used instead of `scheme`; it needs at least as many colours as categories.
+    #[serde(default)]
+    pub range: Option<Vec<String>>,
 }
 
 field_channel!(ColorChannel, ColorOptions);

@@ -1080,6 +1080,10 @@ impl<'s> Walker<'s> {
     }
 
     fn check_domain(&mut self, local: &str, channel: &SpannedValue) {
+        // A colour `domain` lists categories in colour order, not an extent.
+        if local == "color" {
+            return;
+        }
         let Some(domain) = channel.get("domain") else { return };
         let Some([a, b]) = domain.as_array() else { return };
         let (Some(lo), Some(hi)) = (a.as_f64(), b.as_f64()) else { return };

@@ -4,6 +4,8 @@
 
 use std::process::Command;
 
+use dataink::lint::Finding;
+
 use crate::common::{Fixture, lint_codes, lint_findings, root};
 
 /// 200 rows: `x` in [0, 10), `y` in [0, 5), `temp_c` = 20 + 5 sin x, `w` in [−1, 3), `cat` with
@@ -343,4 +345,104 @@ fn the_gallery_lints_clean() {
         .map(|f| format!("{} {}: {}", f.code, f.chart, f.message))
         .collect();
     assert!(findings.is_empty(), "gallery findings:\n{}", findings.join("\n"));
+}
+
+#[test]
+fn di004_is_reported_once_per_data_source_naming_its_charts() {
+    let data = b"x,y\n1,2\n2,NaN\n3,4\n4,\n5,6\n";
+    let chart = |name: &str| {
+        format!(
+            "[[chart]]\nname = \"{name}\"\nkind = \"scatter\"\ndata = \"d\"\ntitle = \"T\"\nx = \"x\"\ny = \"y\"\n\n"
+        )
+    };
+    let spec = format!("[data.d]\npath = \"d.csv\"\n\n{}{}{}", chart("a"), chart("b"), chart("c"));
+    let found = lint_findings(&spec, &[("d.csv", data)], "DI004");
+    assert_eq!(found.len(), 1, "{found:?}");
+    assert_eq!(found[0].chart, "a");
+    assert!(
+        found[0].message.ends_with("charts over data \"d\" that drop rows: \"a\", \"b\", \"c\""),
+        "{}",
+        found[0].message
+    );
+}
+
+/// A line chart over `rows` (x, y, g) with extra keys.
+fn line_codes(rows: &str, extra: &str) -> Vec<Finding> {
+    let data = format!("x,y,g\n{rows}");
+    let spec = format!(
+        "[data.d]\npath = \"d.csv\"\n\n[[chart]]\nname = \"c\"\nkind = \"line\"\ndata = \"d\"\ntitle = \"T\"\nx = \"x\"\ny = \"y\"\n{extra}\n"
+    );
+    lint_findings(&spec, &[("d.csv", data.as_bytes())], "DI007")
+}
+
+#[test]
+fn di007_a_line_through_repeated_x_values() {
+    let rows = "1,2,a\n1,5,b\n2,3,a\n2,6,b\n3,2,a\n3,7,b\n3,1,b\n";
+    let found = line_codes(rows, "");
+    assert_eq!(found.len(), 1, "{found:?}");
+    assert!(
+        found[0].message.starts_with("4 of 7 rows repeat an x value of their series (x = 3 appears 3 times)"),
+        "{}",
+        found[0].message
+    );
+    assert!(
+        found[0].hint.contains(r#"transform = [{ aggregate = { mean_y = "mean(y)" }, groupby = ["x"] }]"#),
+        "{}",
+        found[0].hint
+    );
+    assert!(found[0].hint.contains("series = "), "{}", found[0].hint);
+    // One series per group: each x once per series, except b's two rows at x = 3.
+    let found = line_codes(rows, "series = \"g\"");
+    assert_eq!(found.len(), 1);
+    assert!(
+        found[0]
+            .message
+            .starts_with("1 of 7 rows repeat an x value of their series (x = 3 appears 2 times in series \"b\" (`g`))"),
+        "{}",
+        found[0].message
+    );
+    assert!(found[0].hint.contains(r#"groupby = ["x", "g"]"#), "{}", found[0].hint);
+    assert!(line_codes("1,2,a\n1,5,b\n2,3,a\n2,6,b\n3,2,a\n3,7,b\n", "series = \"g\"").is_empty());
+}
+
+/// A bar chart whose x categories are `labels`.
+fn bar_codes(labels: &[&str]) -> Vec<Finding> {
+    let mut data = String::from("label,v\n");
+    for (i, l) in labels.iter().enumerate() {
+        data.push_str(&format!("\"{l}\",{}\n", i + 1));
+    }
+    let spec = "[data.d]\npath = \"d.csv\"\n\n[[chart]]\nname = \"c\"\nkind = \"bar\"\ndata = \"d\"\ntitle = \"T\"\nx = \"label\"\ny = \"v\"\n";
+    lint_findings(spec, &[("d.csv", data.as_bytes())], "SC005")
+}
+
+#[test]
+fn sc005_numbers_and_dates_read_as_text_on_a_band_axis() {
+    let found = bar_codes(&["1,234", "2,500", "12,000", "3.5%"]);
+    assert_eq!(found.len(), 1, "{found:?}");
+    assert!(
+        found[0].message.contains("4 of its 4 values look like numbers (\"1,234\", \"2,500\", \"12,000\")"),
+        "{}",
+        found[0].message
+    );
+    assert!(found[0].hint.contains(r#"parse = { label = "number" }"#), "{}", found[0].hint);
+    let found = bar_codes(&["12/06/1998", "13/06/1998", "14/06/1998"]);
+    assert_eq!(found.len(), 1);
+    assert!(found[0].message.contains("look like dates"), "{}", found[0].message);
+    assert!(bar_codes(&["apples", "pears", "plums"]).is_empty());
+    // One odd value in three is too many for a column of numbers.
+    assert!(bar_codes(&["1,234", "2,500", "n/a"]).is_empty());
+}
+
+#[test]
+fn sc001_checks_each_axis_of_a_scatter_plot_matrix() {
+    let data = table_csv();
+    let splom = |size: &str| {
+        format!(
+            "[data.d]\npath = \"d.csv\"\n\n[[chart]]\nname = \"m\"\nkind = \"splom\"\ndata = \"d\"\ntitle = \"T\"\nsize = {size}\ncolumns = [\"x\", \"y\", \"temp_c\", \"w\"]\n"
+        )
+    };
+    let cramped = lint_findings(&splom("[260, 260]"), &[("d.csv", &data)], "SC001");
+    assert!(!cramped.is_empty());
+    assert!(cramped.iter().all(|f| f.element.contains(" axis of `")), "{cramped:?}");
+    assert!(lint_findings(&splom("[800, 800]"), &[("d.csv", &data)], "SC001").is_empty());
 }

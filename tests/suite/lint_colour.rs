@@ -1,4 +1,4 @@
-//! Colour lint rules (CL001–CL004): for every rule a spec that triggers it and a near-identical
+//! Colour lint rules (CL001–CL005): for every rule a spec that triggers it and a near-identical
 //! one that does not, with the numbers the messages quote.
 
 use crate::common::{lint_codes, lint_findings};
@@ -299,7 +299,7 @@ fn summarised_legend_entries_count() {
 fn colour_rules_are_listed_in_code_order() {
     let codes: Vec<&str> = dataink::lint::rules::ALL.iter().map(|r| r.code).collect();
     let cl: Vec<&str> = codes.iter().copied().filter(|c| c.starts_with("CL")).collect();
-    assert_eq!(cl, ["CL001", "CL002", "CL003", "CL004"]);
+    assert_eq!(cl, ["CL001", "CL002", "CL003", "CL004", "CL005"]);
     for (code, name) in [
         ("CL001", "rainbow-map"),
         ("CL002", "diverging-midpoint"),
@@ -310,4 +310,33 @@ fn colour_rules_are_listed_in_code_order() {
         assert_eq!(rule.code, code);
         assert_eq!(rule.category, dataink::lint::Category::Colour);
     }
+}
+
+// CL005 nominal-continuous-colour.
+
+/// Points coloured by a whole-number column `station_id` (30 ids) and a measurement `v`.
+fn stations() -> Vec<u8> {
+    let mut csv = String::from("x,y,station_id,v\n");
+    for i in 0..60 {
+        csv.push_str(&format!("{i},{},{},{}\n", (i * 7) % 11, 1000 + i % 30, i as f64 * 0.5));
+    }
+    csv.into_bytes()
+}
+
+#[test]
+fn identifiers_on_a_continuous_colour_map() {
+    let data = stations();
+    let found = lint_findings(&scatter("\"station_id\""), &[("data.csv", &data)], "CL005");
+    assert_eq!(found.len(), 1, "{found:?}");
+    assert!(
+        found[0].message.starts_with("`station_id` holds whole-number identifiers (30 distinct values)"),
+        "{}",
+        found[0].message
+    );
+    assert!(found[0].hint.contains(r#"color = { field = "station_id", type = "categorical" }"#), "{}", found[0].hint);
+    assert_eq!(found[0].path, "chart[0].color");
+    // A measurement, or the ids as categories, is fine.
+    assert!(lint_findings(&scatter("\"v\""), &[("data.csv", &data)], "CL005").is_empty());
+    let categories = r#"{ field = "station_id", type = "categorical" }"#;
+    assert!(lint_findings(&scatter(categories), &[("data.csv", &data)], "CL005").is_empty());
 }

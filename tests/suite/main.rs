@@ -6,6 +6,7 @@ mod bad_input;
 mod bar;
 mod charts;
 mod cli;
+mod colours;
 mod common;
 mod explore;
 mod flow;

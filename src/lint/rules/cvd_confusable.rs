@@ -205,6 +205,16 @@ mod tests {
         let okabe = categorical("okabe-ito").unwrap();
         assert_eq!(okabe.len(), 8);
         assert_eq!(closest(&okabe), None);
+        // The 12-colour extension (the branch default above eight branches) passes at every
+        // length, and its closest pair is still Okabe–Ito's orange and yellow.
+        let twelve = categorical("okabe-ito-12").unwrap();
+        assert_eq!((twelve.len(), &twelve[..8]), (12, &okabe[..]));
+        for n in 9..=12 {
+            assert_eq!(closest(&twelve[..n]), None, "okabe-ito-12 ×{n}");
+            assert!((min_delta(&twelve[..n]).0 - 11.6).abs() < 0.05);
+        }
+        let added = min_delta(&twelve[8..]).0;
+        assert!(added >= 14.5, "the four added colours are {added:.2} apart");
         for (name, n) in [("category10", 3), ("tableau10", 5), ("paired", 5), ("set2", 4), ("dark2", 4)] {
             let p = categorical(name).unwrap();
             assert!(closest(&p[..n]).is_some(), "{name} ×{n} passes");

@@ -90,6 +90,41 @@ fn check_dropped(s: &Subject<'_>) -> Vec<Issue> {
         .collect()
 }
 
+/// Keep one DI004 finding per data source: the first chart's (in the order given), its
+/// message naming every chart over that source that drops rows; the other charts' DI004
+/// findings are removed. `lints` pairs each chart's findings with its data source's name.
+pub fn one_dropped_rows_per_source(lints: &mut [(&str, &mut crate::lint::ChartLint)]) {
+    let is_dropped = |f: &crate::lint::Finding| f.code == DROPPED_ROWS.code;
+    let mut sources: Vec<&str> = lints.iter().map(|(d, _)| *d).collect();
+    sources.sort_unstable();
+    sources.dedup();
+    for source in sources {
+        let charts: Vec<String> = lints
+            .iter()
+            .filter(|(d, l)| *d == source && l.findings.iter().any(is_dropped))
+            .map(|(_, l)| format!("\"{}\"", l.chart))
+            .collect();
+        if charts.len() < 2 {
+            continue;
+        }
+        let mut first = true;
+        for (_, lint) in lints.iter_mut().filter(|(d, _)| *d == source) {
+            if !lint.findings.iter().any(is_dropped) {
+                continue;
+            }
+            if first {
+                for f in lint.findings.iter_mut().filter(|f| is_dropped(f)) {
+                    f.message =
+                        format!("{}; charts over data \"{source}\" that drop rows: {}", f.message, charts.join(", "));
+                }
+                first = false;
+            } else {
+                lint.findings.retain(|f| !is_dropped(f));
+            }
+        }
+    }
+}
+
 /// Whether the chart's caption states the number of dropped rows, which tells the reader what
 /// is missing.
 fn caption_states_count(s: &Subject<'_>, dropped: usize) -> bool {

@@ -4,10 +4,12 @@
 
 use super::Rule;
 
+pub use hidden_values::one_dropped_rows_per_source;
+
 mod axis_ticks;
 mod axis_unit;
 mod banking;
-mod colour_keys;
+pub mod colour_keys;
 mod colour_legend;
 mod contour_labels;
 mod cvd_confusable;
@@ -17,9 +19,12 @@ mod faces_key;
 mod flow_key;
 mod hidden_values;
 mod missing_title;
+mod nominal_continuous;
 mod nonzero_baseline;
+mod numbers_as_text;
 mod overplotting;
 mod rainbow_map;
+mod repeated_x;
 mod size_by_radius;
 mod text_clipped;
 mod text_contrast;
@@ -36,6 +41,7 @@ pub static ALL: &[&Rule] = &[
     &axis_unit::RULE,
     &axis_ticks::TICK_COUNT,
     &colour_legend::RULE,
+    &numbers_as_text::RULE,
     // Labelling.
     &missing_title::RULE,
     &text_overlap::RULE,
@@ -49,11 +55,13 @@ pub static ALL: &[&Rule] = &[
     &hidden_values::DROPPED_ROWS,
     &hidden_values::OUTSIDE_DOMAIN,
     &banking::RULE,
+    &repeated_x::RULE,
     // Colour.
     &rainbow_map::RULE,
     &diverging_midpoint::RULE,
     &cvd_confusable::RULE,
     &too_many_categories::RULE,
+    &nominal_continuous::RULE,
     // Comparison.
     &unshared_scales::RULE,
     &overplotting::RULE,
