@@ -91,20 +91,19 @@ pub fn load(spec_path: &Path, policy: PathPolicy) -> Result<Loaded, Failed> {
     let mut tables = BTreeMap::new();
     for (name, source_spec) in &sources {
         let wanted: Option<Vec<String>> = needed.get(name).map(|set| set.iter().cloned().collect());
+        let key = if source_spec.path.is_some() { "path" } else { "values" };
+        let at = doc.span_of(&[PathSeg::Key("data".into()), PathSeg::Key(name.clone()), PathSeg::Key(key.into())]);
         match timed(&format!("load data \"{name}\""), || {
-            data::load_source(source_spec, &spec_dir, policy, wanted.as_deref())
+            data::load_source_with_warnings(source_spec, &spec_dir, policy, wanted.as_deref())
         }) {
-            Ok(table) => {
-                tables.insert(name.clone(), table);
+            Ok(loaded) => {
+                for warning in loaded.warnings {
+                    diagnostics.push(Diagnostic::warning(format!("data \"{name}\": {warning}")).at_opt(at.clone()));
+                }
+                tables.insert(name.clone(), loaded.table);
             }
             Err(e) => {
-                let key = if source_spec.path.is_some() { "path" } else { "values" };
-                let path = [PathSeg::Key("data".into()), PathSeg::Key(name.clone()), PathSeg::Key(key.into())];
-                let mut d = Diagnostic::error(format!("data \"{name}\": {e}")).with_hint(e.hint());
-                if let Some(span) = doc.span_of(&path) {
-                    d = d.at(span);
-                }
-                diagnostics.push(d);
+                diagnostics.push(Diagnostic::error(format!("data \"{name}\": {e}")).with_hint(e.hint()).at_opt(at));
             }
         }
     }

@@ -481,6 +481,8 @@ point_size = "d"
                 values: None,
                 extent: None,
                 delimiter: Some(";".to_owned()),
+                json_path: None,
+                parse: None,
             },
         );
         data.insert(
@@ -494,6 +496,8 @@ point_size = "d"
                 ]),
                 extent: None,
                 delimiter: None,
+                json_path: None,
+                parse: None,
             },
         );
         let field = |f: &str| Channel::Field(f.to_owned());

@@ -7,6 +7,7 @@ mod bar;
 mod charts;
 mod cli;
 mod common;
+mod datasets;
 mod explore;
 mod flow;
 mod golden;
