@@ -115,7 +115,7 @@ pub fn apply(mut df: DataFrame, rules: &BTreeMap<String, String>) -> Result<Data
                 format!("fix those cells, or change the rule for `{column}`"),
             )
         })?;
-        df.with_column(series).map_err(|e| fail(super::load::first_line(&e), String::new()))?;
+        df.with_column(series.into_column()).map_err(|e| fail(super::load::first_line(&e), String::new()))?;
     }
     Ok(df)
 }
@@ -146,7 +146,7 @@ fn parse_column(text: &StringChunked, parse: &ColumnParse, name: PlSmallStr) -> 
             let mut cache: HashMap<&str, Option<i64>> = HashMap::new();
             let mut values = Vec::with_capacity(text.len());
             let mut bad: Option<Bad> = None;
-            for (row, cell) in text.into_iter().enumerate() {
+            for (row, cell) in text.iter().enumerate() {
                 let Some(cell) = cell.map(str::trim).filter(|s| !s.is_empty()) else {
                     values.push(None);
                     continue;
@@ -193,7 +193,7 @@ fn note_bad(bad: &mut Option<Bad>, row: usize, cell: &str) {
 fn each<T>(text: &StringChunked, read: impl Fn(&str) -> Option<T>) -> Result<Vec<Option<T>>, Bad> {
     let mut out = Vec::with_capacity(text.len());
     let mut bad: Option<Bad> = None;
-    for (row, cell) in text.into_iter().enumerate() {
+    for (row, cell) in text.iter().enumerate() {
         match cell.map(str::trim).filter(|s| !s.is_empty()) {
             None => out.push(None),
             Some(s) => {
