@@ -180,7 +180,7 @@ mod tests {
             .as_materialized_series()
             .str()
             .expect("text")
-            .into_iter()
+            .iter()
             .collect::<Vec<_>>();
         assert_eq!(kinds, [Some("Polygon"), Some("Point")]);
         let shape = df
@@ -206,14 +206,8 @@ mod tests {
             ]}"#,
         )
         .expect("reads");
-        let codes = df
-            .column("code")
-            .expect("code")
-            .as_materialized_series()
-            .str()
-            .expect("text")
-            .into_iter()
-            .collect::<Vec<_>>();
+        let codes =
+            df.column("code").expect("code").as_materialized_series().str().expect("text").iter().collect::<Vec<_>>();
         assert_eq!(codes, [Some("7"), Some("7b")]);
     }
 

@@ -239,14 +239,14 @@ mod tests {
         let ms = when.cast(&DataType::Int64).expect("ms").as_materialized_series().i64().expect("i64").to_vec();
         // 1998-06-12 and 1998-08-07 at midnight UTC.
         assert_eq!(ms, [Some(897_609_600_000), Some(902_448_000_000), None]);
-        let ids =
-            df.column("id").expect("id").as_materialized_series().str().expect("text").into_iter().collect::<Vec<_>>();
+        let ids = df.column("id").expect("id").as_materialized_series().str().expect("text").iter().collect::<Vec<_>>();
         assert_eq!(ids, [Some("7"), Some("8"), Some("9")]);
         assert_eq!(
             df.column("n").expect("n").as_materialized_series().f64().expect("f64").to_vec(),
             [Some(1.5), Some(-2000.0), None]
         );
-        let flags = df.column("flag").expect("flag").as_materialized_series().bool().expect("bool").to_vec();
+        let flags =
+            df.column("flag").expect("flag").as_materialized_series().bool().expect("bool").iter().collect::<Vec<_>>();
         assert_eq!(flags, [Some(true), Some(false), Some(true)]);
     }
 
