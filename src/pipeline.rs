@@ -101,6 +101,12 @@ pub fn load(spec_path: &Path, policy: PathPolicy) -> Result<Loaded, Failed> {
         if let Some(frame) = plans.frames.get(name) {
             match timed(&format!("load data \"{name}\""), || collect_source(frame, wanted.as_deref(), name)) {
                 Ok(table) => {
+                    let rules = source_spec.parse.as_ref();
+                    let at = doc.span_of(&data::transform::plan::source_path(name, "transform"));
+                    for warning in data::date_guess::date_warnings(&table, |c| rules.is_none_or(|r| !r.contains_key(c)))
+                    {
+                        diagnostics.push(Diagnostic::warning(format!("data \"{name}\": {warning}")).at_opt(at.clone()));
+                    }
                     tables.insert(name.clone(), table);
                 }
                 Err(message) => {
@@ -115,20 +121,19 @@ pub fn load(spec_path: &Path, policy: PathPolicy) -> Result<Loaded, Failed> {
             }
             continue;
         }
+        let key = if source_spec.path.is_some() { "path" } else { "values" };
+        let at = doc.span_of(&[PathSeg::Key("data".into()), PathSeg::Key(name.clone()), PathSeg::Key(key.into())]);
         match timed(&format!("load data \"{name}\""), || {
-            data::load_source(source_spec, &spec_dir, policy, wanted.as_deref())
+            data::load_source_with_warnings(source_spec, &spec_dir, policy, wanted.as_deref())
         }) {
-            Ok(table) => {
-                tables.insert(name.clone(), table);
+            Ok(loaded) => {
+                for warning in loaded.warnings {
+                    diagnostics.push(Diagnostic::warning(format!("data \"{name}\": {warning}")).at_opt(at.clone()));
+                }
+                tables.insert(name.clone(), loaded.table);
             }
             Err(e) => {
-                let key = if source_spec.path.is_some() { "path" } else { "values" };
-                let path = [PathSeg::Key("data".into()), PathSeg::Key(name.clone()), PathSeg::Key(key.into())];
-                let mut d = Diagnostic::error(format!("data \"{name}\": {e}")).with_hint(e.hint());
-                if let Some(span) = doc.span_of(&path) {
-                    d = d.at(span);
-                }
-                diagnostics.push(d);
+                diagnostics.push(Diagnostic::error(format!("data \"{name}\": {e}")).with_hint(e.hint()).at_opt(at));
             }
         }
     }

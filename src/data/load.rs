@@ -1,4 +1,6 @@
-//! Readers: CSV, Parquet and JSON files and inline `values`, all through polars, into [`Table`]s.
+//! Readers: CSV, Parquet, Arrow IPC, JSON and GeoJSON files (any of them gzip- or
+//! zstd-compressed) and inline `values`, all through polars, into [`Table`]s; per-column `parse`
+//! rules applied before the conversion, and warnings for text columns that look like dates.
 
 use std::fmt;
 use std::fs::File;
@@ -7,6 +9,7 @@ use std::path::{Path, PathBuf};
 
 use polars::prelude::*;
 
+use super::compressed::{self, Compression};
 use super::paths::{PathError, PathPolicy, resolve_data_path};
 use super::table::{Categories, Column as TableColumn, ColumnValues, Table};
 use crate::spec::{DataFormat, DataSource};
@@ -44,6 +47,39 @@ pub enum LoadError {
     },
     /// Neither `path` nor `values` (or both) were given.
     NoSource,
+    /// A compressed file could not be decompressed (corrupt, cut short, or too large).
+    Decompress {
+        /// The file.
+        path: PathBuf,
+        /// The compression its extension names.
+        compression: Compression,
+        /// The decoder's message.
+        message: String,
+    },
+    /// `json_path` does not lead to records or a grid.
+    JsonPath {
+        /// The file.
+        origin: String,
+        /// What is wrong.
+        message: String,
+        /// The keys that exist, a "did you mean".
+        hint: String,
+    },
+    /// A `parse` rule could not be applied to its column.
+    ColumnParse {
+        /// The file (or `inline values`).
+        origin: String,
+        /// The column, rule and message.
+        error: super::parse::ParseError,
+    },
+    /// A key was given that the source's format does not use (`json_path` on a CSV file,
+    /// `parse` on a grid).
+    NotApplicable {
+        /// The key.
+        key: &'static str,
+        /// The format read.
+        format: DataFormat,
+    },
 }
 
 impl fmt::Display for LoadError {
@@ -63,6 +99,18 @@ impl fmt::Display for LoadError {
                 write!(f, "column `{column}` of {origin} has type {dtype}, which charts cannot use")
             }
             LoadError::NoSource => write!(f, "a data source needs exactly one of `path` or `values`"),
+            LoadError::Decompress { path, compression, message } => {
+                write!(f, "cannot decompress `{}` as {}: {message}", path.display(), compression.name())
+            }
+            LoadError::JsonPath { origin, message, .. } => write!(f, "in {origin}: {message}"),
+            LoadError::ColumnParse { origin, error } => write!(
+                f,
+                "column `{}` of {origin} cannot be read with parse rule \"{}\": {}",
+                error.column, error.rule, error.message
+            ),
+            LoadError::NotApplicable { key, format } => {
+                write!(f, "`{key}` does not apply to {} files", format_name(*format))
+            }
         }
     }
 }
@@ -70,12 +118,24 @@ impl fmt::Display for LoadError {
 impl std::error::Error for LoadError {}
 
 impl LoadError {
+    /// The error for a failed open or read of `path`.
+    pub fn from_io(path: &Path, e: std::io::Error) -> LoadError {
+        match e.kind() {
+            std::io::ErrorKind::NotFound => LoadError::NotFound(path.to_path_buf()),
+            _ => LoadError::Io(path.to_path_buf(), e),
+        }
+    }
+
     /// How to fix it.
     pub fn hint(&self) -> String {
         match self {
             LoadError::Path(e) => e.hint().to_string(),
             LoadError::NotFound(_) => "paths are relative to the spec file; check the spelling".into(),
-            LoadError::UnknownFormat(_) => "add `format = \"csv\"` (or parquet, json) to the data source".into(),
+            LoadError::UnknownFormat(_) => {
+                "add `format = \"csv\"` to the data source, or one of parquet, json, arrow, \
+                 geojson, npy, matrix, tree; compressed files end in .gz or .zst after the format's extension"
+                    .into()
+            }
             LoadError::Io(..) => "check that the file is readable".into(),
             LoadError::Parse { format: DataFormat::Csv, .. } => {
                 "CSV needs a header row, UTF-8 text and the same number of fields on every row".into()
@@ -98,6 +158,22 @@ impl LoadError {
                 "use numbers, text, booleans, dates or date-times; flatten nested values first".into()
             }
             LoadError::NoSource => "write either path = \"data/file.csv\" or values = [{ x = 1, y = 2 }]".into(),
+            LoadError::Parse { format: DataFormat::Arrow, .. } => {
+                "the file is not a readable Arrow IPC file (Feather v2); write it with pyarrow.feather.write_feather, \
+                 polars' write_ipc or DuckDB's COPY ... (FORMAT arrow)"
+                    .into()
+            }
+            LoadError::Parse { format: DataFormat::Geojson, .. } => {
+                "GeoJSON data must be a FeatureCollection: {\"type\": \"FeatureCollection\", \"features\": [...]}"
+                    .into()
+            }
+            LoadError::Decompress { compression, .. } => format!(
+                "the file is not valid {0} or is cut short (check it with `{0} -t`); if it is not compressed, drop the extension",
+                compression.name()
+            ),
+            LoadError::JsonPath { hint, .. } => hint.clone(),
+            LoadError::ColumnParse { error, .. } => error.hint.clone(),
+            LoadError::NotApplicable { key, .. } => format!("remove `{key}` from the data source"),
         }
     }
 }
@@ -110,23 +186,73 @@ fn format_name(format: DataFormat) -> &'static str {
         DataFormat::Npy => "NumPy .npy",
         DataFormat::Matrix => "a CSV matrix",
         DataFormat::Tree => "a nested JSON tree",
+        DataFormat::Arrow => "Arrow IPC",
+        DataFormat::Geojson => "GeoJSON",
     }
 }
 
-/// The format of a path from its extension.
+/// The format of a path from its extension (the inner one for `.gz` and `.zst` files).
 pub fn infer_format(path: &Path) -> Option<DataFormat> {
-    let ext = path.extension()?.to_str()?.to_ascii_lowercase();
+    let inner = compressed::inner_path(path);
+    let ext = inner.extension()?.to_str()?.to_ascii_lowercase();
     match ext.as_str() {
         "csv" | "tsv" | "txt" => Some(DataFormat::Csv),
         "parquet" | "pq" => Some(DataFormat::Parquet),
         "json" | "jsonl" | "ndjson" => Some(DataFormat::Json),
         "npy" => Some(DataFormat::Npy),
+        "arrow" | "feather" | "ipc" => Some(DataFormat::Arrow),
+        "geojson" => Some(DataFormat::Geojson),
         _ => None,
     }
 }
 
+/// A loaded source: its table and the warnings met while reading it (text columns that look
+/// like dates in a non-ISO format).
+#[derive(Debug)]
+pub struct SourceData {
+    /// The table.
+    pub table: Table,
+    /// Warnings, each a sentence with its fix.
+    pub warnings: Vec<String>,
+}
+
+/// What a reader produced: a frame still to be parsed and converted, or a finished table (grids
+/// and trees).
+pub enum Reading {
+    /// Rows read by polars, before parse rules and conversion.
+    Frame(DataFrame),
+    /// A table made by dataink's own readers.
+    Table(Table),
+}
+
+/// The rows of a source as a polars frame, with its `parse` rules applied: the start of a
+/// source's transforms when the file cannot be scanned lazily.
+pub fn source_frame(source: &DataSource, spec_dir: &Path, policy: PathPolicy) -> Result<DataFrame, LoadError> {
+    let rules = source.parse.clone().unwrap_or_default();
+    let (read, origin) = match (&source.path, &source.values) {
+        (Some(path), None) => {
+            let resolved = resolve_data_path(spec_dir, path, policy).map_err(LoadError::Path)?;
+            let format = match source.format {
+                Some(f) => f,
+                None => infer_format(&resolved).ok_or_else(|| LoadError::UnknownFormat(resolved.clone()))?,
+            };
+            (read_path(source, &resolved, format, None, &rules)?, format!("`{}`", resolved.display()))
+        }
+        (None, Some(values)) => (Reading::Frame(inline_frame(values)?), "inline values".to_string()),
+        _ => return Err(LoadError::NoSource),
+    };
+    match read {
+        Reading::Frame(df) => super::parse::apply(df, &rules).map_err(|error| LoadError::ColumnParse { origin, error }),
+        Reading::Table(table) => super::frame::table_to_frame(&table).map_err(|e| LoadError::Parse {
+            origin,
+            format: DataFormat::Json,
+            message: e.to_string(),
+        }),
+    }
+}
+
 /// Load one data source. `spec_dir` is the folder of the spec file. With `columns`, only those
-/// columns are read from CSV and Parquet files (all of them if any is missing, so that the
+/// columns are read from CSV, Parquet and Arrow files (all of them if any is missing, so that the
 /// missing-column diagnostic can list the real ones).
 pub fn load_source(
     source: &DataSource,
@@ -134,32 +260,50 @@ pub fn load_source(
     policy: PathPolicy,
     columns: Option<&[String]>,
 ) -> Result<Table, LoadError> {
-    match (&source.path, &source.values) {
+    load_source_with_warnings(source, spec_dir, policy, columns).map(|data| data.table)
+}
+
+/// [`load_source`], with the warnings met while reading.
+pub fn load_source_with_warnings(
+    source: &DataSource,
+    spec_dir: &Path,
+    policy: PathPolicy,
+    columns: Option<&[String]>,
+) -> Result<SourceData, LoadError> {
+    let rules = source.parse.clone().unwrap_or_default();
+    let (read, origin, format) = match (&source.path, &source.values) {
         (Some(path), None) => {
             let resolved = resolve_data_path(spec_dir, path, policy).map_err(LoadError::Path)?;
             let format = match source.format {
                 Some(f) => f,
                 None => infer_format(&resolved).ok_or_else(|| LoadError::UnknownFormat(resolved.clone()))?,
             };
-            let separator = source.delimiter.as_deref().and_then(|d| d.bytes().next()).unwrap_or_else(|| {
-                if resolved.extension().is_some_and(|e| e.eq_ignore_ascii_case("tsv")) { b'\t' } else { b',' }
+            if source.json_path.is_some() && format != DataFormat::Json {
+                return Err(LoadError::NotApplicable { key: "json_path", format });
+            }
+            // Columns the rules name are read too, as raw text where the reader guesses types.
+            let wanted: Option<Vec<String>> = columns.map(|c| {
+                c.iter().chain(rules.keys()).cloned().collect::<std::collections::BTreeSet<_>>().into_iter().collect()
             });
-            match format {
-                DataFormat::Npy => return Ok(super::matrix::read_npy(&resolved)?.to_table(source.extent)),
-                DataFormat::Matrix => return Ok(read_csv_matrix(&resolved, separator)?.to_table(source.extent)),
-                DataFormat::Tree => return super::nested::read_tree_json(&resolved),
-                _ => {}
-            }
-            match columns {
-                Some(cols) if !cols.is_empty() && format != DataFormat::Json => {
-                    load_file(&resolved, format, separator, Some(cols))
-                        .or_else(|_| load_file(&resolved, format, separator, None))
-                }
-                _ => load_file(&resolved, format, separator, None),
-            }
+            let read = read_path(source, &resolved, format, wanted.as_deref(), &rules)?;
+            (read, format!("`{}`", resolved.display()), format)
         }
-        (None, Some(values)) => frame_to_table(&inline_frame(values)?, "inline values"),
-        _ => Err(LoadError::NoSource),
+        (None, Some(values)) => (Reading::Frame(inline_frame(values)?), "inline values".to_string(), DataFormat::Json),
+        _ => return Err(LoadError::NoSource),
+    };
+    match read {
+        Reading::Table(table) if rules.is_empty() => Ok(SourceData { table, warnings: Vec::new() }),
+        Reading::Table(_) => Err(LoadError::NotApplicable { key: "parse", format }),
+        Reading::Frame(df) => {
+            let df = super::parse::apply(df, &rules)
+                .map_err(|error| LoadError::ColumnParse { origin: origin.clone(), error })?;
+            let table = frame_to_table(&df, &origin)?;
+            // Columns with a rule are read as told; with `columns`, only those are looked at.
+            let warnings = super::date_guess::date_warnings(&table, |name| {
+                !rules.contains_key(name) && columns.is_none_or(|c| c.is_empty() || c.iter().any(|w| w == name))
+            });
+            Ok(SourceData { table, warnings })
+        }
     }
 }
 
@@ -177,61 +321,144 @@ pub fn inline_frame(values: &[std::collections::BTreeMap<String, serde_json::Val
         .map_err(|e| parse_error("inline values", DataFormat::Json, e))
 }
 
-/// Load a file of a known format, optionally only some of its columns (CSV and Parquet).
+/// Read a resolved file of a known format.
+pub fn read_path(
+    source: &DataSource,
+    resolved: &Path,
+    format: DataFormat,
+    columns: Option<&[String]>,
+    rules: &std::collections::BTreeMap<String, String>,
+) -> Result<Reading, LoadError> {
+    let origin = format!("`{}`", resolved.display());
+    let inner = compressed::inner_path(resolved);
+    let inner_ext = inner.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase).unwrap_or_default();
+    let separator = source.delimiter.as_deref().and_then(|d| d.bytes().next()).unwrap_or(if inner_ext == "tsv" {
+        b'\t'
+    } else {
+        b','
+    });
+    let parse_failed = |message: String| LoadError::Parse { origin: origin.clone(), format, message };
+    match format {
+        DataFormat::Npy => Ok(Reading::Table(super::matrix::read_npy(resolved)?.to_table(source.extent))),
+        DataFormat::Matrix => Ok(Reading::Table(read_csv_matrix(resolved, separator)?.to_table(source.extent))),
+        DataFormat::Tree => Ok(Reading::Table(super::nested::read_tree_json(resolved)?)),
+        DataFormat::Json => {
+            let bytes = compressed::read_bytes(resolved)?;
+            let lines = inner_ext == "jsonl" || inner_ext == "ndjson";
+            match super::json_path::read_json(&bytes, source.json_path.as_deref(), lines) {
+                Ok(super::json_path::JsonContent::Frame(df)) => Ok(Reading::Frame(df)),
+                Ok(super::json_path::JsonContent::Grid(m)) => Ok(Reading::Table(m.to_table(source.extent))),
+                Err(super::json_path::JsonError::Syntax(message)) => Err(parse_failed(message)),
+                Err(super::json_path::JsonError::Path { message, hint }) => {
+                    Err(LoadError::JsonPath { origin: origin.clone(), message, hint })
+                }
+            }
+        }
+        DataFormat::Geojson => {
+            let bytes = compressed::read_bytes(resolved)?;
+            let value: serde_json::Value = serde_json::from_slice(&bytes).map_err(|e| parse_failed(e.to_string()))?;
+            Ok(Reading::Frame(super::geojson::read_geojson(&value).map_err(parse_failed)?))
+        }
+        DataFormat::Csv | DataFormat::Parquet | DataFormat::Arrow => {
+            let text: Vec<&str> = rules.keys().map(String::as_str).collect();
+            let read = |cols| read_frame(resolved, format, separator, cols, &text);
+            let df = match columns {
+                Some(cols) if !cols.is_empty() => read(Some(cols)).or_else(|_| read(None)),
+                _ => read(None),
+            }?;
+            Ok(Reading::Frame(df))
+        }
+    }
+}
+
+/// Load a CSV, Parquet or Arrow file, optionally only some of its columns.
 pub fn load_file(
     path: &Path,
     format: DataFormat,
     separator: u8,
     columns: Option<&[String]>,
 ) -> Result<Table, LoadError> {
-    let df = read_frame(path, format, separator, columns)?;
+    let df = read_frame(path, format, separator, columns, &[])?;
     frame_to_table(&df, &format!("`{}`", path.display()))
 }
 
-/// Read a CSV, Parquet or JSON file into a frame, optionally only some of its columns (CSV and
-/// Parquet).
+/// Read a CSV, Parquet or Arrow file (decompressed first when its extension says so) into a
+/// frame, optionally only some of its columns; CSV columns in `text_columns` are read as raw text.
 pub fn read_frame(
     path: &Path,
     format: DataFormat,
     separator: u8,
     columns: Option<&[String]>,
+    text_columns: &[&str],
 ) -> Result<DataFrame, LoadError> {
-    let file = File::open(path).map_err(|e| match e.kind() {
-        std::io::ErrorKind::NotFound => LoadError::NotFound(path.to_path_buf()),
-        _ => LoadError::Io(path.to_path_buf(), e),
-    })?;
     let origin = format!("`{}`", path.display());
+    if Compression::of(path).is_some() {
+        let bytes = compressed::read_bytes(path)?;
+        if bytes.is_empty() {
+            return Err(LoadError::NoColumns(origin));
+        }
+        let head = bytes.get(..8).unwrap_or(&bytes).to_vec();
+        return frame_from(Cursor::new(bytes), &head, &origin, format, separator, columns, text_columns);
+    }
+    let mut file = File::open(path).map_err(|e| LoadError::from_io(path, e))?;
     if file.metadata().map(|m| m.len() == 0).unwrap_or(false) {
         return Err(LoadError::NoColumns(origin));
     }
+    let mut head = [0u8; 8];
+    let got = std::io::Read::read(&mut file, &mut head).map_err(|e| LoadError::from_io(path, e))?;
+    std::io::Seek::rewind(&mut file).map_err(|e| LoadError::from_io(path, e))?;
+    frame_from(file, head.get(..got).unwrap_or(&[]), &origin, format, separator, columns, text_columns)
+}
+
+/// Read a frame from a file or bytes in memory.
+fn frame_from<R: polars::io::mmap::MmapBytesReader + 'static>(
+    reader: R,
+    head: &[u8],
+    origin: &str,
+    format: DataFormat,
+    separator: u8,
+    columns: Option<&[String]>,
+    text_columns: &[&str],
+) -> Result<DataFrame, LoadError> {
     let df = match format {
-        DataFormat::Csv => CsvReadOptions::default()
-            .with_has_header(true)
-            .with_columns(columns.map(|c| c.iter().map(|n| PlSmallStr::from(n.as_str())).collect()))
-            .with_infer_schema_length(Some(10_000))
-            .map_parse_options(|p| p.with_separator(separator))
-            .into_reader_with_file_handle(file)
-            .finish(),
-        DataFormat::Parquet => ParquetReader::new(file).with_columns(columns.map(<[String]>::to_vec)).finish(),
-        DataFormat::Npy | DataFormat::Matrix | DataFormat::Tree => {
-            return Err(LoadError::Parse { origin, format, message: "grid files are read by load_source".into() });
+        DataFormat::Csv => {
+            let text: Schema =
+                text_columns.iter().map(|c| Field::new(PlSmallStr::from(*c), DataType::String)).collect();
+            CsvReadOptions::default()
+                .with_has_header(true)
+                .with_columns(columns.map(|c| c.iter().map(|n| PlSmallStr::from(n.as_str())).collect()))
+                .with_schema_overwrite((!text_columns.is_empty()).then(|| Arc::new(text)))
+                .with_infer_schema_length(Some(10_000))
+                .map_parse_options(|p| p.with_separator(separator))
+                .into_reader_with_file_handle(reader)
+                .finish()
         }
-        DataFormat::Json => {
-            let lines =
-                path.extension().is_some_and(|e| e.eq_ignore_ascii_case("jsonl") || e.eq_ignore_ascii_case("ndjson"));
-            let json_format = if lines { JsonFormat::JsonLines } else { JsonFormat::Json };
-            JsonReader::new(file).with_json_format(json_format).infer_schema_len(None).finish()
+        DataFormat::Parquet => ParquetReader::new(reader).with_columns(columns.map(<[String]>::to_vec)).finish(),
+        DataFormat::Arrow => {
+            return super::ipc::read_ipc(reader, head, columns).map_err(|message| LoadError::Parse {
+                origin: origin.to_string(),
+                format,
+                message,
+            });
         }
-    }
-    .map_err(|e| parse_error(&origin, format, e))?;
-    Ok(df)
+        _ => {
+            return Err(LoadError::Parse {
+                origin: origin.to_string(),
+                format,
+                message: "this format is read by load_source".into(),
+            });
+        }
+    };
+    df.map_err(|e| parse_error(origin, format, e))
 }
 
 fn parse_error(origin: &str, format: DataFormat, e: PolarsError) -> LoadError {
-    let message = e.to_string();
-    // polars messages can carry long tracebacks of context; the first line is what helps.
-    let first = message.lines().next().unwrap_or("").trim().to_string();
-    LoadError::Parse { origin: origin.to_string(), format, message: first }
+    LoadError::Parse { origin: origin.to_string(), format, message: first_line(&e) }
+}
+
+/// The first line of a polars message: the rest is long context that does not help the user.
+pub(crate) fn first_line(e: &PolarsError) -> String {
+    e.to_string().lines().next().unwrap_or("").trim().to_string()
 }
 
 /// Convert a polars frame into a [`Table`].
@@ -321,10 +548,7 @@ fn detect_time_text(values: ColumnValues) -> ColumnValues {
 
 /// A headerless CSV of numbers, read through polars, as a matrix (rows along y).
 pub fn read_csv_matrix(path: &Path, separator: u8) -> Result<super::matrix::Matrix, LoadError> {
-    let file = File::open(path).map_err(|e| match e.kind() {
-        std::io::ErrorKind::NotFound => LoadError::NotFound(path.to_path_buf()),
-        _ => LoadError::Io(path.to_path_buf(), e),
-    })?;
+    let file = Cursor::new(compressed::read_bytes(path)?);
     let origin = format!("`{}`", path.display());
     let df = CsvReadOptions::default()
         .with_has_header(false)

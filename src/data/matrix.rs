@@ -58,12 +58,10 @@ fn npy_error(path: &Path, message: impl Into<String>) -> LoadError {
     LoadError::Parse { origin: format!("`{}`", path.display()), format: DataFormat::Npy, message: message.into() }
 }
 
-/// Read a 2-D `.npy` array of integers or floats (any byte order, C or Fortran order).
+/// Read a 2-D `.npy` array of integers or floats (any byte order, C or Fortran order; the file
+/// may be gzip- or zstd-compressed).
 pub fn read_npy(path: &Path) -> Result<Matrix, LoadError> {
-    let bytes = std::fs::read(path).map_err(|e| match e.kind() {
-        std::io::ErrorKind::NotFound => LoadError::NotFound(path.to_path_buf()),
-        _ => LoadError::Io(path.to_path_buf(), e),
-    })?;
+    let bytes = super::compressed::read_bytes(path)?;
     parse_npy(&bytes).map_err(|m| npy_error(path, m))
 }
 

@@ -1,21 +1,30 @@
 //! Data: sources read through polars into small columnar [`Table`]s that chart kinds consume.
 //!
-//! Readers (CSV, Parquet, JSON records, inline `values`) live in [`load`]; a source's transform
-//! steps, compiled onto a polars lazy plan, in [`transform`]; the rule for which
+//! Readers (CSV, Parquet, JSON records, inline `values`) live in [`load`], with the formats beyond
+//! them each in its own module: Arrow IPC ([`ipc`]), GeoJSON ([`geojson`]), JSON paths and grids
+//! ([`json_path`]), gzip/zstd files ([`compressed`]), per-column `parse` rules ([`parse`]) and
+//! the non-ISO date warning ([`date_guess`]); a source's transform steps, compiled onto a
+//! polars lazy plan, in [`transform`]; the rule for which
 //! paths may be read lives in [`paths`]. Chart kinds never see polars: they get plain columns of
 //! numbers, times (milliseconds since the Unix epoch, UTC) or categories.
 
+pub mod compressed;
+pub mod date_guess;
 pub mod frame;
+pub mod geojson;
+pub mod ipc;
+pub mod json_path;
 pub mod load;
 pub mod matrix;
 pub mod nested;
 pub mod network;
+pub mod parse;
 pub mod paths;
 pub mod table;
 pub mod time;
 pub mod transform;
 pub mod tree;
 
-pub use load::{LoadError, load_source};
+pub use load::{LoadError, SourceData, load_source, load_source_with_warnings};
 pub use paths::{PathError, PathPolicy, resolve_data_path};
 pub use table::{Categories, Column, ColumnValues, NonFinite, Table};

@@ -21,10 +21,7 @@ const OWN_COLUMNS: [&str; 5] = ["id", "parent", "path", "name", "depth"];
 /// Read a nested JSON tree file into a flat id/parent table.
 pub fn read_tree_json(path: &Path) -> Result<Table, LoadError> {
     let origin = format!("`{}`", path.display());
-    let bytes = std::fs::read(path).map_err(|e| match e.kind() {
-        std::io::ErrorKind::NotFound => LoadError::NotFound(path.to_path_buf()),
-        _ => LoadError::Io(path.to_path_buf(), e),
-    })?;
+    let bytes = super::compressed::read_bytes(path)?;
     let value: Value = serde_json::from_slice(&bytes).map_err(|e| LoadError::Parse {
         origin: origin.clone(),
         format: DataFormat::Tree,

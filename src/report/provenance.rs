@@ -102,6 +102,8 @@ fn format_name(format: DataFormat) -> &'static str {
         DataFormat::Npy => "npy",
         DataFormat::Matrix => "matrix",
         DataFormat::Tree => "tree",
+        DataFormat::Arrow => "arrow",
+        DataFormat::Geojson => "geojson",
     }
 }
 

@@ -485,6 +485,8 @@ point_size = "d"
                 delimiter: Some(";".to_owned()),
                 from: None,
                 transform: None,
+                json_path: None,
+                parse: None,
             },
         );
         data.insert(
@@ -500,6 +502,8 @@ point_size = "d"
                 delimiter: None,
                 from: None,
                 transform: None,
+                json_path: None,
+                parse: None,
             },
         );
         let field = |f: &str| Channel::Field(f.to_owned());

@@ -92,7 +92,8 @@ pub enum Combine {
 /// then optional transforms.
 #[derive(Clone, Debug, Deserialize, Serialize, JsonSchema, PartialEq)]
 pub struct DataSource {
-    /// File path relative to the spec file (`.csv`, `.parquet`, `.json`).
+    /// File path relative to the spec file (`.csv`, `.parquet`, `.json`, `.arrow`, `.geojson`,
+    /// `.npy`; any of them may end in `.gz` or `.zst`).
     #[serde(default)]
     #[schemars(example = &"data/iris.csv")]
     pub path: Option<String>,
@@ -121,6 +122,16 @@ pub struct DataSource {
     /// `pivot`, `sort`, `sample`, `window`, `join`, `lookup`, `flatten`, `sql`.
     #[serde(default)]
     pub transform: Option<Vec<super::transform::TransformStep>>,
+    /// For JSON files: the dotted path of the array of records (or the grid) inside the file's
+    /// top-level object, e.g. `json_path = "nodes"` or `"data.rows"`.
+    #[serde(default)]
+    #[schemars(example = &"nodes")]
+    pub json_path: Option<String>,
+    /// How to read named columns instead of guessing: `"text"`, `"number"`, `"boolean"`, `"date"`
+    /// (ISO 8601) or `"date:FORMAT"` with a strftime format, e.g.
+    /// `parse = { when = "date:%b %d %Y", id = "text" }`.
+    #[serde(default)]
+    pub parse: Option<BTreeMap<String, String>>,
 }
 
 /// Supported file formats.
@@ -140,6 +151,11 @@ pub enum DataFormat {
     /// A nested JSON tree (an object with a `children` array), flattened into columns `id`,
     /// `parent`, `path`, `name`, `depth` and one per field.
     Tree,
+    /// Apache Arrow IPC file (Feather v2): `.arrow`, `.feather`, `.ipc`.
+    Arrow,
+    /// A GeoJSON FeatureCollection: one row per feature, its properties as columns, points as
+    /// `lon`/`lat`, other geometries as GeoJSON text in `geometry` with `geometry_type`.
+    Geojson,
 }
 
 /// One chart: options shared by every kind, plus the options of its `kind`.

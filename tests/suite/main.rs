@@ -8,6 +8,7 @@ mod charts;
 mod cli;
 mod colours;
 mod common;
+mod datasets;
 mod explore;
 mod flow;
 mod golden;

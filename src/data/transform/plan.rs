@@ -8,7 +8,7 @@ use polars::prelude::*;
 
 use super::TransformError;
 use super::steps::{Env, apply_steps};
-use crate::data::load::{LoadError, infer_format, load_source};
+use crate::data::load::{LoadError, infer_format};
 use crate::data::paths::{PathPolicy, resolve_data_path};
 use crate::spec::{DataFormat, DataSource, PathSeg, SpannedValue, SpecDoc};
 
@@ -194,46 +194,48 @@ pub fn source_path(name: &str, key: &str) -> Vec<PathSeg> {
     vec![PathSeg::Key("data".into()), PathSeg::Key(name.to_owned()), PathSeg::Key(key.to_owned())]
 }
 
-/// The rows of a source as a lazy frame: CSV and Parquet files are scanned lazily (so the
-/// transforms' projections and predicates reach the reader); other sources are read whole.
+/// The rows of a source as a lazy frame: plain CSV and Parquet files without `parse` rules are
+/// scanned lazily (so the transforms' projections and predicates reach the reader); other
+/// sources are read whole by their readers.
 pub fn scan(source: &DataSource, spec_dir: &Path, policy: PathPolicy) -> Result<LazyFrame, LoadError> {
-    if let Some(path) = &source.path {
+    if let (Some(path), None) = (&source.path, &source.parse) {
         let resolved = resolve_data_path(spec_dir, path, policy).map_err(LoadError::Path)?;
+        let ext = resolved.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase).unwrap_or_default();
         let format = source.format.or_else(|| infer_format(&resolved));
-        let text = resolved.to_string_lossy().into_owned();
-        // Empty and missing files go to the readers below, which say what is wrong.
+        // Empty, missing and compressed files go to the readers, which say what is wrong.
         let readable = std::fs::metadata(&resolved).is_ok_and(|m| m.is_file() && m.len() > 0);
+        let text = resolved.to_string_lossy().into_owned();
         let lazy = match format {
-            Some(DataFormat::Csv) if readable => {
-                let separator = source.delimiter.as_deref().and_then(|d| d.bytes().next()).unwrap_or_else(|| {
-                    if resolved.extension().is_some_and(|e| e.eq_ignore_ascii_case("tsv")) { b'\t' } else { b',' }
+            Some(DataFormat::Csv) if readable && matches!(ext.as_str(), "csv" | "tsv" | "txt") => {
+                let separator = source.delimiter.as_deref().and_then(|d| d.bytes().next()).unwrap_or(if ext == "tsv" {
+                    b'\t'
+                } else {
+                    b','
                 });
-                let lf = LazyCsvReader::new(PlRefPath::new(text.as_str()))
-                    .with_has_header(true)
-                    .with_infer_schema_length(Some(10_000))
-                    .with_try_parse_dates(true)
-                    .map_parse_options(|p| p.with_separator(separator))
-                    .finish();
-                Some(lf)
+                Some(
+                    LazyCsvReader::new(PlRefPath::new(text.as_str()))
+                        .with_has_header(true)
+                        .with_infer_schema_length(Some(10_000))
+                        .with_try_parse_dates(true)
+                        .map_parse_options(|p| p.with_separator(separator))
+                        .finish(),
+                )
             }
-            Some(DataFormat::Parquet) if readable => {
+            Some(DataFormat::Parquet) if readable && matches!(ext.as_str(), "parquet" | "pq") => {
                 Some(LazyFrame::scan_parquet(PlRefPath::new(text.as_str()), ScanArgsParquet::default()))
             }
             _ => None,
         };
-        if let Some(lf) = lazy {
+        if let (Some(lf), Some(format)) = (lazy, format) {
             let origin = format!("`{}`", resolved.display());
-            let mut lf = lf.map_err(|e| LoadError::Parse {
+            let failed = |e: PolarsError| LoadError::Parse {
                 origin: origin.clone(),
-                format: format.unwrap_or(DataFormat::Csv),
-                message: e.to_string(),
-            })?;
+                format,
+                message: super::first_line(&e.to_string()),
+            };
+            let mut lf = lf.map_err(failed)?;
             // Check the file now (header, schema), so a bad file is a load error, not a step's.
-            let schema = lf.collect_schema().map_err(|e| LoadError::Parse {
-                origin,
-                format: format.unwrap_or(DataFormat::Csv),
-                message: e.to_string().lines().next().unwrap_or("").to_owned(),
-            })?;
+            let schema = lf.collect_schema().map_err(failed)?;
             // A byte-order mark is not part of the first column's name.
             if let Some(first) = schema.iter_names().next()
                 && let Some(clean) = first.strip_prefix('\u{feff}')
@@ -243,21 +245,5 @@ pub fn scan(source: &DataSource, spec_dir: &Path, policy: PathPolicy) -> Result<
             return Ok(lf);
         }
     }
-    // JSON records and inline rows stay frames, so list columns can still be flattened.
-    if let Some(values) = &source.values {
-        return Ok(crate::data::load::inline_frame(values)?.lazy());
-    }
-    if let Some(path) = &source.path {
-        let resolved = resolve_data_path(spec_dir, path, policy).map_err(LoadError::Path)?;
-        if source.format.or_else(|| infer_format(&resolved)) == Some(DataFormat::Json) {
-            return Ok(crate::data::load::read_frame(&resolved, DataFormat::Json, b',', None)?.lazy());
-        }
-    }
-    let table = load_source(source, spec_dir, policy, None)?;
-    let frame = crate::data::frame::table_to_frame(&table).map_err(|e| LoadError::Parse {
-        origin: "the source".into(),
-        format: source.format.unwrap_or(DataFormat::Json),
-        message: e.to_string(),
-    })?;
-    Ok(frame.lazy())
+    Ok(crate::data::load::source_frame(source, spec_dir, policy)?.lazy())
 }
