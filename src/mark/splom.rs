@@ -196,6 +196,7 @@ pub fn draw_with_geometry(
             }
         }
     }
+    warnings.extend(frame::raster_note(chart, &items));
     items.extend(grid.axes(&axes, layout, &theme));
     if !diagonals.is_empty() {
         geometry.diagonals = Some(Diagonals {

@@ -527,6 +527,7 @@ point_size = "d"
                     caption: Some("Source: Fisher (1936)".to_owned()),
                     size: Some([800.0, 600.5]),
                     font_size: Some(12.0),
+                    aspect: None,
                     kind: ChartKind::Scatter(ScatterOptions {
                         x: Channel::Detailed(ChannelOptions {
                             field: "sepal_length".to_owned(),
@@ -568,6 +569,7 @@ point_size = "d"
                     caption: None,
                     size: None,
                     font_size: None,
+                    aspect: None,
                     highlight: None,
                     lint: None,
                     kind: ChartKind::Line(LineOptions {
@@ -595,6 +597,7 @@ point_size = "d"
                     caption: None,
                     size: None,
                     font_size: None,
+                    aspect: None,
                     highlight: None,
                     lint: None,
                     kind: ChartKind::Line(LineOptions {
@@ -623,6 +626,7 @@ point_size = "d"
                     caption: None,
                     size: None,
                     font_size: None,
+                    aspect: None,
                     highlight: None,
                     lint: None,
                     kind: ChartKind::Scatter(ScatterOptions {

@@ -4,11 +4,13 @@
 
 mod bad_input;
 mod bar;
+mod big_scatter;
 mod charts;
 mod cli;
 mod common;
 mod explore;
 mod flow;
+mod frame_fit;
 mod golden;
 mod layout;
 mod lint;
