@@ -176,7 +176,7 @@ y = "petal_width"
         assert_eq!(
             diags[0].hint.as_deref(),
             Some(
-                "keys allowed here: name, data, kind, x, y, caption, color, font_size, highlight, lint, mark_color, opacity, point_size, radius, size, title"
+                "keys allowed here: name, data, kind, x, y, aspect, caption, color, font_size, highlight, lint, mark_color, opacity, point_size, radius, size, title"
             )
         );
         assert_eq!(
@@ -195,7 +195,7 @@ y = "petal_width"
    |
 12 | colour = "species"
    | ^^^^^^ did you mean `color`?
-   = hint: keys allowed here: name, data, kind, x, y, caption, color, font_size, highlight, lint, mark_color, opacity, point_size, radius, size, title
+   = hint: keys allowed here: name, data, kind, x, y, aspect, caption, color, font_size, highlight, lint, mark_color, opacity, point_size, radius, size, title
 
 error: `size` must be an array of 2 numbers, found a string
   --> spec.toml:13:8
@@ -422,6 +422,7 @@ title = "Petals"
 caption = "Source: Fisher (1936)"
 size = [800, 600.5]
 font_size = 12
+aspect = "equal"
 highlight = "short"
 lint = { allow = ["LB001"], deny = ["tick-count"] }
 kind = "scatter"
@@ -527,7 +528,7 @@ point_size = "d"
                     caption: Some("Source: Fisher (1936)".to_owned()),
                     size: Some([800.0, 600.5]),
                     font_size: Some(12.0),
-                    aspect: None,
+                    aspect: Some(Aspect::Equal),
                     kind: ChartKind::Scatter(ScatterOptions {
                         x: Channel::Detailed(ChannelOptions {
                             field: "sepal_length".to_owned(),
