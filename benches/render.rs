@@ -48,6 +48,7 @@ fn scatter_chart() -> Chart {
         caption: None,
         size: Some([1000.0, 1000.0]),
         font_size: None,
+        aspect: None,
         highlight: None,
         lint: None,
         kind: ChartKind::Scatter(ScatterOptions {

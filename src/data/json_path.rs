@@ -241,7 +241,8 @@ mod tests {
             deep.column("v").expect("v").as_materialized_series().i64().expect("ints").to_vec(),
             [Some(1), Some(2), Some(3)]
         );
-        let second = select(&serde_json::from_str(GRAPH).expect("json"), "nodes.1.name").expect("index");
+        let graph: serde_json::Value = serde_json::from_str(GRAPH).expect("json");
+        let second = select(&graph, "nodes.1.name").expect("index");
         assert_eq!(second, "b");
     }
 

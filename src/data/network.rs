@@ -220,6 +220,27 @@ impl Network {
     pub fn has_cycle(&self) -> bool {
         petgraph::algo::is_cyclic_directed(&self.graph)
     }
+
+    /// The network without its isolated nodes (no link to another node; a self-loop alone does
+    /// not count) and how many were left out. Kept nodes and edges keep their order. When no node
+    /// has a link, nothing is left out: the nodes are all there is to draw.
+    pub fn without_isolated(self) -> (Network, usize) {
+        let mut linked = vec![false; self.node_count()];
+        for e in self.graph.raw_edges().iter().filter(|e| e.source() != e.target()) {
+            linked[e.source().index()] = true;
+            linked[e.target().index()] = true;
+        }
+        let isolated = linked.iter().filter(|&&l| !l).count();
+        if isolated == 0 || isolated == linked.len() {
+            return (self, 0);
+        }
+        let graph = self.graph.filter_map(
+            |node, info| linked.get(node.index()).copied().unwrap_or(false).then(|| info.clone()),
+            |_, info| Some(info.clone()),
+        );
+        let self_loops = graph.raw_edges().iter().filter(|e| e.source() == e.target()).count();
+        (Network { graph, self_loops, ..self }, isolated)
+    }
 }
 
 #[cfg(test)]
@@ -284,5 +305,25 @@ mod tests {
             Network::from_tables(0, EdgeColumns { source: &none, target: &none, weight: None }, None).unwrap_err(),
             NetworkError::Empty
         );
+    }
+
+    #[test]
+    fn isolated_nodes_are_left_out_in_order() {
+        // Nodes a..e from a node table; links a-c, c-e and a self-loop on d: b and d are isolated.
+        let ids = text(&["a", "b", "c", "d", "e"]);
+        let (s, t) = (text(&["a", "c", "d"]), text(&["c", "e", "d"]));
+        let edges = EdgeColumns { source: &s, target: &t, weight: None };
+        let net = Network::from_tables(3, edges, Some((5, &ids))).unwrap();
+        let (kept, left_out) = net.without_isolated();
+        assert_eq!(left_out, 2);
+        let names: Vec<&str> = kept.graph.node_weights().map(|n| n.id.as_str()).collect();
+        assert_eq!(names, ["a", "c", "e"]);
+        assert_eq!(kept.edge_pairs(), vec![(0, 1), (1, 2)]);
+        assert_eq!(kept.self_loops, 0);
+        // No links at all: every node stays.
+        let (lone_s, lone_t) = (text(&["b"]), text(&["b"]));
+        let edges = EdgeColumns { source: &lone_s, target: &lone_t, weight: None };
+        let net = Network::from_tables(1, edges, Some((5, &ids))).unwrap();
+        assert_eq!(net.without_isolated().1, 0);
     }
 }

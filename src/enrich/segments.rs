@@ -107,14 +107,9 @@ impl SegmentLayout {
         self.offsets.windows(2).map(|w| w[1] - w[0]).min().unwrap_or(0)
     }
 
-    /// Angle (radians, clockwise from 12 o'clock) of the middle of segment `s`.
-    ///
-    /// # Panics
-    ///
-    /// If `s >= self.segments()`.
+    /// Angle (radians, clockwise from 12 o'clock) of the middle of segment `s` ([`mid_angle`]).
     pub fn mid_angle(&self, s: usize) -> f64 {
-        let (start, end) = self.span(s);
-        (start + end) / 2.0
+        mid_angle(s, self.segments)
     }
 
     /// Start and end angles (radians, clockwise from 12 o'clock) of segment `s`; the last
@@ -128,6 +123,12 @@ impl SegmentLayout {
         let width = TAU / self.segments as f64;
         (s as f64 * width, (s + 1) as f64 * width)
     }
+}
+
+/// The angle (radians, clockwise from 12 o'clock) through the middle of segment `s` of
+/// `segments` equal wedges.
+pub fn mid_angle(s: usize, segments: usize) -> f64 {
+    (s as f64 + 0.5) * TAU / segments.max(1) as f64
 }
 
 impl fmt::Debug for SegmentLayout {

@@ -62,6 +62,8 @@ pub struct FrameSpec {
     pub legends: Vec<Legend>,
     /// Sizes and colours.
     pub theme: Theme,
+    /// One data unit as long on x as on y: the plot shrinks along one axis, centred.
+    pub equal_aspect: bool,
 }
 
 /// A laid-out frame: the plot area, its scales, and the guide items to draw under and over the data.
@@ -89,6 +91,8 @@ pub enum LayoutError {
         /// The scale's error.
         error: ScaleError,
     },
+    /// `aspect = "equal"` over an axis that is not linear.
+    AspectNeedsLinear,
     /// The guides leave no room for the plot.
     TooSmall {
         /// Plot width left.
@@ -102,6 +106,9 @@ impl fmt::Display for LayoutError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
             LayoutError::Scale { axis, error } => write!(f, "{axis} axis: {error}"),
+            LayoutError::AspectNeedsLinear => {
+                write!(f, "`aspect = \"equal\"` needs two linear axes (not log, time or categories)")
+            }
             LayoutError::TooSmall { plot_width, plot_height } => write!(
                 f,
                 "the canvas is too small: titles, axes and legends leave a {plot_width:.0}×{plot_height:.0} px plot area (at least {MIN_PLOT_SIDE} px each way is needed)"
@@ -140,6 +147,59 @@ fn y_target(length: f64, theme: &Theme) -> usize {
 fn line_block(size: f64) -> f64 {
     let m = measure("Ag", size);
     (m.ascent + m.descent) * 1.35
+}
+
+/// Shrink `plot` along one axis, centred, so one data unit has the same length on both. The
+/// shrunk axis' scale is rebuilt for its new length (fewer ticks may give a different nice
+/// domain) until the domains settle; the final scales keep those domains exactly.
+fn equal_aspect(spec: &FrameSpec, full: Rect, x: Scale, y: Scale) -> Result<(Rect, Scale, Scale), LayoutError> {
+    let linear = |a: &PositionAxis| matches!(a.domain, Domain::Continuous(..)) && a.kind == ScaleKind::Linear;
+    if !linear(&spec.x) || !linear(&spec.y) {
+        return Err(LayoutError::AspectNeedsLinear);
+    }
+    let theme = &spec.theme;
+    let span = |s: &Scale| {
+        let (lo, hi) = s.domain();
+        (hi - lo).abs().max(f64::MIN_POSITIVE)
+    };
+    // The largest plot inside `full` with as many pixels per unit on x as on y (the insets
+    // `build_scale` keeps free at both ends are not part of the data's length).
+    let shrink = |x: &Scale, y: &Scale| {
+        let inset =
+            |a: &PositionAxis, length: f64| if a.inset.is_finite() { a.inset.clamp(0.0, length / 4.0) } else { 0.0 };
+        let (ix, iy) = (inset(&spec.x, full.w), inset(&spec.y, full.h));
+        let per_unit = ((full.w - 2.0 * ix) / span(x)).min((full.h - 2.0 * iy) / span(y));
+        let (w, h) = ((per_unit * span(x) + 2.0 * ix).min(full.w), (per_unit * span(y) + 2.0 * iy).min(full.h));
+        let plot = Rect::new((full.x + (full.w - w) / 2.0).round(), (full.y + (full.h - h) / 2.0).round(), w, h);
+        match plot.w < MIN_PLOT_SIDE || plot.h < MIN_PLOT_SIDE {
+            true => Err(LayoutError::TooSmall { plot_width: plot.w, plot_height: plot.h }),
+            false => Ok(plot),
+        }
+    };
+    let scales = |x: &PositionAxis, y: &PositionAxis, plot: Rect| {
+        let sx = build_scale(x, (plot.x, plot.right()), x_target(plot.w, theme))
+            .map_err(|error| LayoutError::Scale { axis: "x", error })?;
+        let sy = build_scale(y, (plot.bottom(), plot.y), y_target(plot.h, theme))
+            .map_err(|error| LayoutError::Scale { axis: "y", error })?;
+        Ok::<_, LayoutError>((sx, sy))
+    };
+    let (mut x, mut y) = (x, y);
+    for _ in 0..4 {
+        let (nx, ny) = scales(&spec.x, &spec.y, shrink(&x, &y)?)?;
+        let settled = nx.domain() == x.domain() && ny.domain() == y.domain();
+        (x, y) = (nx, ny);
+        if settled {
+            break;
+        }
+    }
+    // Size the plot for the domains the scales ended with and keep those domains exactly.
+    let plot = shrink(&x, &y)?;
+    let fixed = |a: &PositionAxis, s: &Scale| {
+        let (lo, hi) = s.domain();
+        PositionAxis { domain: Domain::Continuous(lo, hi), nice: false, ..a.clone() }
+    };
+    let (x, y) = scales(&fixed(&spec.x, &x), &fixed(&spec.y, &y), plot)?;
+    Ok((plot, x, y))
 }
 
 /// Lay out a cartesian chart.
@@ -194,9 +254,12 @@ pub fn cartesian(spec: &FrameSpec) -> Result<Frame, LayoutError> {
             .map_err(|error| LayoutError::Scale { axis: "y", error })?;
         scales = Some((x, y));
     }
-    let Some((x, y)) = scales else {
+    let Some((mut x, mut y)) = scales else {
         return Err(LayoutError::TooSmall { plot_width: 0.0, plot_height: 0.0 });
     };
+    if spec.equal_aspect {
+        (plot, x, y) = equal_aspect(spec, plot, x, y)?;
+    }
 
     let mut under = vec![Item::new(
         Role::Background,

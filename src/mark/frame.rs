@@ -7,7 +7,8 @@ use crate::guide::layout::{self, Frame, FrameSpec, PositionAxis};
 use crate::guide::legend::truncate_to_width;
 use crate::guide::legend::{self, Legend};
 use crate::scene::{
-    Anchor, Baseline, Color, Item, LineBatch, PathCmd, PerPoint, Point, Rect, Role, Scene, Shape, Style, Text,
+    Anchor, Baseline, Color, Item, LineBatch, PathCmd, PerPoint, Point, PointBatch, Rect, Role, Scene, Shape, Style,
+    Text,
 };
 use crate::spec::Chart;
 
@@ -30,6 +31,7 @@ pub fn cartesian(
         y,
         legends,
         theme: theme.clone(),
+        equal_aspect: chart.aspect == Some(crate::spec::Aspect::Equal),
     })
     .map_err(|e| MarkError::layout(index, &chart.name, e))?;
     Ok((frame, theme))
@@ -42,6 +44,29 @@ pub fn scene(chart: &Chart, frame: Frame, theme: &Theme, marks: Vec<Item>) -> Sc
     items.push(Item::group(Role::DataMark, marks, Some(frame.plot)));
     items.extend(frame.over);
     Scene { width, height, background: theme.background, title: chart.title.clone(), items }
+}
+
+/// The warning of a chart whose point batches are too large for vector output: how many points
+/// the SVG carries as embedded rasters (see [`PointBatch::drawn_as_raster`]); `None` when none.
+pub fn raster_note(chart: &Chart, items: &[Item]) -> Option<String> {
+    fn count(items: &[Item]) -> usize {
+        items
+            .iter()
+            .map(|item| match &item.shape {
+                Shape::Points(batch) if batch.drawn_as_raster() => batch.centers.len(),
+                Shape::Group { items, .. } => count(items),
+                _ => 0,
+            })
+            .sum()
+    }
+    let points = count(items);
+    (points > 0).then(|| {
+        format!(
+            "chart \"{}\": {points} points drawn as an embedded raster in the SVG (more than {} in one layer)",
+            chart.name,
+            PointBatch::VECTOR_LIMIT
+        )
+    })
 }
 
 /// The chart title (top left, `top` from the canvas edge) and caption (bottom left), for kinds
@@ -183,5 +208,47 @@ impl PanelCanvas {
             title: chart.title.clone(),
             items,
         }
+    }
+}
+
+/// Maps layout units (y down) into a pixel rectangle `[x, y, w, h]`, keeping the aspect ratio when asked,
+/// centred, with `inset` pixels kept free on every side.
+#[derive(Clone, Copy, Debug)]
+pub struct Fit {
+    sx: f64,
+    sy: f64,
+    ox: f64,
+    oy: f64,
+}
+
+impl Fit {
+    /// The fit of `points` into `rect` (x, y, width, height).
+    pub fn new(points: impl Iterator<Item = [f64; 2]>, rect: [f64; 4], inset: f64, uniform: bool) -> Fit {
+        let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+        for p in points {
+            for k in 0..2 {
+                lo[k] = lo[k].min(p[k]);
+                hi[k] = hi[k].max(p[k]);
+            }
+        }
+        if !lo[0].is_finite() {
+            (lo, hi) = ([0.0; 2], [1.0; 2]);
+        }
+        let span = [(hi[0] - lo[0]).max(1e-12), (hi[1] - lo[1]).max(1e-12)];
+        let room = [(rect[2] - 2.0 * inset).max(1.0), (rect[3] - 2.0 * inset).max(1.0)];
+        let (mut sx, mut sy) = (room[0] / span[0], room[1] / span[1]);
+        if uniform {
+            sx = sx.min(sy);
+            sy = sx;
+        }
+        // A single point (or a line) sits in the middle.
+        let ox = rect[0] + rect[2] / 2.0 - sx * (lo[0] + hi[0]) / 2.0;
+        let oy = rect[1] + rect[3] / 2.0 - sy * (lo[1] + hi[1]) / 2.0;
+        Fit { sx, sy, ox, oy }
+    }
+
+    /// A layout point in pixels.
+    pub fn at(&self, p: [f64; 2]) -> Point {
+        Point::new(self.ox + self.sx * p[0], self.oy + self.sy * p[1])
     }
 }

@@ -6,7 +6,8 @@
 //! [`draw_network`] is the drawing core that `linkmap`'s link mode shares.
 
 use super::derived::{Derived, DerivedColumn};
-use super::network_input::{Fit, NetworkInput, Placement, network_of, node_column, place};
+use super::frame::Fit;
+use super::network_input::{NetworkInput, Placement, network_of, node_column, place};
 use super::scatter::{area_radius, size_legend};
 use super::{ChartOutput, MarkError, encode, frame, with_default_size};
 use crate::data::Table;
@@ -60,8 +61,9 @@ pub fn draw(
 ) -> Result<ChartOutput, MarkError> {
     let chart = &with_default_size(chart, DEFAULT_SIZE);
     let channels = (options.source.as_str(), options.target.as_str(), options.weight.as_deref());
-    let input = network_of(chart, index, channels, options.nodes.as_ref(), table, nodes)?;
     let layout = options.layout.unwrap_or(GraphLayout::Force);
+    let keep_isolated = layout != GraphLayout::Given;
+    let input = network_of(chart, index, channels, (options.nodes.as_ref(), keep_isolated), table, nodes)?;
     let look = Look {
         layout,
         seed: options.seed.unwrap_or(1),

@@ -19,6 +19,9 @@ use crate::text::measure;
 
 /// Canvas size when the spec gives none.
 const DEFAULT_SIZE: [f64; 2] = [760.0, 640.0];
+/// Canvas size of the matrix when the spec gives none: room for a square matrix with its labels
+/// beside the colour bar.
+const MATRIX_SIZE: [f64; 2] = [700.0, 640.0];
 /// Default scheme: low values light, high values dark.
 const DEFAULT_SCHEME: &str = "viridis_r";
 /// Fill of matrix cells without a link.
@@ -32,10 +35,11 @@ pub fn draw(
     table: &Table,
     nodes: Option<&Table>,
 ) -> Result<ChartOutput, MarkError> {
-    let chart = &with_default_size(chart, DEFAULT_SIZE);
+    let mode = options.mode.unwrap_or(LinkMode::Links);
+    let chart = &with_default_size(chart, if mode == LinkMode::Matrix { MATRIX_SIZE } else { DEFAULT_SIZE });
     let channels = (options.source.as_str(), options.target.as_str(), Some(options.weight.as_str()));
-    let input = network_of(chart, index, channels, options.nodes.as_ref(), table, nodes)?;
-    match options.mode.unwrap_or(LinkMode::Links) {
+    let input = network_of(chart, index, channels, (options.nodes.as_ref(), false), table, nodes)?;
+    match mode {
         LinkMode::Links => {
             let look = Look {
                 layout: options.layout.unwrap_or(GraphLayout::Force),
@@ -101,7 +105,9 @@ fn draw_matrix(
     let label_size = theme.label_size * 0.85;
     let widest = input.labels.iter().map(|l| measure(l, label_size).width).fold(0.0, f64::max).min(140.0);
     let side_room = (width - widest - 6.0).min(canvas.room - widest - 6.0);
-    let cell = (side_room / n as f64).floor().max(0.5);
+    // The matrix takes all the room (cells need not be whole pixels: their edges are), centred
+    // across the width left of the legend.
+    let cell = (side_room / n as f64).max(0.5);
     let side = cell * n as f64;
     if side_room < 40.0 {
         let error = LayoutError::TooSmall { plot_width: width, plot_height: canvas.room };
@@ -109,12 +115,16 @@ fn draw_matrix(
     }
     let show_labels = cell >= label_size * 0.9;
     let offset = if show_labels { widest + 6.0 } else { 0.0 };
-    let (x0, y0) = (m + offset, canvas.top() + offset);
+    let spare = (width - offset - side).max(0.0);
+    let (x0, y0) = ((m + offset + spare / 2.0).round(), (canvas.top() + offset).round());
+    // Cell k spans edge(k)..edge(k + 1): whole pixels once cells are 2 px or more, so
+    // neighbouring cells meet without anti-aliased seams.
+    let edge = |k: usize| if cell >= 2.0 { (k as f64 * cell).round() } else { k as f64 * cell };
 
     let mut items = vec![canvas.background()];
-    items.push(Item::new(Role::Grid, Shape::Rect(Rect::new(x0, y0, side, side)), Style::fill(EMPTY_CELL)));
+    items.push(Item::new(Role::Grid, Shape::Rect(Rect::new(x0, y0, edge(n), edge(n))), Style::fill(EMPTY_CELL)));
     for (&(r, c), &(w, row)) in &cells {
-        let rect = Rect::new(x0 + c as f64 * cell, y0 + r as f64 * cell, cell, cell);
+        let rect = Rect::new(x0 + edge(c), y0 + edge(r), edge(c + 1) - edge(c), edge(r + 1) - edge(r));
         let color = map.at((w - lo) / (hi - lo));
         items.push(Item::new(Role::DataMark, Shape::Rect(rect), Style::fill(color)).with_rows(vec![row]));
     }

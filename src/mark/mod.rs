@@ -89,6 +89,7 @@ impl MarkError {
     pub fn layout(index: usize, name: &str, error: LayoutError) -> MarkError {
         let (key, hint) = match &error {
             LayoutError::TooSmall { .. } => ("size", "make `size` larger or `font_size` smaller"),
+            LayoutError::AspectNeedsLinear => ("aspect", "remove `aspect`, or use linear scales on both axes"),
             LayoutError::Scale { axis, .. } => {
                 (if *axis == "x" { "x" } else { "y" }, "check the axis' scale and the column's values")
             }

@@ -6,7 +6,6 @@ use super::{MarkError, encode};
 use crate::data::network::{EdgeColumns, Network};
 use crate::data::{Column, Table};
 use crate::layout::{circular, force, layered};
-use crate::scene::Point;
 use crate::spec::{Chart, GraphLayout, NodeTable};
 
 /// A network with its node table and labels.
@@ -21,12 +20,13 @@ pub struct NetworkInput<'t> {
     pub warnings: Vec<String>,
 }
 
-/// Read the network of a graph or linkmap chart.
+/// Read the network of a graph or linkmap chart. Nodes without a link are left out (with a
+/// warning) unless `nodes.isolated` or, when the spec does not say, `keep_isolated` keeps them.
 pub fn network_of<'t>(
     chart: &Chart,
     index: usize,
     (source, target, weight): (&str, &str, Option<&str>),
-    node_spec: Option<&NodeTable>,
+    (node_spec, keep_isolated): (Option<&NodeTable>, bool),
     edges: &Table,
     nodes: Option<&'t Table>,
 ) -> Result<NetworkInput<'t>, MarkError> {
@@ -56,6 +56,18 @@ pub fn network_of<'t>(
         .map_err(|e| MarkError::at(index, &["source"], format!("chart \"{}\": {e}", chart.name), e.hint()))?;
     let mut warnings = Vec::new();
     let name = &chart.name;
+    let network = match node_spec.and_then(|s| s.isolated).unwrap_or(keep_isolated) {
+        true => network,
+        false => {
+            let (network, left_out) = network.without_isolated();
+            if left_out > 0 {
+                warnings.push(format!(
+                    "chart \"{name}\": {left_out} nodes without a link were left out (`nodes.isolated = true` draws them)"
+                ));
+            }
+            network
+        }
+    };
     if network.missing_endpoints > 0 {
         warnings.push(format!(
             "chart \"{name}\": {} edges without a source or target were left out",
@@ -199,46 +211,4 @@ fn given_positions(
             }
         })
         .collect()
-}
-
-/// Maps layout units into a pixel rectangle `[x, y, w, h]`, keeping the aspect ratio when asked,
-/// centred, with `inset` pixels kept free on every side.
-#[derive(Clone, Copy, Debug)]
-pub struct Fit {
-    sx: f64,
-    sy: f64,
-    ox: f64,
-    oy: f64,
-}
-
-impl Fit {
-    /// The fit of `points` into `rect` (x, y, width, height).
-    pub fn new(points: impl Iterator<Item = [f64; 2]>, rect: [f64; 4], inset: f64, uniform: bool) -> Fit {
-        let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
-        for p in points {
-            for k in 0..2 {
-                lo[k] = lo[k].min(p[k]);
-                hi[k] = hi[k].max(p[k]);
-            }
-        }
-        if !lo[0].is_finite() {
-            (lo, hi) = ([0.0; 2], [1.0; 2]);
-        }
-        let span = [(hi[0] - lo[0]).max(1e-12), (hi[1] - lo[1]).max(1e-12)];
-        let room = [(rect[2] - 2.0 * inset).max(1.0), (rect[3] - 2.0 * inset).max(1.0)];
-        let (mut sx, mut sy) = (room[0] / span[0], room[1] / span[1]);
-        if uniform {
-            sx = sx.min(sy);
-            sy = sx;
-        }
-        // A single point (or a line) sits in the middle.
-        let ox = rect[0] + rect[2] / 2.0 - sx * (lo[0] + hi[0]) / 2.0;
-        let oy = rect[1] + rect[3] / 2.0 - sy * (lo[1] + hi[1]) / 2.0;
-        Fit { sx, sy, ox, oy }
-    }
-
-    /// A layout point in pixels.
-    pub fn at(&self, p: [f64; 2]) -> Point {
-        Point::new(self.ox + self.sx * p[0], self.oy + self.sy * p[1])
-    }
 }

@@ -174,6 +174,7 @@ pub fn draw_with_geometry(
         .into_iter()
         .collect();
     marks.extend(highlight::layers(&rows, highlight, batch));
+    warnings.extend(frame::raster_note(chart, &marks));
     let plot = Plot {
         rect: frame.plot,
         x: PlotScale { field: x_opts.field.clone(), scale: frame.x.clone() },

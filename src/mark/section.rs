@@ -205,6 +205,7 @@ fn multiples(
             y: value_axis,
             legends: Vec::new(),
             theme: panel_theme.clone(),
+            equal_aspect: false,
         };
         let frame = layout::cartesian(&spec).map_err(|e| MarkError::layout(index, &chart.name, e))?;
         let dy = title_h + panel_h * k as f64;

@@ -12,7 +12,7 @@ use super::encode;
 use super::frame;
 use super::{ChartOutput, MarkError, highlight, with_default_size};
 use crate::data::{Column, Table};
-use crate::enrich::segments::{SegmentLayout, paint};
+use crate::enrich::segments::{SegmentLayout, mid_angle, paint};
 use crate::guide::Theme;
 use crate::guide::color::parse_color;
 use crate::guide::format::format_value;
@@ -21,6 +21,7 @@ use crate::guide::legend::{Legend, Symbol, truncate_to_width};
 use crate::scene::{Anchor, Baseline, Color, Item, PathCmd, Point, Raster, Rect, Role, Shape, Style, Text};
 use crate::selection::Highlight;
 use crate::spec::{Chart, SegmentScale, SegmentsOptions};
+use crate::text::measure;
 
 /// Canvas size when the spec gives none.
 const DEFAULT_SIZE: [f64; 2] = [760.0, 640.0];
@@ -124,7 +125,21 @@ pub fn draw(
     let chart = &chart;
     let canvas = frame::PanelCanvas::new(chart, legends);
     let theme = &canvas.theme;
-    let disk = Disk::lay_out(&canvas).map_err(|e| MarkError::layout(index, &chart.name, e))?;
+    let labels: Vec<(String, Option<String>)> = columns
+        .iter()
+        .zip(&extents)
+        .map(|((opts, _), extent)| {
+            let title =
+                crate::guide::axis::title_with_unit(opts.title.as_deref().unwrap_or(&opts.field), opts.unit.as_deref());
+            (title, extent.map(|(lo, hi)| format!("{} to {}", format_value(lo), format_value(hi))))
+        })
+        .collect();
+    let widths: Vec<(f64, f64)> = labels
+        .iter()
+        .enumerate()
+        .map(|(s, (title, range))| (mid_angle(s, labels.len()), Disk::label_width(title, range.as_deref(), theme)))
+        .collect();
+    let disk = Disk::lay_out(&canvas, &widths).map_err(|e| MarkError::layout(index, &chart.name, e))?;
     let layout = SegmentLayout::new(disk.diameter, columns.len());
     let value_refs: Vec<&[f64]> = scaled.iter().map(Vec::as_slice).collect();
     let to_rgba = |t: f64| {
@@ -152,11 +167,8 @@ pub fn draw(
             .labelled(chart.name.clone()),
     );
     items.push(disk.borders(&layout));
-    for (s, ((opts, _), extent)) in columns.iter().zip(&extents).enumerate() {
-        let title =
-            crate::guide::axis::title_with_unit(opts.title.as_deref().unwrap_or(&opts.field), opts.unit.as_deref());
-        let range = extent.map(|(lo, hi)| format!("{} to {}", format_value(lo), format_value(hi)));
-        items.extend(disk.label(layout.mid_angle(s), &title, range.as_deref(), theme));
+    for (s, (title, range)) in labels.iter().enumerate() {
+        items.extend(disk.label(layout.mid_angle(s), title, range.as_deref(), theme));
     }
     let ranks: Vec<f64> = (0..order.len()).map(|k| k as f64).collect();
     let mut derived = Derived::over(order);
@@ -213,19 +225,43 @@ struct Disk {
 }
 
 impl Disk {
-    /// The largest disk that leaves room for the column labels in the canvas' room.
-    fn lay_out(canvas: &frame::PanelCanvas) -> Result<Disk, LayoutError> {
+    /// The largest disk, centred in the canvas' room, whose column labels (`(angle, width)`
+    /// each, placed as [`Disk::label`] places them) stay inside the room.
+    fn lay_out(canvas: &frame::PanelCanvas, labels: &[(f64, f64)]) -> Result<Disk, LayoutError> {
         let theme = &canvas.theme;
         let m = theme.margin;
         let area_w = canvas.width - 2.0 * m - canvas.legend_room();
-        let label_room = theme.font_size * 9.0;
-        let radius = ((area_w - 2.0 * label_room) / 2.0).min(canvas.room / 2.0 - theme.font_size * 2.6).floor();
+        let (half_w, half_h) = (area_w / 2.0, canvas.room / 2.0);
+        let gap = theme.font_size * 0.8;
+        // Title and range are two lines above or below the anchor, or one either side of it.
+        let (two_lines, one_line) = (theme.label_size * 2.6, theme.label_size * 1.35);
+        let mut radius = half_w.min(half_h);
+        for &(angle, width) in labels {
+            let (s, c) = (angle.sin(), angle.cos());
+            let reach_x = if s.abs() > 0.3 { width } else { width / 2.0 };
+            let reach_y = if c.abs() > 0.3 { two_lines } else { one_line };
+            for (t, room) in [(s.abs(), half_w - reach_x), (c.abs(), half_h - reach_y)] {
+                if t > 1e-9 {
+                    radius = radius.min(room / t - gap);
+                }
+            }
+        }
+        let radius = radius.floor();
         if radius < MIN_PLOT_SIDE {
             return Err(LayoutError::TooSmall { plot_width: area_w.max(0.0), plot_height: canvas.room.max(0.0) });
         }
         let diameter = ((2.0 * radius) as u32).min(MAX_DIAMETER);
         let center = Point::new((m + area_w / 2.0).round(), (canvas.top() + canvas.room / 2.0).round());
         Ok(Disk { center, radius, diameter })
+    }
+
+    /// The width [`Disk::label`] gives a column's title and value range.
+    fn label_width(title: &str, range: Option<&str>, theme: &Theme) -> f64 {
+        let max_w = theme.font_size * 10.0;
+        let title = measure(&truncate_to_width(title, max_w, theme.label_size), theme.label_size).width;
+        let range = range
+            .map_or(0.0, |r| measure(&truncate_to_width(r, max_w, theme.font_size * 0.9), theme.font_size * 0.9).width);
+        title.max(range)
     }
 
     /// Thin white lines along the segment borders.

@@ -196,6 +196,7 @@ pub fn draw_with_geometry(
             }
         }
     }
+    warnings.extend(frame::raster_note(chart, &items));
     let fields: Vec<&str> = columns.iter().map(|(o, _)| o.field.as_str()).collect();
     items.extend(grid.axes(&axes, &fields, layout, &theme));
     if !diagonals.is_empty() {

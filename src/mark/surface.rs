@@ -52,9 +52,11 @@ pub fn draw(chart: &Chart, options: &SurfaceOptions, index: usize, table: &Table
             crate::guide::layout::LayoutError::TooSmall { plot_width: area.w.max(0.0), plot_height: area.h.max(0.0) },
         ));
     }
-    let side = area.w.min(area.h);
-    let (ox, oy) = (area.x + (area.w - side) / 2.0, area.y + (area.h - side) / 2.0);
-    let to_px = |(u, v): (f64, f64)| Point::new(ox + u * side, oy + (1.0 - v) * side);
+    // The projected box bounds every quad and axis line: fit it to the area, one scale for
+    // both directions, centred (screen v runs up, canvas y down).
+    let corners = projection.box_edges.iter().flat_map(|e| [e.start, e.end]).map(|(u, v)| [u, -v]);
+    let fit = frame::Fit::new(corners, [area.x, area.y, area.w, area.h], 0.0, true);
+    let to_px = |(u, v): (f64, f64)| fit.at([u, -v]);
 
     let mut items = vec![canvas.background()];
     let edge = |e: &surface::BoxEdge, color: Color| {

@@ -116,6 +116,42 @@ pub fn to_pixmap(scene: &Scene, scale: f64) -> Result<Pixmap, RenderError> {
     Ok(painter.pixmap)
 }
 
+/// Draws one item alone on a transparent `width` × `height` canvas at `scale` and returns the
+/// straight-alpha pixels of the device rectangle `(x0, y0, x1, y1)` (half-open, inside the
+/// canvas) as a [`Raster`] placed there: the vector backends embed large point batches this
+/// way, drawn by the same blitter as the PNG.
+pub(crate) fn item_raster(
+    item: &Item,
+    (width, height): (f64, f64),
+    scale: f64,
+    (x0, y0, x1, y1): (u32, u32, u32, u32),
+) -> Result<Raster, RenderError> {
+    let (w, h) = check_canvas(width, height, scale)?;
+    let (x1, y1) = (x1.min(w), y1.min(h));
+    if x0 >= x1 || y0 >= y1 {
+        return Err(RenderError::InvalidCanvas { width, height, scale });
+    }
+    let pixmap = Pixmap::new(w, h).ok_or(RenderError::Allocation { width: w, height: h })?;
+    let canvas = Rect::new(0.0, 0.0, f64::from(w) / scale, f64::from(h) / scale);
+    let mut painter = Painter { pixmap, scale };
+    painter.item(item, &Clip { rect: canvas, mask: None });
+    let data = painter.pixmap.data();
+    let (cw, ch) = ((x1 - x0) as usize, (y1 - y0) as usize);
+    let mut rgba = Vec::with_capacity(cw * ch * 4);
+    for row in y0 as usize..y1 as usize {
+        let start = (row * w as usize + x0 as usize) * 4;
+        rgba.extend_from_slice(data.get(start..start + cw * 4).unwrap_or(&[]));
+    }
+    demultiply(&mut rgba);
+    Ok(Raster {
+        dest: Rect::new(f64::from(x0) / scale, f64::from(y0) / scale, cw as f64 / scale, ch as f64 / scale),
+        width: cw as u32,
+        height: ch as u32,
+        rgba: std::sync::Arc::new(rgba),
+        smooth: true,
+    })
+}
+
 /// Rasterizes `scene` (see [`to_pixmap`]) and encodes it as an 8-bit RGBA PNG.
 pub fn to_png(scene: &Scene, scale: f64) -> Result<Vec<u8>, RenderError> {
     let pixmap = to_pixmap(scene, scale)?;

@@ -19,9 +19,9 @@ use super::{clean_path, dash_pattern, finite_point, normalized_rect, role_name, 
 ///
 /// Items with non-finite geometry are left out; nothing else is dropped.
 pub fn to_svg(scene: &Scene) -> String {
-    let mut w = Writer { out: String::with_capacity(4096), next_clip: 0 };
     let width = if scene.width.is_finite() && scene.width > 0.0 { scene.width } else { 0.0 };
     let height = if scene.height.is_finite() && scene.height > 0.0 { scene.height } else { 0.0 };
+    let mut w = Writer { out: String::with_capacity(4096), next_clip: 0, canvas: (width, height) };
     let (ws, hs) = (num(width), num(height));
     w.out.push_str("<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n");
     let _ = writeln!(
@@ -50,7 +50,13 @@ pub fn to_svg(scene: &Scene) -> String {
 struct Writer {
     out: String,
     next_clip: usize,
+    /// Canvas width and height (for point batches embedded as rasters).
+    canvas: (f64, f64),
 }
+
+/// Device pixels per canvas unit of a point batch embedded as a raster (sharp on high-DPI
+/// screens and when zoomed in twice).
+pub const POINT_RASTER_SCALE: f64 = 2.0;
 
 impl Writer {
     /// Writes one item (and, for groups, its children).
@@ -182,8 +188,16 @@ impl Writer {
         );
     }
 
-    /// Writes a point batch as one `<g>` carrying the shared style and one `<circle>` per point.
+    /// Writes a point batch as one `<g>` carrying the shared style and one `<circle>` per point,
+    /// or, above [`PointBatch::VECTOR_LIMIT`] points, as one embedded image drawn by the PNG
+    /// renderer's point blitter (circles again if the canvas is too large to rasterize).
     fn points(&mut self, item: &Item, common: &str, batch: &PointBatch) {
+        if batch.drawn_as_raster()
+            && let Some(raster) = self.point_raster(item, batch)
+        {
+            self.image(common, &raster);
+            return;
+        }
         let shared_fill = match &batch.fill {
             PerPoint::Uniform(c) => fill_attrs(Some(*c)),
             PerPoint::Each(_) => String::new(),
@@ -207,6 +221,32 @@ impl Writer {
             let _ = writeln!(self.out, "<circle cx=\"{}\" cy=\"{}\" r=\"{}\"{fill}{row}/>", num(c.x), num(c.y), num(r));
         }
         self.out.push_str("</g>\n");
+    }
+
+    /// The batch drawn alone at [`POINT_RASTER_SCALE`], cut to the device pixels its points cover.
+    fn point_raster(&self, item: &Item, batch: &PointBatch) -> Option<Raster> {
+        let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+        for (i, c) in batch.centers.iter().enumerate() {
+            let r = batch.radius.at(i).unwrap_or(0.0);
+            if finite_point(*c) && r.is_finite() && r > 0.0 {
+                let reach = r + batch.stroke.as_ref().map_or(0.0, |s| s.width);
+                (lo[0], lo[1]) = (lo[0].min(c.x - reach), lo[1].min(c.y - reach));
+                (hi[0], hi[1]) = (hi[0].max(c.x + reach), hi[1].max(c.y + reach));
+            }
+        }
+        let s = POINT_RASTER_SCALE;
+        let (w, h) = self.canvas;
+        let px = |v: f64, max: f64| (v * s).clamp(0.0, max * s);
+        let bounds = (
+            px(lo[0], w).floor() as u32,
+            px(lo[1], h).floor() as u32,
+            px(hi[0], w).ceil() as u32,
+            px(hi[1], h).ceil() as u32,
+        );
+        if !(lo[0] <= hi[0] && lo[1] <= hi[1]) {
+            return None;
+        }
+        super::png::item_raster(item, self.canvas, s, bounds).ok()
     }
 
     /// Writes a line batch as one `<g>` carrying the shared style and one `<path>` per polyline
@@ -575,6 +615,32 @@ pub(crate) mod tests {
         assert_eq!(num(1.005e3), "1005");
         assert_eq!(num(2.5), "2.5");
         assert_eq!(num(-12.34567), "-12.35");
+    }
+
+    #[test]
+    fn point_batches_above_the_limit_become_one_image_of_the_points_bounds() {
+        let svg_of = |n: usize| {
+            // Points on a 10 × 10 px patch from (20, 30): the raster covers only that patch.
+            let centers =
+                (0..n).map(|i| Point::new(20.0 + (i % 100) as f64 * 0.1, 30.0 + (i / 100 % 100) as f64 * 0.1));
+            let batch = PointBatch {
+                centers: centers.collect(),
+                radius: PerPoint::Uniform(1.0),
+                fill: PerPoint::Uniform(Color::rgb(0, 0, 255)),
+                stroke: None,
+            };
+            let item = Item::new(Role::DataMark, Shape::Points(batch), Style::default());
+            to_svg(&Scene { width: 200.0, height: 100.0, background: Color::WHITE, title: None, items: vec![item] })
+        };
+        let vector = svg_of(PointBatch::VECTOR_LIMIT);
+        assert_eq!(vector.matches("<circle").count(), PointBatch::VECTOR_LIMIT);
+        assert!(!vector.contains("<image"));
+        let raster = svg_of(PointBatch::VECTOR_LIMIT + 1);
+        assert_eq!(raster.matches("<circle").count(), 0);
+        assert_eq!(raster.matches("<image").count(), 1);
+        // Bounds 19..30.9 × 29..40.9 at 2 device pixels per unit: 38..62 × 58..82.
+        assert!(raster.contains("x=\"19\" y=\"29\" width=\"12\" height=\"12\""), "{}", &raster[..600]);
+        assert!(raster.contains("data-role=\"data-mark\""));
     }
 
     #[test]

@@ -257,6 +257,17 @@ pub struct PointBatch {
     pub stroke: Option<Stroke>,
 }
 
+impl PointBatch {
+    /// Vector backends (SVG) draw a batch of more points than this as one embedded raster: a
+    /// million `<circle>` elements make a file of tens of megabytes that viewers struggle with.
+    pub const VECTOR_LIMIT: usize = 100_000;
+
+    /// Whether vector backends embed this batch as a raster (more than [`Self::VECTOR_LIMIT`] points).
+    pub fn drawn_as_raster(&self) -> bool {
+        self.centers.len() > Self::VECTOR_LIMIT
+    }
+}
+
 /// Many open polylines with the same number of vertices, drawn the same way: one per data row
 /// (parallel coordinates, daisy charts), kept compact for tens of thousands of rows.
 #[derive(Clone, Debug, PartialEq)]

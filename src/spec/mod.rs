@@ -178,7 +178,7 @@ y = "petal_width"
         assert_eq!(
             diags[0].hint.as_deref(),
             Some(
-                "keys allowed here: name, data, kind, x, y, caption, color, font_size, highlight, lint, mark_color, opacity, point_size, radius, size, title"
+                "keys allowed here: name, data, kind, x, y, aspect, caption, color, font_size, highlight, lint, mark_color, opacity, point_size, radius, size, title"
             )
         );
         assert_eq!(
@@ -197,7 +197,7 @@ y = "petal_width"
    |
 12 | colour = "species"
    | ^^^^^^ did you mean `color`?
-   = hint: keys allowed here: name, data, kind, x, y, caption, color, font_size, highlight, lint, mark_color, opacity, point_size, radius, size, title
+   = hint: keys allowed here: name, data, kind, x, y, aspect, caption, color, font_size, highlight, lint, mark_color, opacity, point_size, radius, size, title
 
 error: `size` must be an array of 2 numbers, found a string
   --> spec.toml:13:8
@@ -424,6 +424,7 @@ title = "Petals"
 caption = "Source: Fisher (1936)"
 size = [800, 600.5]
 font_size = 12
+aspect = "equal"
 highlight = "short"
 lint = { allow = ["LB001"], deny = ["tick-count"] }
 kind = "scatter"
@@ -537,6 +538,7 @@ point_size = "d"
                     caption: Some("Source: Fisher (1936)".to_owned()),
                     size: Some([800.0, 600.5]),
                     font_size: Some(12.0),
+                    aspect: Some(Aspect::Equal),
                     kind: ChartKind::Scatter(ScatterOptions {
                         x: Channel::Detailed(ChannelOptions {
                             field: "sepal_length".to_owned(),
@@ -580,6 +582,7 @@ point_size = "d"
                     caption: None,
                     size: None,
                     font_size: None,
+                    aspect: None,
                     highlight: None,
                     lint: None,
                     kind: ChartKind::Line(LineOptions {
@@ -607,6 +610,7 @@ point_size = "d"
                     caption: None,
                     size: None,
                     font_size: None,
+                    aspect: None,
                     highlight: None,
                     lint: None,
                     kind: ChartKind::Line(LineOptions {
@@ -635,6 +639,7 @@ point_size = "d"
                     caption: None,
                     size: None,
                     font_size: None,
+                    aspect: None,
                     highlight: None,
                     lint: None,
                     kind: ChartKind::Scatter(ScatterOptions {

@@ -181,6 +181,11 @@ pub struct Chart {
     #[serde(default)]
     #[schemars(range(min = 1, max = 200), example = 12)]
     pub font_size: Option<f64>,
+    /// Aspect of the plot area of the kinds drawn in one x/y frame: `"equal"` makes one data
+    /// unit as long on x as on y, shrinking the plot along one axis (centred) instead of
+    /// stretching the data; `"auto"` (default) fills the room. Both axes must be linear.
+    #[serde(default)]
+    pub aspect: Option<Aspect>,
     /// Name of a selection (`[selection.NAME]`) over the same data: its rows are drawn in full
     /// colour, the rest as grey context, and its ranges are marked on the axes
     /// (scatter, splom, parallel, daisy, faces, segments).
@@ -194,6 +199,17 @@ pub struct Chart {
     /// What to draw and how.
     #[serde(flatten)]
     pub kind: ChartKind,
+}
+
+/// How the plot area's sides relate to the data's units.
+#[derive(Clone, Copy, Debug, Default, Deserialize, Serialize, JsonSchema, PartialEq, Eq)]
+#[serde(rename_all = "lowercase")]
+pub enum Aspect {
+    /// Fill the room the guides leave.
+    #[default]
+    Auto,
+    /// One data unit is the same length on x and on y.
+    Equal,
 }
 
 /// The chart kinds. Each kind has its own options.
@@ -982,6 +998,11 @@ pub struct NodeTable {
     /// Column of given y positions (`layout = "given"`).
     #[serde(default)]
     pub y: Option<String>,
+    /// Draw nodes without a link to another node. Default: false for `linkmap` and for `graph`
+    /// with `layout = "given"` (a table of places lists many without a route), true for the
+    /// other graph layouts. Left-out nodes are counted in a warning.
+    #[serde(default)]
+    pub isolated: Option<bool>,
 }
 
 /// How a network's nodes are placed.

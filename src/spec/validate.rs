@@ -935,6 +935,7 @@ impl<'s> Walker<'s> {
         if let Some(highlight) = chart.get("highlight") {
             self.check_highlight(chart, highlight, selections);
         }
+        self.check_aspect(chart);
         for e in chart.entries() {
             let tables: Vec<(String, &SpannedValue)> = match &e.value.kind {
                 ValueKind::Table(_) => vec![(display_key(&e.key), &e.value)],
@@ -1037,6 +1038,22 @@ impl<'s> Walker<'s> {
     }
 
     /// `highlight` must name a selection over the chart's own data, on a kind that draws it.
+    /// `aspect = "equal"` only where one x/y frame (or given node positions) is drawn.
+    fn check_aspect(&mut self, chart: &SpannedValue) {
+        let Some(entry) = chart.entry("aspect") else { return };
+        let equal = entry.value.as_str() == Some("equal");
+        if let Some(kind) = chart.get("kind").and_then(SpannedValue::as_str)
+            && equal
+            && !ASPECT_KINDS.contains(&kind)
+        {
+            self.diags.push(
+                Diagnostic::error(format!("`aspect = \"equal\"` is not applied by `{kind}` charts"))
+                    .at(entry.key_span.clone())
+                    .with_hint(format!("charts with one x/y plot: {}", ASPECT_KINDS.join(", "))),
+            );
+        }
+    }
+
     fn check_highlight(
         &mut self,
         chart: &SpannedValue,
@@ -1113,6 +1130,11 @@ enum Reference {
 
 /// Chart kinds that draw a `highlight` selection.
 pub const HIGHLIGHT_KINDS: &[&str] = &["scatter", "splom", "parallel", "daisy", "faces", "segments"];
+
+/// The chart kinds that apply `aspect = "equal"`: the ones drawn in one x/y frame, and the
+/// network kinds, whose given node positions always keep one scale for x and y.
+pub const ASPECT_KINDS: &[&str] =
+    &["scatter", "line", "interp1d", "contour", "image", "scattered", "flow", "graph", "linkmap"];
 
 fn alternatives(s: &Value) -> Option<&[Value]> {
     s.get("oneOf").or_else(|| s.get("anyOf")).and_then(Value::as_array).map(Vec::as_slice)

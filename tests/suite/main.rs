@@ -4,6 +4,7 @@
 
 mod bad_input;
 mod bar;
+mod big_scatter;
 mod charts;
 mod cli;
 mod colours;
@@ -11,6 +12,7 @@ mod common;
 mod datasets;
 mod explore;
 mod flow;
+mod frame_fit;
 mod golden;
 mod layout;
 mod lint;

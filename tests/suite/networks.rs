@@ -269,3 +269,56 @@ fn linkmap_draws_links_thin_to_thick_and_a_clustered_matrix() {
     let pq = src.iter().position(|s| s == "p").unwrap();
     assert_eq!((rows[pq] - cols[pq]).abs(), 1.0, "p and q are neighbours in the clustered order ({:?})", dst);
 }
+
+/// Five airports: a, b, c linked near the origin; d and e far away and without a route.
+const ROUTES: &str = r#"
+[data.routes]
+values = [{ from = "a", to = "b", n = 3 }, { from = "b", to = "c", n = 1 }]
+[data.places]
+values = [
+  { id = "a", lon = 0, lat = 0 }, { id = "b", lon = 1, lat = 1 }, { id = "c", lon = 2, lat = 0 },
+  { id = "d", lon = 150, lat = 10 }, { id = "e", lon = -120, lat = -30 },
+]
+"#;
+
+/// The x extent of the drawn node circles.
+fn node_circles(out: &ChartOutput) -> (usize, f64, f64) {
+    let mut xs = Vec::new();
+    out.scene.walk(|item| {
+        if let (Role::DataMark, Shape::Circle { center, .. }) = (item.role, &item.shape) {
+            xs.push(center.x);
+        }
+    });
+    let lo = xs.iter().copied().fold(f64::INFINITY, f64::min);
+    let hi = xs.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+    (xs.len(), lo, hi)
+}
+
+#[test]
+fn link_views_leave_out_isolated_nodes_unless_asked() {
+    let chart = |kind: &str, extra: &str| {
+        format!(
+            "{ROUTES}[[chart]]\nname = \"m\"\nkind = \"{kind}\"\ndata = \"routes\"\nsource = \"from\"\ntarget = \"to\"\nweight = \"n\"\nlayout = \"given\"\nnodes = {{ data = \"places\", id = \"id\", x = \"lon\", y = \"lat\"{extra} }}\n"
+        )
+    };
+    for kind in ["linkmap", "graph"] {
+        let out = draw_one(&chart(kind, ""));
+        let (count, lo, hi) = node_circles(&out);
+        assert_eq!(count, 3, "{kind}: only a, b and c are drawn");
+        assert_eq!(texts(&out, "element").iter().filter(|e| *e == "node").count(), 3, "{kind}");
+        // The linked nodes span the plot: their 2 units of longitude fill most of its width.
+        assert!(hi - lo > 0.6 * out.scene.width, "{kind}: {lo}..{hi} of {}", out.scene.width);
+        assert!(
+            out.warnings.iter().any(|w| w.contains("2 nodes without a link were left out")),
+            "{kind}: {:?}",
+            out.warnings
+        );
+        let all = draw_one(&chart(kind, ", isolated = true"));
+        let (count, lo, hi) = node_circles(&all);
+        assert_eq!(count, 5, "{kind}: isolated = true draws every node");
+        // 270 degrees of longitude now: a..c (2 degrees) shrink to under 2% of the spread.
+        let abc: Vec<f64> = numbers(&all, "x")[..3].to_vec();
+        assert!((abc[2] - abc[0]) < 0.02 * (hi - lo), "{abc:?} in {lo}..{hi}");
+        assert!(all.warnings.iter().all(|w| !w.contains("left out")), "{:?}", all.warnings);
+    }
+}
