@@ -155,7 +155,7 @@ mod tests {
         )
         .expect("reads");
         assert_eq!(df.height(), 3);
-        assert_eq!(df.get_column_names(), ["mag", "place", "lon", "lat", "tags"]);
+        assert_eq!(df.get_column_names(), ["mag", "place", "tags", "lon", "lat"]);
         assert_eq!(f64s(&df, "lon"), [Some(-120.5), Some(10.0), None]);
         assert_eq!(f64s(&df, "lat"), [Some(35.25), Some(-5.0), None]);
         assert_eq!(f64s(&df, "mag"), [Some(2.5), Some(4.0), None]);

@@ -253,7 +253,7 @@ mod tests {
             err,
             JsonError::Path {
                 message: "the top level has no key `node`".into(),
-                hint: "did you mean `nodes`? keys: `links`, `meta`, `nodes`".into(),
+                hint: "did you mean `nodes`? keys: `nodes`, `links`, `meta`".into(),
             }
         );
         let JsonError::Path { message, .. } = read_json(GRAPH.as_bytes(), Some("meta.deep.cols"), false).expect_err("")
@@ -273,7 +273,7 @@ mod tests {
             panic!("a path error")
         };
         assert_eq!(message, "the file holds an object, not an array of records or a { width, height, values } grid");
-        assert_eq!(hint, "name its array of records with json_path = \"links\"; keys: `links`, `meta`, `nodes`");
+        assert_eq!(hint, "name its array of records with json_path = \"nodes\"; keys: `nodes`, `links`, `meta`");
         let JsonError::Path { message, .. } = read_json(GRAPH.as_bytes(), Some("links.0.value"), false).expect_err("")
         else {
             panic!("a path error")

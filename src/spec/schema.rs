@@ -280,8 +280,8 @@ mod tests {
         let mut count = 0;
         walk(&schema, &mut count);
         // Spec, DataSource, Selection, LintConfig, ChannelOptions, ColorOptions, SizeOptions,
-        // FaceFeatures, TreeSource, NodeTable and one branch per kind.
-        assert_eq!(count, 10 + crate::spec::ChartKind::NAMES.len());
+        // FaceFeatures, TreeSource, NodeTable, TransformStep and one branch per kind.
+        assert_eq!(count, 11 + crate::spec::ChartKind::NAMES.len());
         // Maps stay open: any data source name, any column in inline rows.
         assert_eq!(schema["properties"]["data"]["additionalProperties"]["$ref"], "#/$defs/DataSource");
         assert_eq!(def(&schema, "DataSource")["properties"]["values"]["items"]["additionalProperties"], true);

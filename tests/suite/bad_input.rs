@@ -258,7 +258,8 @@ fn text_column_on_a_linear_scale_is_refused() {
 #[test]
 fn unknown_colour_scheme_suggests_the_closest() {
     let spec = format!("[data.d]\npath = \"d.csv\"\n{}color = {{ field = \"y\", scheme = \"virdis\" }}\n", XY_CHART);
-    let out = Fixture::new(&spec, &[("d.csv", b"x,y\n1,2\n2,3\n")]).draw().expect_err("scheme");
+    // Fractional values: a continuous colour (few whole numbers would be categories).
+    let out = Fixture::new(&spec, &[("d.csv", b"x,y\n1,2.5\n2,3.25\n")]).draw().expect_err("scheme");
     assert!(out.contains("error: unknown continuous colour scheme `virdis`\n"), "{out}");
     assert!(out.contains("= hint: did you mean `viridis`?"), "{out}");
 }

@@ -53,9 +53,9 @@ fn miserables_nodes_and_links_by_json_path() {
     assert_eq!(numbers(&links, "source")[0], 1.0);
     let err = load(&dir, json!({"path": "miserables.json", "json_path": "edges"})).expect_err("no such key");
     assert!(err.contains("the top level has no key `edges`"), "{err}");
-    assert!(err.contains("keys: `links`, `nodes`"), "{err}");
+    assert!(err.contains("keys: `nodes`, `links`"), "{err}");
     let err = load(&dir, json!({"path": "miserables.json"})).expect_err("an object without a path");
-    assert!(err.contains("name its array of records with json_path = \"links\""), "{err}");
+    assert!(err.contains("name its array of records with json_path = \"nodes\""), "{err}");
 }
 
 #[test]
