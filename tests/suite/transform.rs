@@ -239,13 +239,12 @@ transform = [{ filter = "Year >= '1971-01-01'" }, { calculate = "year(Year) * 10
 #[test]
 fn cast_and_parse_with_a_strftime_format() {
     let data = "when,n,flag\n\"Jun 12 1998\",1,yes\n\"Jan 02 2001\",2,no\n";
-    let text = spec(
+    let text = spec_columns(
         r#"[data.d]
 path = "d.csv"
-transform = [{ parse = { when = "date:%b %d %Y", flag = "boolean" } }, { cast = { n = "text" } }]"#,
+transform = [{ parse = { when = "date:%b %d %Y", flag = "boolean" } }, { cast = { n = "text" } }, { calculate = "concat(text(year(when)), '/', text(length(n) * 1.5))", as = "label" }]"#,
         "d",
-        "n",
-        "when",
+        &["n", "when", "label"],
     );
     let loaded = Fixture::new(&text, &[("d.csv", data.as_bytes())]).load().unwrap_or_else(|e| panic!("{e}"));
     let t = &loaded.tables["d"];
@@ -253,6 +252,8 @@ transform = [{ parse = { when = "date:%b %d %Y", flag = "boolean" } }, { cast = 
     // 1998-06-12 and 2001-01-02 at midnight UTC.
     assert_eq!(ms, &[897_609_600_000.0, 978_393_600_000.0]);
     assert_eq!(texts(t, "n"), ["1", "2"]);
+    // Whole numbers read as text without a fraction: the year, not "1998.0".
+    assert_eq!(texts(t, "label"), ["1998/1.5", "2001/1.5"]);
     let bad = spec("[data.d]\npath = \"d.csv\"\ntransform = [{ cast = { n = \"integer\" } }]", "d", "n", "when");
     let out = Fixture::new(&bad, &[("d.csv", data.as_bytes())]).load().expect_err("no such type");
     assert!(out.contains("no type `integer` to cast to"), "{out}");

@@ -102,6 +102,19 @@ pub fn unknown_column(name: &str, schema: &Schema, span: &Range<usize>) -> ExprE
 
 const TIME_UNIT: TimeUnit = TimeUnit::Milliseconds;
 
+/// A value as text; whole numbers without a fraction (`2015`, not `2015.0`).
+pub fn to_text(expr: Expr, ty: Ty) -> Expr {
+    match ty {
+        Ty::Number => {
+            let x = expr.cast(DataType::Float64);
+            let whole = x.clone().eq(x.clone().floor()).and(x.clone().abs().lt(lit(1e15)));
+            when(whole).then(x.clone().cast(DataType::Int64).cast(DataType::String)).otherwise(x.cast(DataType::String))
+        }
+        Ty::Text => expr,
+        _ => expr.cast(DataType::String),
+    }
+}
+
 /// `expr` as a date-time in milliseconds (dates become midnight UTC).
 pub fn as_datetime(expr: Expr) -> Expr {
     expr.cast(DataType::Datetime(TIME_UNIT, None))
@@ -549,7 +562,7 @@ const FUNCTIONS: &[Function] = &[
             let mut parts = Vec::with_capacity(a.len());
             for item in a {
                 let t = l.lower(item)?;
-                parts.push(if t.ty == Ty::Text { t.expr } else { t.expr.cast(DataType::String) });
+                parts.push(to_text(t.expr, t.ty));
             }
             Ok(Typed { expr: concat_str(parts, "", false), ty: Ty::Text })
         },
@@ -558,7 +571,10 @@ const FUNCTIONS: &[Function] = &[
         name: "text",
         arity: (1, 1),
         usage: "text(x)",
-        build: |l, a, _| Ok(Typed { expr: l.lower(&a[0])?.expr.cast(DataType::String), ty: Ty::Text }),
+        build: |l, a, _| {
+            let t = l.lower(&a[0])?;
+            Ok(Typed { expr: to_text(t.expr, t.ty), ty: Ty::Text })
+        },
     },
     Function {
         name: "number",
@@ -619,6 +635,7 @@ mod tests {
         assert_eq!(ty("Origin in ('USA', 'Japan') or Origin is null"), Ty::Bool);
         assert_eq!(ty("concat(Origin, '-', Horsepower)"), Ty::Text);
         assert_eq!(ty("contains(lower(Origin), 'us')"), Ty::Bool);
+        assert_eq!(ty("text(year(when))"), Ty::Text);
     }
 
     #[test]

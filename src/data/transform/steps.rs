@@ -649,7 +649,7 @@ fn cast_expr(name: &str, from: Ty, target: &str) -> Result<Expr, (String, String
         ("number", Ty::Time) => as_datetime(x).cast(DataType::Int64).cast(DataType::Float64),
         ("number", _) => x.strict_cast(DataType::Float64),
         ("text" | "category", Ty::Time) => as_datetime(x).dt().to_string("%Y-%m-%dT%H:%M:%S%.3f"),
-        ("text" | "category", _) => x.cast(DataType::String),
+        ("text" | "category", from) => super::lower::to_text(x, from),
         ("boolean", Ty::Text) => {
             let t = x.str().strip_chars(lit(NULL)).str().to_lowercase();
             let yes = t
