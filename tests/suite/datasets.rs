@@ -111,6 +111,8 @@ fn movies_release_dates_warn_then_parse() {
     assert!(matches!(release.values, ColumnValues::Text(_)));
     assert_eq!(movies.warnings.len(), 1, "{:?}", movies.warnings);
     assert!(movies.warnings[0].contains("parse = { \"Release Date\" = \"date:%b %d %Y\" }"), "{}", movies.warnings[0]);
+    // 1,600 distinct release dates among the 3,201 films (counted in Python from the shipped file).
+    assert!(movies.warnings[0].contains("read as text (1600 categories)"), "{}", movies.warnings[0]);
     let parsed = load(&dir, json!({"path": "movies.json", "parse": {"Release Date": "date:%b %d %Y"}})).expect("parse");
     assert!(parsed.warnings.is_empty(), "{:?}", parsed.warnings);
     let ColumnValues::Time(ms) = &parsed.table.column("Release Date").expect("column").values else {
