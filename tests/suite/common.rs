@@ -89,3 +89,44 @@ pub fn assert_svg_parses(svg: &str) {
         panic!("SVG does not parse: {e}\n{}", &svg[..svg.len().min(2000)]);
     }
 }
+
+/// Run a command with a time limit, reading stdout and stderr on threads so a full pipe cannot
+/// stall it; `None` when it does not finish within `seconds` (it is then killed).
+pub fn run_with_timeout(mut command: std::process::Command, seconds: u64) -> Option<std::process::Output> {
+    use std::process::Stdio;
+    let mut child = command.stdout(Stdio::piped()).stderr(Stdio::piped()).spawn().expect("start the command");
+    let deadline = std::time::Instant::now() + std::time::Duration::from_secs(seconds);
+    let drain = |pipe: Option<Box<dyn std::io::Read + Send>>| {
+        std::thread::spawn(move || {
+            let mut buf = Vec::new();
+            if let Some(mut pipe) = pipe {
+                let _ = pipe.read_to_end(&mut buf);
+            }
+            buf
+        })
+    };
+    let stdout = drain(child.stdout.take().map(|p| Box::new(p) as Box<dyn std::io::Read + Send>));
+    let stderr = drain(child.stderr.take().map(|p| Box::new(p) as Box<dyn std::io::Read + Send>));
+    loop {
+        match child.try_wait().expect("poll the command") {
+            Some(status) => {
+                let stdout = stdout.join().unwrap_or_default();
+                let stderr = stderr.join().unwrap_or_default();
+                return Some(std::process::Output { status, stdout, stderr });
+            }
+            None if std::time::Instant::now() > deadline => {
+                let _ = child.kill();
+                let _ = child.wait();
+                return None;
+            }
+            None => std::thread::sleep(std::time::Duration::from_millis(50)),
+        }
+    }
+}
+
+/// Run `dataink ARGS` in `dir` with a time limit (see [`run_with_timeout`]).
+pub fn run_dataink(dir: &Path, args: &[&str], seconds: u64) -> Option<std::process::Output> {
+    let mut command = std::process::Command::new(env!("CARGO_BIN_EXE_dataink"));
+    command.current_dir(dir).args(args);
+    run_with_timeout(command, seconds)
+}

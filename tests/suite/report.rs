@@ -8,7 +8,7 @@ use dataink::data::PathPolicy;
 use dataink::pipeline;
 use dataink::report::{self, ReportOptions};
 
-use crate::common::{Fixture, assert_svg_parses};
+use crate::common::{Fixture, assert_svg_parses, run_with_timeout};
 
 fn dataink() -> Command {
     Command::new(env!("CARGO_BIN_EXE_dataink"))
@@ -356,37 +356,6 @@ fn user_templates_are_escaped_too() {
     let run = run_report(&fixture, out.path(), &["--template", template.to_str().expect("utf-8 path")]);
     assert_eq!(run.status.code(), Some(2));
     assert!(stderr(&run).contains("undefined"), "{}", stderr(&run));
-}
-
-/// Run chromium with a time limit; `None` when it does not finish in time.
-fn run_with_timeout(mut command: Command, seconds: u64) -> Option<Output> {
-    let mut child = command
-        .stdout(std::process::Stdio::piped())
-        .stderr(std::process::Stdio::piped())
-        .spawn()
-        .expect("start chromium");
-    let deadline = std::time::Instant::now() + std::time::Duration::from_secs(seconds);
-    // Read stdout on a thread so a large DOM dump cannot fill the pipe and stall the browser.
-    let mut stdout = child.stdout.take().expect("stdout");
-    let reader = std::thread::spawn(move || {
-        let mut buf = Vec::new();
-        let _ = std::io::Read::read_to_end(&mut stdout, &mut buf);
-        buf
-    });
-    loop {
-        match child.try_wait().expect("poll chromium") {
-            Some(status) => {
-                let stdout = reader.join().unwrap_or_default();
-                return Some(Output { status, stdout, stderr: Vec::new() });
-            }
-            None if std::time::Instant::now() > deadline => {
-                let _ = child.kill();
-                let _ = child.wait();
-                return None;
-            }
-            None => std::thread::sleep(std::time::Duration::from_millis(100)),
-        }
-    }
 }
 
 fn chromium(profile: &Path) -> Command {
