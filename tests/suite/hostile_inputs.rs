@@ -32,8 +32,9 @@ fn device_behind_a_data_symlink_is_refused() {
     for (name, device) in [("d.npy", "/dev/zero"), ("d.csv", "/dev/urandom")] {
         let fx = fixture_reading(name);
         std::os::unix::fs::symlink(device, fx.dir.path().join(name)).expect("symlink");
-        let err = fails(fx.dir.path(), &["render", "spec.toml", "--out", "out"]);
-        assert!(err.contains(&format!("cannot read `{name}`")) || err.contains(name), "{err}");
+        // Allowed outside, so the file-type check (not the path policy) is what refuses it.
+        let err = fails(fx.dir.path(), &["render", "spec.toml", "--out", "out", "--allow-outside-paths"]);
+        assert!(err.contains(&format!("cannot read `{name}`")), "{err}");
         assert!(err.contains("it is a device; only regular files are read"), "{err}");
     }
 }
@@ -46,7 +47,7 @@ fn device_as_tree_source_is_refused() {
         &[],
     );
     std::os::unix::fs::symlink("/dev/zero", fx.dir.path().join("t.json")).expect("symlink");
-    let err = fails(fx.dir.path(), &["render", "spec.toml", "--out", "out"]);
+    let err = fails(fx.dir.path(), &["render", "spec.toml", "--out", "out", "--allow-outside-paths"]);
     assert!(err.contains("it is a device"), "{err}");
 }
 
@@ -105,4 +106,30 @@ fn device_or_oversized_template_is_refused() {
     std::fs::write(fx.dir.path().join("big.html"), "x".repeat(2 * 1024 * 1024)).expect("write");
     let err = fails(fx.dir.path(), &["report", "spec.toml", "--out", "out", "--template", "big.html"]);
     assert!(err.contains("larger than the template size limit of 1 MiB"), "{err}");
+}
+
+#[cfg(unix)]
+#[test]
+fn symlinks_leading_out_of_the_spec_folder_are_refused() {
+    let outside = tempfile::tempdir().expect("tempdir");
+    std::fs::write(outside.path().join("d.csv"), "x,y\n1,2\n").expect("write");
+    let fx = fixture_reading("d.csv");
+    std::os::unix::fs::symlink(outside.path().join("d.csv"), fx.dir.path().join("d.csv")).expect("symlink");
+    let err = fails(fx.dir.path(), &["render", "spec.toml", "--out", "out"]);
+    assert!(err.contains("data path `d.csv` leaves the spec's folder through a symbolic link"), "{err}");
+    let ok = run_dataink(fx.dir.path(), &["render", "spec.toml", "--out", "out", "--allow-outside-paths"], 30)
+        .expect("finished");
+    assert_eq!(ok.status.code(), Some(0), "{}", String::from_utf8_lossy(&ok.stderr));
+
+    // A folder symlink inside the spec folder that leads out is refused too.
+    let fx = fixture_reading("sub/d.csv");
+    std::os::unix::fs::symlink(outside.path(), fx.dir.path().join("sub")).expect("symlink");
+    let err = fails(fx.dir.path(), &["render", "spec.toml", "--out", "out"]);
+    assert!(err.contains("through a symbolic link"), "{err}");
+
+    // A link that stays inside is allowed.
+    let fx = Fixture::new(&format!("[data.d]\npath = \"link.csv\"\n{SCATTER}"), &[("real.csv", b"x,y\n1,2\n")]);
+    std::os::unix::fs::symlink("real.csv", fx.dir.path().join("link.csv")).expect("symlink");
+    let ok = run_dataink(fx.dir.path(), &["render", "spec.toml", "--out", "out"], 30).expect("finished");
+    assert_eq!(ok.status.code(), Some(0), "{}", String::from_utf8_lossy(&ok.stderr));
 }
