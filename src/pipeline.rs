@@ -52,29 +52,30 @@ impl Failed {
 /// Read a spec file, validate it, load its data and check every column reference, reporting all
 /// problems at once.
 pub fn load(spec_path: &Path, policy: PathPolicy) -> Result<Loaded, Failed> {
-    let source = match std::fs::read(spec_path) {
-        Ok(bytes) => match String::from_utf8(bytes) {
-            Ok(text) => SourceFile { path: spec_path.to_path_buf(), text },
-            Err(_) => {
+    let source =
+        match crate::data::regular_file::read_capped(spec_path, crate::data::regular_file::MAX_SPEC_BYTES, "spec") {
+            Ok(bytes) => match String::from_utf8(bytes) {
+                Ok(text) => SourceFile { path: spec_path.to_path_buf(), text },
+                Err(_) => {
+                    return Err(Failed {
+                        source: SourceFile { path: spec_path.to_path_buf(), text: String::new() },
+                        diagnostics: vec![
+                            Diagnostic::error(format!("spec file `{}` is not UTF-8 text", spec_path.display()))
+                                .with_hint("save the spec as UTF-8"),
+                        ],
+                    });
+                }
+            },
+            Err(e) => {
                 return Err(Failed {
                     source: SourceFile { path: spec_path.to_path_buf(), text: String::new() },
                     diagnostics: vec![
-                        Diagnostic::error(format!("spec file `{}` is not UTF-8 text", spec_path.display()))
-                            .with_hint("save the spec as UTF-8"),
+                        Diagnostic::error(format!("cannot read spec file `{}`: {e}", spec_path.display()))
+                            .with_hint("check the path; specs are TOML files such as examples/gallery.toml"),
                     ],
                 });
             }
-        },
-        Err(e) => {
-            return Err(Failed {
-                source: SourceFile { path: spec_path.to_path_buf(), text: String::new() },
-                diagnostics: vec![
-                    Diagnostic::error(format!("cannot read spec file `{}`: {e}", spec_path.display()))
-                        .with_hint("check the path; specs are TOML files such as examples/gallery.toml"),
-                ],
-            });
-        }
-    };
+        };
     let checked = spec::check(&source);
     let mut diagnostics = checked.diagnostics;
     let Some(doc) = checked.doc else {

@@ -51,7 +51,7 @@ pub fn inner_path(path: &Path) -> PathBuf {
 
 /// The bytes of a data file, decompressed when its extension names a compression.
 pub fn read_bytes(path: &Path) -> Result<Vec<u8>, LoadError> {
-    let file = std::fs::File::open(path).map_err(|e| LoadError::from_io(path, e))?;
+    let file = super::regular_file::open(path).map_err(|e| LoadError::from_io(path, e))?;
     let Some(compression) = Compression::of(path) else {
         let mut bytes = Vec::new();
         std::io::BufReader::new(file).read_to_end(&mut bytes).map_err(|e| LoadError::from_io(path, e))?;

@@ -400,7 +400,7 @@ pub fn read_frame(
         let head = bytes.get(..8).unwrap_or(&bytes).to_vec();
         return frame_from(Cursor::new(bytes), &head, &origin, format, separator, columns, text_columns);
     }
-    let mut file = File::open(path).map_err(|e| LoadError::from_io(path, e))?;
+    let mut file = super::regular_file::open(path).map_err(|e| LoadError::from_io(path, e))?;
     if file.metadata().map(|m| m.len() == 0).unwrap_or(false) {
         return Err(LoadError::NoColumns(origin));
     }

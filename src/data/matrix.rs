@@ -107,7 +107,12 @@ pub fn parse_npy(bytes: &[u8]) -> Result<Matrix, String> {
         let mut chars = descr.chars();
         let order = chars.next().ok_or("empty dtype")?;
         let kind = chars.next().ok_or("bad dtype")?;
-        let size: usize = chars.as_str().parse().map_err(|_| format!("unsupported dtype {descr}"))?;
+        let size: usize = chars
+            .as_str()
+            .parse()
+            .ok()
+            .filter(|s| [1, 2, 4, 8].contains(s))
+            .ok_or(format!("unsupported dtype {descr}; use float or integer arrays"))?;
         (order != '>', kind, size)
     };
     let data = bytes.get(start + len..).ok_or("truncated data")?;
@@ -195,6 +200,19 @@ mod tests {
             out.extend_from_slice(&v.to_le_bytes());
         }
         out
+    }
+
+    #[test]
+    fn zero_or_huge_item_sizes_are_refused_not_panics() {
+        let good = npy("(2, 2)", false, &[1.0, 2.0, 3.0, 4.0]);
+        // Same-length edits of the descr keep the header length valid; only 1, 2, 4, 8 are sizes.
+        for bad in ["<f0", "<f9", "<u3"] {
+            let mut bytes = good.clone();
+            let at = bytes.windows(3).position(|w| w == b"<f8").expect("descr");
+            bytes[at..at + 3].copy_from_slice(bad.as_bytes());
+            let err = parse_npy(&bytes).expect_err(bad);
+            assert!(err.contains("unsupported dtype"), "{bad}: {err}");
+        }
     }
 
     #[test]

@@ -20,6 +20,7 @@ pub mod nested;
 pub mod network;
 pub mod parse;
 pub mod paths;
+pub mod regular_file;
 pub mod table;
 pub mod time;
 pub mod transform;

@@ -22,6 +22,8 @@ pub enum PathError {
     Escapes(String),
     /// The path is empty.
     Empty,
+    /// The path stays inside lexically, but a symbolic link on it leads out of the spec's folder.
+    LinksOutside(String),
 }
 
 impl fmt::Display for PathError {
@@ -30,6 +32,9 @@ impl fmt::Display for PathError {
             PathError::Absolute(p) => write!(f, "data path `{p}` is absolute"),
             PathError::Escapes(p) => write!(f, "data path `{p}` leaves the spec's folder"),
             PathError::Empty => write!(f, "data path is empty"),
+            PathError::LinksOutside(p) => {
+                write!(f, "data path `{p}` leaves the spec's folder through a symbolic link")
+            }
         }
     }
 }
@@ -48,8 +53,9 @@ impl PathError {
 
 /// Resolve `path` (as written in the spec) against the spec's folder under `policy`.
 ///
-/// The check is lexical (no file system access), so it also refuses paths to files that do not
-/// exist yet; symbolic links inside the folder are followed by the reader as usual.
+/// The path is first checked lexically (so it also refuses paths to files that do not exist yet),
+/// then, when it exists, on its real location: symbolic links are resolved and the result must
+/// lie inside the spec's real folder. Links that stay inside the folder are allowed.
 pub fn resolve_data_path(spec_dir: &Path, path: &str, policy: PathPolicy) -> Result<PathBuf, PathError> {
     if path.trim().is_empty() {
         return Err(PathError::Empty);
@@ -73,7 +79,14 @@ pub fn resolve_data_path(spec_dir: &Path, path: &str, policy: PathPolicy) -> Res
             return Err(PathError::Escapes(path.to_string()));
         }
     }
-    Ok(spec_dir.join(candidate))
+    let joined = spec_dir.join(candidate);
+    let dir = if spec_dir.as_os_str().is_empty() { Path::new(".") } else { spec_dir };
+    if let (Ok(real), Ok(real_dir)) = (joined.canonicalize(), dir.canonicalize()) {
+        if !real.starts_with(&real_dir) {
+            return Err(PathError::LinksOutside(path.to_string()));
+        }
+    }
+    Ok(joined)
 }
 
 #[cfg(test)]

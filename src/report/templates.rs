@@ -30,7 +30,12 @@ impl TemplateSource {
 
     /// Read a user template file.
     pub fn read(path: &std::path::Path) -> Result<TemplateSource, ReportError> {
-        let text = std::fs::read_to_string(path)
+        use crate::data::regular_file::{MAX_TEMPLATE_BYTES, read_capped};
+        let text = read_capped(path, MAX_TEMPLATE_BYTES, "template")
+            .and_then(|bytes| {
+                String::from_utf8(bytes)
+                    .map_err(|_| std::io::Error::new(std::io::ErrorKind::InvalidData, "it is not UTF-8 text"))
+            })
             .map_err(|source| ReportError::ReadTemplate { path: path.to_path_buf(), source })?;
         Ok(TemplateSource { name: path.display().to_string(), text })
     }

@@ -14,6 +14,7 @@ mod explore;
 mod flow;
 mod frame_fit;
 mod golden;
+mod hostile_inputs;
 mod layout;
 mod lint;
 mod lint_colour;

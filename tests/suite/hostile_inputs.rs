@@ -1,0 +1,135 @@
+//! Hostile inputs: paths that are not regular files (FIFOs, devices, directories) and oversized
+//! specs and templates. Each case runs the command-line tool as a child process with a timeout, so
+//! a read that blocks or never ends fails the test instead of hanging it.
+
+use crate::common::{Fixture, run_dataink};
+use std::path::Path;
+
+const SCATTER: &str = "[[chart]]\nname = \"c\"\nkind = \"scatter\"\ndata = \"d\"\nx = \"x\"\ny = \"y\"\n";
+
+/// A fixture whose data source `d` reads `file` (created by the caller).
+fn fixture_reading(file: &str) -> Fixture {
+    Fixture::new(&format!("[data.d]\npath = \"{file}\"\n{SCATTER}"), &[])
+}
+
+/// Run `dataink ARGS` in `dir`, assert it fails (exit 1 or 2, not a panic) within 30 s, and return its stderr.
+fn fails(dir: &Path, args: &[&str]) -> String {
+    let out = run_dataink(dir, args, 30).expect("dataink finished within 30 s");
+    let stderr = String::from_utf8_lossy(&out.stderr).into_owned();
+    let code = out.status.code();
+    assert!(matches!(code, Some(1 | 2)), "exit {code:?}: {stderr}");
+    stderr
+}
+
+fn mkfifo(path: &Path) {
+    let status = std::process::Command::new("mkfifo").arg(path).status().expect("run mkfifo");
+    assert!(status.success());
+}
+
+#[cfg(unix)]
+#[test]
+fn device_behind_a_data_symlink_is_refused() {
+    for (name, device) in [("d.npy", "/dev/zero"), ("d.csv", "/dev/urandom")] {
+        let fx = fixture_reading(name);
+        std::os::unix::fs::symlink(device, fx.dir.path().join(name)).expect("symlink");
+        // Allowed outside, so the file-type check (not the path policy) is what refuses it.
+        let err = fails(fx.dir.path(), &["render", "spec.toml", "--out", "out", "--allow-outside-paths"]);
+        assert!(err.contains(&format!("cannot read `{name}`")), "{err}");
+        assert!(err.contains("it is a device; only regular files are read"), "{err}");
+    }
+}
+
+#[cfg(unix)]
+#[test]
+fn device_as_tree_source_is_refused() {
+    let fx = Fixture::new(
+        "[data.d]\npath = \"t.json\"\nformat = \"tree\"\n[[chart]]\nname = \"c\"\nkind = \"treemap\"\ndata = \"d\"\n",
+        &[],
+    );
+    std::os::unix::fs::symlink("/dev/zero", fx.dir.path().join("t.json")).expect("symlink");
+    let err = fails(fx.dir.path(), &["render", "spec.toml", "--out", "out", "--allow-outside-paths"]);
+    assert!(err.contains("it is a device"), "{err}");
+}
+
+#[cfg(unix)]
+#[test]
+fn fifo_as_data_or_spec_does_not_block() {
+    let fx = fixture_reading("d.csv");
+    mkfifo(&fx.dir.path().join("d.csv"));
+    let err = fails(fx.dir.path(), &["render", "spec.toml", "--out", "out"]);
+    assert!(err.contains("it is a FIFO; only regular files are read"), "{err}");
+
+    mkfifo(&fx.dir.path().join("fifo.toml"));
+    let err = fails(fx.dir.path(), &["render", "fifo.toml", "--out", "out"]);
+    assert!(err.contains("cannot read spec file `fifo.toml`: it is a FIFO"), "{err}");
+}
+
+#[cfg(unix)]
+#[test]
+fn device_or_directory_as_spec_is_refused() {
+    let fx = fixture_reading("d.csv");
+    std::os::unix::fs::symlink("/dev/zero", fx.dir.path().join("zero.toml")).expect("symlink");
+    let err = fails(fx.dir.path(), &["render", "zero.toml", "--out", "out"]);
+    assert!(err.contains("cannot read spec file `zero.toml`: it is a device"), "{err}");
+
+    std::fs::create_dir(fx.dir.path().join("folder.toml")).expect("mkdir");
+    let err = fails(fx.dir.path(), &["render", "folder.toml", "--out", "out"]);
+    assert!(err.contains("it is a directory"), "{err}");
+}
+
+#[test]
+fn directory_as_data_is_refused() {
+    let fx = fixture_reading("d.csv");
+    std::fs::create_dir(fx.dir.path().join("d.csv")).expect("mkdir");
+    let err = fails(fx.dir.path(), &["render", "spec.toml", "--out", "out"]);
+    assert!(err.contains("it is a directory; only regular files are read"), "{err}");
+}
+
+#[test]
+fn oversized_spec_names_the_cap() {
+    let fx = fixture_reading("d.csv");
+    let mut text = String::from("# padding\n");
+    text.push_str(&"#".repeat(17 * 1024 * 1024));
+    std::fs::write(fx.dir.path().join("big.toml"), text).expect("write");
+    let err = fails(fx.dir.path(), &["render", "big.toml", "--out", "out"]);
+    assert!(err.contains("larger than the spec size limit of 16 MiB"), "{err}");
+}
+
+#[cfg(unix)]
+#[test]
+fn device_or_oversized_template_is_refused() {
+    let fx = Fixture::new(&format!("[data.d]\nvalues = [{{ x = 1, y = 2 }}]\n{SCATTER}"), &[]);
+    std::os::unix::fs::symlink("/dev/urandom", fx.dir.path().join("t.html")).expect("symlink");
+    let err = fails(fx.dir.path(), &["report", "spec.toml", "--out", "out", "--template", "t.html"]);
+    assert!(err.contains("cannot read template `t.html`: it is a device"), "{err}");
+
+    std::fs::write(fx.dir.path().join("big.html"), "x".repeat(2 * 1024 * 1024)).expect("write");
+    let err = fails(fx.dir.path(), &["report", "spec.toml", "--out", "out", "--template", "big.html"]);
+    assert!(err.contains("larger than the template size limit of 1 MiB"), "{err}");
+}
+
+#[cfg(unix)]
+#[test]
+fn symlinks_leading_out_of_the_spec_folder_are_refused() {
+    let outside = tempfile::tempdir().expect("tempdir");
+    std::fs::write(outside.path().join("d.csv"), "x,y\n1,2\n").expect("write");
+    let fx = fixture_reading("d.csv");
+    std::os::unix::fs::symlink(outside.path().join("d.csv"), fx.dir.path().join("d.csv")).expect("symlink");
+    let err = fails(fx.dir.path(), &["render", "spec.toml", "--out", "out"]);
+    assert!(err.contains("data path `d.csv` leaves the spec's folder through a symbolic link"), "{err}");
+    let ok = run_dataink(fx.dir.path(), &["render", "spec.toml", "--out", "out", "--allow-outside-paths"], 30)
+        .expect("finished");
+    assert_eq!(ok.status.code(), Some(0), "{}", String::from_utf8_lossy(&ok.stderr));
+
+    // A folder symlink inside the spec folder that leads out is refused too.
+    let fx = fixture_reading("sub/d.csv");
+    std::os::unix::fs::symlink(outside.path(), fx.dir.path().join("sub")).expect("symlink");
+    let err = fails(fx.dir.path(), &["render", "spec.toml", "--out", "out"]);
+    assert!(err.contains("through a symbolic link"), "{err}");
+
+    // A link that stays inside is allowed.
+    let fx = Fixture::new(&format!("[data.d]\npath = \"link.csv\"\n{SCATTER}"), &[("real.csv", b"x,y\n1,2\n")]);
+    std::os::unix::fs::symlink("real.csv", fx.dir.path().join("link.csv")).expect("symlink");
+    let ok = run_dataink(fx.dir.path(), &["render", "spec.toml", "--out", "out"], 30).expect("finished");
+    assert_eq!(ok.status.code(), Some(0), "{}", String::from_utf8_lossy(&ok.stderr));
+}
