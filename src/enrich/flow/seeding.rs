@@ -332,6 +332,7 @@ mod tests {
         let cut = evenly_spaced(&field, &options, &budget);
         assert!(budget.exhausted());
         assert!(!cut.is_empty() && cut.len() < full.len(), "{} of {} lines", cut.len(), full.len());
-        assert_eq!(cut[..], full[..cut.len()], "the lines kept are the first ones of a full run");
+        // Every line before the one the budget cut short is as in a full run.
+        assert_eq!(cut[..cut.len() - 1], full[..cut.len() - 1]);
     }
 }
