@@ -45,7 +45,7 @@ pub struct Failed {
 impl Failed {
     /// All diagnostics rendered for a terminal.
     pub fn render(&self) -> String {
-        self.diagnostics.iter().map(|d| self.source.render(d)).collect::<Vec<_>>().join("\n")
+        crate::spec::render_all(&self.source, &self.diagnostics)
     }
 }
 

@@ -10,11 +10,12 @@ use super::derived::{Derived, DerivedColumn};
 use super::gridded::grid_from_rows;
 use super::{ChartOutput, MarkError, encode, frame};
 use crate::data::{Column, Table};
+use crate::enrich::flow::budget::{self, StepBudget};
 use crate::enrich::flow::field::VectorField;
 use crate::enrich::flow::integrate::Integrator;
 use crate::enrich::flow::lic::{LicOptions, lic};
 use crate::enrich::flow::seeding::{EvenlySpacedOptions, circle, evenly_spaced, grid_seeds, rake};
-use crate::enrich::flow::streamline::{Direction, Streamline, StreamlineOptions, pathline, trace};
+use crate::enrich::flow::streamline::{Direction, Streamline, StreamlineOptions, pathline, trace_within};
 use crate::enrich::flow::topology::{CriticalKind, SwitchKind, boundary_points, critical_points, separatrices};
 use crate::guide::axis::title_with_unit;
 use crate::guide::color::ContinuousMap;
@@ -72,7 +73,8 @@ pub fn draw(chart: &Chart, options: &FlowOptions, index: usize, table: &Table) -
             domain: (0.0, max_speed.max(1e-300)),
         });
     }
-    let topology = has(FlowLayer::Topology).then(|| Topology::find(&snapshot));
+    let budget = StepBudget::default();
+    let topology = has(FlowLayer::Topology).then(|| Topology::find(&snapshot, &budget));
     if let Some(t) = &topology {
         legends.extend(t.legend());
     }
@@ -123,7 +125,7 @@ pub fn draw(chart: &Chart, options: &FlowOptions, index: usize, table: &Table) -
     let mut trace_options = StreamlineOptions::for_field(field);
     trace_options.integrator = integrator(options.integrator);
     if has(FlowLayer::Streamlines) {
-        let lines = streamlines(chart, index, options, &snapshot, &trace_options, density)?;
+        let lines = streamlines(chart, index, options, &snapshot, &trace_options, density, &budget)?;
         for line in &lines {
             marks.extend(polyline(&line.points, &to_px, STREAMLINE.with_opacity(0.85), 0.9));
             marks.extend(direction_mark(line, &to_px, STREAMLINE));
@@ -168,8 +170,21 @@ pub fn draw(chart: &Chart, options: &FlowOptions, index: usize, table: &Table) -
     if has(FlowLayer::Arrows) {
         marks.extend(arrow_key(&frame, &theme, density, max_speed, options.unit.as_deref()));
     }
+    let mut warnings = input.warnings;
+    warnings.extend(budget.exhausted().then(|| budget_warning(&chart.name)));
     let scene = frame::scene(chart, frame, &theme, marks);
-    Ok(ChartOutput { scene, derived: derived.finish(), warnings: input.warnings, geojson: None })
+    Ok(ChartOutput { scene, derived: derived.finish(), warnings, geojson: None })
+}
+
+/// The warning of a chart whose streamlines or separatrices stopped at the per-chart budget.
+fn budget_warning(chart: &str) -> String {
+    format!(
+        "chart \"{chart}\": streamlines stopped at the limit of {} integration steps and {} seeding attempts \
+         per chart; the lines traced so far are drawn. Resample the field to a regular grid without \
+         tiny cells, lower `density`, or give fewer `seed_count` seeds",
+        budget::MAX_STEPS,
+        budget::MAX_SEED_ATTEMPTS
+    )
 }
 
 /// The field read from the table, with the rows and columns the axes need.
@@ -355,15 +370,16 @@ fn streamlines(
     field: &VectorField,
     trace_options: &StreamlineOptions,
     density: f64,
+    budget: &StepBudget,
 ) -> Result<Vec<Streamline>, MarkError> {
     let [x0, x1, ..] = field.bounds();
     if options.seeds.unwrap_or(SeedKind::Evenly) == SeedKind::Evenly {
         let mut evenly = EvenlySpacedOptions::new(field, (x1 - x0) / (30.0 * density));
         evenly.streamline.integrator = trace_options.integrator;
-        return Ok(evenly_spaced(field, &evenly));
+        return Ok(evenly_spaced(field, &evenly, budget));
     }
     let seeds = trace_seeds(chart, index, options, field, density)?;
-    Ok(seeds.iter().map(|&s| trace(field, s, trace_options)).filter(|l| l.points.len() > 1).collect())
+    Ok(seeds.iter().map(|&s| trace_within(field, s, trace_options, budget)).filter(|l| l.points.len() > 1).collect())
 }
 
 /// Seeds of traces: a rake, a circle or a grid (the grid also stands in for `evenly`).
@@ -641,10 +657,10 @@ fn kind_style(kind: CriticalKind) -> (&'static str, Color, bool) {
 }
 
 impl Topology {
-    fn find(field: &VectorField) -> Topology {
+    fn find(field: &VectorField, budget: &StepBudget) -> Topology {
         let points = critical_points(field, CENTRE_TOLERANCE);
         let options = StreamlineOptions::for_field(field);
-        let lines = separatrices(field, &points, 0.5 * field.min_cell(), &options);
+        let lines = separatrices(field, &points, 0.5 * field.min_cell(), &options, budget);
         Topology { points, separatrices: lines.into_iter().map(|s| s.line).collect(), boundary: boundary_points(field) }
     }
 

@@ -41,9 +41,15 @@ impl TemplateSource {
     }
 }
 
+/// Fuel of one template render: minijinja takes about one unit per instruction and per 64 bytes
+/// of data a template builds, so this bounds a runaway loop to seconds. The built-in templates
+/// use a small fraction of it even for large reports.
+pub const TEMPLATE_FUEL: u64 = 50_000_000;
+
 /// The environment every report template renders in.
 pub fn environment<'s>() -> Environment<'s> {
     let mut env = Environment::new();
+    env.set_fuel(Some(TEMPLATE_FUEL));
     // Every template escapes for HTML, whatever its name says (`.md`, `.txt`, no extension):
     // Markdown renders entities as the characters they stand for, and raw HTML in a Markdown
     // job summary would be live.
@@ -76,6 +82,10 @@ fn template_hint(kind: ErrorKind) -> &'static str {
         ErrorKind::UndefinedError => "check the name against the variables listed in templates/README.md",
         ErrorKind::UnknownFilter => {
             "use one of minijinja's built-in filters or `md`; `safe` is not available (values are always escaped)"
+        }
+        ErrorKind::OutOfFuel => {
+            "the template ran over its work limit of 50,000,000 steps (see README, Limits): \
+             loop over fewer items, or do not nest loops over the charts or rows"
         }
         ErrorKind::SyntaxError => {
             "fix the template syntax at that line (Jinja2 syntax: {{ value }}, {% for %}, {% if %})"

@@ -129,13 +129,18 @@ impl SourceFile {
     /// 1-based line and column of a byte offset; the column counts characters, not bytes.
     ///
     /// Offsets past the end are clamped to the end; offsets inside a character count from its start.
+    /// This scans the text before `offset`; to place many offsets, build a [`LineIndex`] once.
     pub fn line_col(&self, offset: usize) -> (usize, usize) {
+        self.line_col_in(&LineIndex::new(self.text.get(..self.floor_boundary(offset)).unwrap_or("")), offset)
+    }
+
+    /// [`SourceFile::line_col`] with a line index of this text (or of a prefix holding `offset`).
+    fn line_col_in(&self, index: &LineIndex, offset: usize) -> (usize, usize) {
         let offset = self.floor_boundary(offset);
-        let before = self.text.get(..offset).unwrap_or("");
-        let line = before.matches('\n').count() + 1;
-        let line_start = before.rfind('\n').map_or(0, |i| i + 1);
-        let col = before.get(line_start..).unwrap_or("").chars().filter(|&c| c != '\u{feff}').count() + 1;
-        (line, col)
+        let line = index.line_of(offset);
+        let line_start = index.starts[line];
+        let col = self.text.get(line_start..offset).unwrap_or("").chars().filter(|&c| c != '\u{feff}').count() + 1;
+        (line + 1, col)
     }
 
     /// The largest char boundary at or before `offset`, clamped to the text.
@@ -158,11 +163,18 @@ impl SourceFile {
     }
 
     /// Renders one diagnostic: header, `-->` location, the source line, carets, label and hint.
+    /// To render many, use [`render_all`], which indexes the lines once.
     pub fn render(&self, diag: &Diagnostic) -> String {
+        let end = diag.span.as_ref().map_or(0, |s| self.floor_boundary(s.start));
+        self.render_in(&LineIndex::new(self.text.get(..end).unwrap_or("")), diag)
+    }
+
+    /// [`SourceFile::render`] with a line index of this text (or of a prefix holding the span start).
+    fn render_in(&self, index: &LineIndex, diag: &Diagnostic) -> String {
         let mut out = format!("{}: {}\n", diag.severity, sanitize(&diag.message));
         let mut gutter = 1;
         if let Some(span) = &diag.span {
-            let (line, col) = self.line_col(span.start);
+            let (line, col) = self.line_col_in(index, span.start);
             gutter = line.to_string().len();
             let pad = " ".repeat(gutter);
             out.push_str(&format!("{pad}--> {}:{line}:{col}\n", self.path.display()));
@@ -204,7 +216,29 @@ impl SourceFile {
 
 /// Renders many diagnostics, separated by blank lines.
 pub fn render_all(source: &SourceFile, diags: &[Diagnostic]) -> String {
-    diags.iter().map(|d| source.render(d)).collect::<Vec<_>>().join("\n")
+    let index = LineIndex::new(&source.text);
+    diags.iter().map(|d| source.render_in(&index, d)).collect::<Vec<_>>().join("\n")
+}
+
+/// Byte offsets where the lines of a text start, built in one pass, so that each offset is placed
+/// by binary search instead of a scan from the start of the file.
+#[derive(Clone, Debug)]
+pub struct LineIndex {
+    /// Start of every line; the first is 0.
+    starts: Vec<usize>,
+}
+
+impl LineIndex {
+    /// Indexes the line starts of `text`.
+    pub fn new(text: &str) -> Self {
+        let starts = std::iter::once(0).chain(text.match_indices('\n').map(|(i, _)| i + 1)).collect();
+        Self { starts }
+    }
+
+    /// 0-based line holding byte `offset` (offsets past the end fall on the last line).
+    pub fn line_of(&self, offset: usize) -> usize {
+        self.starts.partition_point(|&s| s <= offset).saturating_sub(1)
+    }
 }
 
 /// Replaces characters that would garble a terminal (controls, bidi overrides) with `\u{..}` escapes.

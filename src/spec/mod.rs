@@ -337,11 +337,11 @@ y = "y"
                 "error: `size[1]` must be greater than 0 and at most 16384, found 20000",
                 "error: `font_size` must be between 1 and 200, found 0.5",
                 "error: `opacity` must be between 0 and 1, found -0.1",
-                "error: `radius` must be greater than 0, found 0",
+                "error: `radius` must be greater than 0 and at most 100, found 0",
                 "error: `y[0].domain` must be `[min, max]` with min < max, found `[2, 1]`",
-                "error: `stroke_width` must be greater than 0, found 0",
+                "error: `stroke_width` must be greater than 0 and at most 100, found 0",
                 "error: duplicate chart name `A`",
-                "error: `point_size.max_radius` must be greater than 0, found -2",
+                "error: `point_size.max_radius` must be greater than 0 and at most 200, found -2",
                 "warning: chart names `A` and `a` differ only in case",
             ]
         );

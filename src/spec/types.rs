@@ -331,9 +331,9 @@ pub struct ScatterOptions {
     #[serde(default)]
     #[schemars(example = &"population")]
     pub point_size: Option<SizeChannel>,
-    /// Marker radius in pixels when `point_size` is not given (default: 3, smaller for many points).
+    /// Marker radius in pixels, at most 100, when `point_size` is not given (default: 3, smaller for many points).
     #[serde(default)]
-    #[schemars(extend("exclusiveMinimum" = 0), example = 3)]
+    #[schemars(extend("exclusiveMinimum" = 0, "maximum" = 100), example = 3)]
     pub radius: Option<f64>,
     /// Marker colour when `color` is not given (CSS name or `#rrggbb`).
     #[serde(default)]
@@ -362,9 +362,9 @@ pub struct LineOptions {
     /// Draw a marker at every data point.
     #[serde(default)]
     pub markers: Option<bool>,
-    /// Line width in pixels (default 2).
+    /// Line width in pixels, at most 100 (default 2).
     #[serde(default)]
-    #[schemars(extend("exclusiveMinimum" = 0), example = 2)]
+    #[schemars(extend("exclusiveMinimum" = 0, "maximum" = 100), example = 2)]
     pub stroke_width: Option<f64>,
     /// Categorical colour scheme for the series (default `okabe-ito`).
     #[serde(default)]
@@ -417,9 +417,9 @@ pub struct Interp1dOptions {
     /// Draw the knots as points (default true).
     #[serde(default)]
     pub knots: Option<bool>,
-    /// Line width in pixels (default 2).
+    /// Line width in pixels, at most 100 (default 2).
     #[serde(default)]
-    #[schemars(range(min = 0.0))]
+    #[schemars(range(min = 0.0, max = 100))]
     pub stroke_width: Option<f64>,
     /// Categorical colour scheme for the methods (default `okabe-ito`).
     #[serde(default)]
@@ -521,9 +521,9 @@ pub struct SectionOptions {
     /// magnitude; the panels can then no longer be compared by height, and lint rule CM001 says so).
     #[serde(default)]
     pub shared_scale: Option<bool>,
-    /// Line width in pixels (default 2).
+    /// Line width in pixels, at most 100 (default 2).
     #[serde(default)]
-    #[schemars(range(min = 0.0))]
+    #[schemars(range(min = 0.0, max = 100))]
     pub stroke_width: Option<f64>,
     /// Categorical colour scheme for the sections (default `okabe-ito`).
     #[serde(default)]
@@ -626,9 +626,9 @@ pub struct SplomOptions {
     /// `auto` (default: density above 200,000 rows).
     #[serde(default)]
     pub mode: Option<SplomMode>,
-    /// Marker radius in pixels (default: from the row count).
+    /// Marker radius in pixels, at most 100 (default: from the row count).
     #[serde(default)]
-    #[schemars(extend("exclusiveMinimum" = 0))]
+    #[schemars(extend("exclusiveMinimum" = 0, "maximum" = 100))]
     pub radius: Option<f64>,
     /// Marker opacity in 0..=1 (default: from the row count).
     #[serde(default)]
@@ -699,9 +699,9 @@ pub struct ParallelOptions {
     #[serde(default)]
     #[schemars(range(min = 0, max = 1))]
     pub opacity: Option<f64>,
-    /// Line width in pixels (default: from the row count).
+    /// Line width in pixels, at most 100 (default: from the row count).
     #[serde(default)]
-    #[schemars(extend("exclusiveMinimum" = 0))]
+    #[schemars(extend("exclusiveMinimum" = 0, "maximum" = 100))]
     pub stroke_width: Option<f64>,
     /// Line colour when `color` is not given (CSS name or `#rrggbb`).
     #[serde(default)]
@@ -732,9 +732,9 @@ pub struct DaisyOptions {
     #[serde(default)]
     #[schemars(range(min = 0, max = 1))]
     pub opacity: Option<f64>,
-    /// Curve width in pixels (default: from the row count).
+    /// Curve width in pixels, at most 100 (default: from the row count).
     #[serde(default)]
-    #[schemars(extend("exclusiveMinimum" = 0))]
+    #[schemars(extend("exclusiveMinimum" = 0, "maximum" = 100))]
     pub stroke_width: Option<f64>,
     /// Curve colour when `color` is not given (CSS name or `#rrggbb`).
     #[serde(default)]
@@ -1046,9 +1046,9 @@ pub struct GraphOptions {
     /// Label nodes (default: when there are at most 150); labels that would overlap are left out.
     #[serde(default)]
     pub labels: Option<bool>,
-    /// Node radius in pixels without a size column (default from the node count).
+    /// Node radius in pixels, at most 200, without a size column (default from the node count).
     #[serde(default)]
-    #[schemars(extend("exclusiveMinimum" = 0))]
+    #[schemars(extend("exclusiveMinimum" = 0, "maximum" = 200))]
     pub node_radius: Option<f64>,
     /// Continuous scheme of edge colours by weight (default `greys`).
     #[serde(default)]
@@ -1210,10 +1210,10 @@ pub enum IntegratorKind {
 #[derive(Clone, Debug, Deserialize, Serialize, JsonSchema, PartialEq)]
 #[serde(untagged)]
 pub enum Levels {
-    /// About this many nice round levels between the field's minimum and maximum.
-    Count(u32),
-    /// Exactly these levels.
-    Values(Vec<f64>),
+    /// About this many nice round levels (1 to 100) between the field's minimum and maximum.
+    Count(#[schemars(range(min = 1, max = 100))] u32),
+    /// Exactly these levels (at most 1000).
+    Values(#[schemars(length(max = 1000))] Vec<f64>),
 }
 
 /// Saddle-cell rules for contouring.
@@ -1413,9 +1413,9 @@ pub struct SizeOptions {
     /// Unit shown in the legend title.
     #[serde(default)]
     pub unit: Option<String>,
-    /// Largest marker radius in pixels (default 12); area is proportional to the value.
+    /// Largest marker radius in pixels, at most 200 (default 12); area is proportional to the value.
     #[serde(default)]
-    #[schemars(extend("exclusiveMinimum" = 0), example = 12)]
+    #[schemars(extend("exclusiveMinimum" = 0, "maximum" = 200), example = 12)]
     pub max_radius: Option<f64>,
     /// How values map to markers: `area` (default: area proportional to the value, which reads
     /// true) or `radius` (radius proportional to the value, which exaggerates differences as their

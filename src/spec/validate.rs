@@ -20,16 +20,33 @@ use super::suggest::did_you_mean;
 /// Deepest schema nesting followed; the spec's own schema is far shallower.
 const MAX_SCHEMA_DEPTH: usize = 64;
 
+/// Most charts one spec may hold; a larger spec is refused before any chart is checked.
+pub const MAX_CHARTS: usize = 10_000;
+
 /// Every problem in the spec: schema violations (types, unknown and missing keys, enum values,
 /// number ranges) in file order, then the rules that need the whole spec (chart names and their
 /// uniqueness, references from charts to data sources, `path` xor `values`, domain order).
 pub fn validate(doc: &SpecDoc) -> Vec<Diagnostic> {
+    if let Some(too_many) = too_many_charts(doc.root()) {
+        return vec![too_many];
+    }
     let schema = schema_ref();
     let mut walker = Walker::new(schema, doc.root());
     let mut path = Vec::new();
     walker.check(doc.root(), schema, &mut path, Field::default(), 0);
     walker.semantic(doc.root());
     walker.diags
+}
+
+/// The error of a spec with more than [`MAX_CHARTS`] charts, pointing at the first one over.
+fn too_many_charts(root: &SpannedValue) -> Option<Diagnostic> {
+    let charts = root.get("chart").and_then(SpannedValue::as_array)?;
+    let over = charts.get(MAX_CHARTS)?;
+    let d = Diagnostic::error(format!("the spec has {} charts, over the limit of {MAX_CHARTS} per spec", charts.len()))
+        .at(over.span.clone())
+        .with_label(format!("chart #{} is one too many", MAX_CHARTS + 1))
+        .with_hint("split the charts over several spec files and render each one");
+    Some(d)
 }
 
 /// The schema property a value sits under: its name (for examples) and schema (for hints).

@@ -9,11 +9,13 @@
 //! - [`seeding`]: seeds on rakes, grids and circles, and evenly spaced streamlines
 //!   (Jobard & Lefer 1997).
 //! - [`lic`]: line integral convolution of white noise (Cabral & Leedom 1993), in parallel by rows.
+//! - [`budget`]: the total steps and seeding attempts one chart may spend.
 //! - [`topology`]: critical points of the bilinear interpolant classified by their Jacobian,
 //!   saddle separatrices and boundary switch points (Helman & Hesselink 1989).
 //!
 //! Everything here is a pure function of its input (and seed): no drawing, no I/O.
 
+pub mod budget;
 pub mod field;
 pub mod integrate;
 pub mod lic;

@@ -12,6 +12,7 @@
 //! queue runs dry, cell centres of a `d_sep` lattice are tried in order to reach regions the
 //! first line's family never touched. Everything is sequential and deterministic.
 
+use super::budget::StepBudget;
 use super::field::VectorField;
 use super::streamline::{Direction, Streamline, StreamlineOptions, dist, trace_with};
 
@@ -138,8 +139,10 @@ impl Background {
 
 /// Evenly spaced streamlines after Jobard & Lefer (1997); see the module docs. A non-positive or
 /// NaN `d_sep` gives no lines; a `d_sep` so small that the background grid would exceed 2²²
-/// cells is raised to fit. Lines are returned in creation order.
-pub fn evenly_spaced(field: &VectorField, options: &EvenlySpacedOptions) -> Vec<Streamline> {
+/// cells is raised to fit. Every step and seeding attempt is taken from `budget`; once it is spent
+/// the lines finished so far are returned (see [`StepBudget::exhausted`]). Lines are returned in
+/// creation order.
+pub fn evenly_spaced(field: &VectorField, options: &EvenlySpacedOptions, budget: &StepBudget) -> Vec<Streamline> {
     let bounds = field.bounds();
     let area = (bounds[1] - bounds[0]) * (bounds[3] - bounds[2]);
     if !(options.d_sep.is_finite() && options.d_sep > 0.0) {
@@ -172,12 +175,18 @@ pub fn evenly_spaced(field: &VectorField, options: &EvenlySpacedOptions) -> Vec<
             },
         };
         attempts += 1;
+        if !budget.attempt() {
+            break;
+        }
         if !is_seed(&grid, seed) {
             continue;
         }
         let id = lines.len() as u32;
         grid.insert(Entry { line: id, param: 0.0, point: seed });
         let mut accept = |q: [f64; 2], param: f64| {
+            if !budget.step() {
+                return false;
+            }
             // A far part of the line itself also counts, except its start seen from next to the
             // seed, so that closed orbits can close instead of stopping short.
             let near_seed = dist(q, seed) < d_test;
@@ -190,6 +199,13 @@ pub fn evenly_spaced(field: &VectorField, options: &EvenlySpacedOptions) -> Vec<
             !close
         };
         let line = trace_with(field, seed, &options.streamline, &mut accept);
+        if budget.exhausted() {
+            // A line cut short by the budget is kept only if it is long enough, as any other.
+            if line.points.len() >= 2 && line.length() >= options.min_length {
+                lines.push(line);
+            }
+            break;
+        }
         if line.points.len() < 2 || line.length() < options.min_length {
             grid.remove_line(id, &line.points);
             grid.remove_line(id, &[seed]);
@@ -254,7 +270,7 @@ mod tests {
         let field = VectorField::from_fn(axis(21, 0.0, 1.0), axis(21, 0.0, 1.0), |_, _| [1.0, 0.0]).unwrap();
         let d_sep = 0.05;
         let options = EvenlySpacedOptions::new(&field, d_sep);
-        let lines = evenly_spaced(&field, &options);
+        let lines = evenly_spaced(&field, &options, &StepBudget::default());
         let mut heights = Vec::new();
         for line in &lines {
             let y = line.points[0][1];
@@ -276,7 +292,7 @@ mod tests {
         let f = |x: f64, y: f64| [-(y - 0.5) + 0.3, x - 0.5];
         let field = VectorField::from_fn(axis(41, 0.0, 1.0), axis(41, 0.0, 1.0), f).unwrap();
         let options = EvenlySpacedOptions::new(&field, 0.06);
-        let lines = evenly_spaced(&field, &options);
+        let lines = evenly_spaced(&field, &options, &StepBudget::default());
         assert!(lines.len() > 5);
         // Orbits around the centre at (0.5, 0.8) that fit in the domain close on themselves.
         assert!(lines.iter().any(Streamline::is_closed));
@@ -293,17 +309,30 @@ mod tests {
                 }
             }
         }
-        assert_eq!(lines, evenly_spaced(&field, &options));
+        assert_eq!(lines, evenly_spaced(&field, &options, &StepBudget::default()));
     }
 
     #[test]
     fn bad_separation_gives_nothing_and_caps_hold() {
         let field = VectorField::from_fn(axis(5, 0.0, 1.0), axis(5, 0.0, 1.0), |_, _| [1.0, 0.0]).unwrap();
         for d in [0.0, -1.0, f64::NAN, f64::INFINITY] {
-            assert!(evenly_spaced(&field, &EvenlySpacedOptions::new(&field, d)).is_empty());
+            assert!(evenly_spaced(&field, &EvenlySpacedOptions::new(&field, d), &StepBudget::default()).is_empty());
         }
         let mut options = EvenlySpacedOptions::new(&field, 0.01);
         options.max_lines = 7;
-        assert_eq!(evenly_spaced(&field, &options).len(), 7);
+        assert_eq!(evenly_spaced(&field, &options, &StepBudget::default()).len(), 7);
+    }
+
+    #[test]
+    fn budget_stops_seeding_cleanly() {
+        let field = VectorField::from_fn(axis(21, 0.0, 1.0), axis(21, 0.0, 1.0), |_, _| [1.0, 0.0]).unwrap();
+        let options = EvenlySpacedOptions::new(&field, 0.05);
+        let full = evenly_spaced(&field, &options, &StepBudget::default());
+        let budget = StepBudget::new(300, 1_000);
+        let cut = evenly_spaced(&field, &options, &budget);
+        assert!(budget.exhausted());
+        assert!(!cut.is_empty() && cut.len() < full.len(), "{} of {} lines", cut.len(), full.len());
+        // Every line before the one the budget cut short is as in a full run.
+        assert_eq!(cut[..cut.len() - 1], full[..cut.len() - 1]);
     }
 }

@@ -16,6 +16,7 @@
 //! Pathlines ([`pathline`]) integrate the unsteady velocity in time and also stop at the end of
 //! the field's time axis ([`StopReason::TimeRange`]).
 
+use super::budget::StepBudget;
 use super::field::VectorField;
 use super::integrate::{Integrator, Mode, StepControl, step};
 
@@ -130,6 +131,17 @@ impl Streamline {
 /// Traces the streamline through `seed`.
 pub fn trace(field: &VectorField, seed: [f64; 2], options: &StreamlineOptions) -> Streamline {
     trace_with(field, seed, options, &mut |_, _| true)
+}
+
+/// Traces the streamline through `seed`, taking every step from `budget` (a spent budget stops
+/// the curve with [`StopReason::TooClose`]; check [`StepBudget::exhausted`]).
+pub fn trace_within(
+    field: &VectorField,
+    seed: [f64; 2],
+    options: &StreamlineOptions,
+    budget: &StepBudget,
+) -> Streamline {
+    trace_with(field, seed, options, &mut |_, _| budget.step())
 }
 
 /// Traces the streamline through `seed`, asking `accept(point, param)` before adding each new

@@ -25,8 +25,9 @@
 
 use rayon::prelude::*;
 
+use super::budget::StepBudget;
 use super::field::{VectorField, bilerp, bilerp_gradient};
-use super::streamline::{Direction, Streamline, StreamlineOptions, trace};
+use super::streamline::{Direction, Streamline, StreamlineOptions, trace_within};
 
 /// Kind of a critical point.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -264,12 +265,13 @@ pub struct Separatrix {
 
 /// Up to four separatrices per saddle in `points`, started at `offset` from it along `±` each
 /// eigenvector and traced with `options` (its `direction` is overridden). Starts outside the
-/// domain or in holes (a saddle on the boundary) give no separatrix.
+/// domain or in holes (a saddle on the boundary) give no separatrix. Steps come from `budget`.
 pub fn separatrices(
     field: &VectorField,
     points: &[CriticalPoint],
     offset: f64,
     options: &StreamlineOptions,
+    budget: &StepBudget,
 ) -> Vec<Separatrix> {
     let mut out = Vec::new();
     for (index, p) in points.iter().enumerate() {
@@ -282,7 +284,7 @@ pub fn separatrices(
         ] {
             for side in [1.0, -1.0] {
                 let seed = [p.position[0] + side * offset * e[0], p.position[1] + side * offset * e[1]];
-                let mut line = trace(field, seed, &StreamlineOptions { direction, ..*options });
+                let mut line = trace_within(field, seed, &StreamlineOptions { direction, ..*options }, budget);
                 if line.points.len() < 2 {
                     continue;
                 }
@@ -504,7 +506,7 @@ mod tests {
         let g = field(|x, y| [x, -y]);
         let points = critical_points(&g, 1e-3);
         let o = StreamlineOptions::for_field(&g);
-        let seps = separatrices(&g, &points, 1e-3, &o);
+        let seps = separatrices(&g, &points, 1e-3, &o, &StepBudget::default());
         assert_eq!(seps.len(), 4);
         for s in &seps {
             let end = s.line.points[if s.kind == SeparatrixKind::Unstable { s.line.points.len() - 1 } else { 0 }];
