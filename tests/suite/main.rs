@@ -22,4 +22,5 @@ mod lint_technique;
 mod multivariate;
 mod networks;
 mod report;
+mod resources;
 mod transform;
