@@ -220,12 +220,22 @@ pub fn preview_sources(
             continue;
         }
         let mut lf = frame.clone();
-        let result = lf.collect_schema().and_then(|schema| {
-            let count = frame.clone().select([polars::prelude::len()]).collect()?;
-            let n = count.columns().first().and_then(|c| c.get(0).ok()).and_then(|v| v.extract::<usize>()).unwrap_or(0);
-            let head = frame.clone().limit(rows as polars::prelude::IdxSize).collect()?;
-            Ok((schema, n, head))
-        });
+        let result = data::contained::contain(|| {
+            lf.collect_schema()
+                .and_then(|schema| {
+                    let count = frame.clone().select([polars::prelude::len()]).collect()?;
+                    let n = count
+                        .columns()
+                        .first()
+                        .and_then(|c| c.get(0).ok())
+                        .and_then(|v| v.extract::<usize>())
+                        .unwrap_or(0);
+                    let head = frame.clone().limit(rows as polars::prelude::IdxSize).collect()?;
+                    Ok((schema, n, head))
+                })
+                .map_err(|e| data::transform::first_line(&e.to_string()))
+        })
+        .and_then(|r| r);
         match result {
             Ok((schema, n, head)) => out.push(SourcePreview {
                 name: name.clone(),
@@ -234,7 +244,7 @@ pub fn preview_sources(
                 head: format!("{head}"),
             }),
             Err(e) => diagnostics.push(
-                Diagnostic::error(format!("data \"{name}\": {}", data::transform::first_line(&e.to_string())))
+                Diagnostic::error(format!("data \"{name}\": {e}"))
                     .at_opt(doc.span_of(&[PathSeg::Key("data".into()), PathSeg::Key(name.clone())])),
             ),
         }
@@ -270,16 +280,17 @@ fn value_end(value: &spec::SpannedValue) -> usize {
 /// column, so a missing-column diagnostic can list the real ones).
 fn collect_source(frame: &polars::prelude::LazyFrame, wanted: Option<&[String]>, name: &str) -> Result<Table, String> {
     use polars::prelude::col;
-    let mut lf = frame.clone();
-    let schema = lf.collect_schema().map_err(|e| data::transform::first_line(&e.to_string()))?;
-    if let Some(columns) = wanted
-        && !columns.is_empty()
-        && columns.iter().all(|c| schema.contains(c))
-    {
-        lf = lf.select(columns.iter().map(|c| col(c.as_str())).collect::<Vec<_>>());
-    }
-    let df =
-        lf.collect().map_err(|e| format!("the transforms fail: {}", data::transform::first_line(&e.to_string())))?;
+    let df = data::contained::contain(|| {
+        let mut lf = frame.clone();
+        let schema = lf.collect_schema().map_err(|e| data::transform::first_line(&e.to_string()))?;
+        if let Some(columns) = wanted
+            && !columns.is_empty()
+            && columns.iter().all(|c| schema.contains(c))
+        {
+            lf = lf.select(columns.iter().map(|c| col(c.as_str())).collect::<Vec<_>>());
+        }
+        lf.collect().map_err(|e| format!("the transforms fail: {}", data::transform::first_line(&e.to_string())))
+    })??;
     data::load::frame_to_table(&df, &format!("data \"{name}\" after its transforms"))
         .map_err(|e| format!("{e}; {}", e.hint()))
 }

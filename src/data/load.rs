@@ -3,7 +3,6 @@
 //! rules applied before the conversion, and warnings for text columns that look like dates.
 
 use std::fmt;
-use std::fs::File;
 use std::io::Cursor;
 use std::path::{Path, PathBuf};
 
@@ -321,8 +320,21 @@ pub fn inline_frame(values: &[std::collections::BTreeMap<String, serde_json::Val
         .map_err(|e| parse_error("inline values", DataFormat::Json, e))
 }
 
-/// Read a resolved file of a known format.
+/// Read a resolved file of a known format; a panic in a reader (a malformed file meeting a
+/// dependency's bug) becomes a parse error naming the file.
 pub fn read_path(
+    source: &DataSource,
+    resolved: &Path,
+    format: DataFormat,
+    columns: Option<&[String]>,
+    rules: &std::collections::BTreeMap<String, String>,
+) -> Result<Reading, LoadError> {
+    super::contained::contain(|| read_path_uncontained(source, resolved, format, columns, rules)).unwrap_or_else(
+        |message| Err(LoadError::Parse { origin: format!("`{}`", resolved.display()), format, message }),
+    )
+}
+
+fn read_path_uncontained(
     source: &DataSource,
     resolved: &Path,
     format: DataFormat,

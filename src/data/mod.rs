@@ -9,6 +9,7 @@
 //! numbers, times (milliseconds since the Unix epoch, UTC) or categories.
 
 pub mod compressed;
+pub mod contained;
 pub mod date_guess;
 pub mod frame;
 pub mod geojson;

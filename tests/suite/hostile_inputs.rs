@@ -133,3 +133,20 @@ fn symlinks_leading_out_of_the_spec_folder_are_refused() {
     let ok = run_dataink(fx.dir.path(), &["render", "spec.toml", "--out", "out"], 30).expect("finished");
     assert_eq!(ok.status.code(), Some(0), "{}", String::from_utf8_lossy(&ok.stderr));
 }
+
+/// One flipped byte in the shipped `grid-load.parquet` (offset 190545, 0x16 to 0x36) made
+/// polars-parquet panic in its thrift decoder ("thrift bool field"); now the read fails with an
+/// error naming the file.
+#[test]
+fn flipped_byte_in_parquet_metadata_is_an_error_not_a_panic() {
+    let mut bytes = std::fs::read(crate::common::root().join("examples/data/grid-load.parquet")).expect("example");
+    assert_eq!(bytes[190_545], 0x16, "the example file changed; find another metadata byte");
+    bytes[190_545] = 0x36;
+    let fixture = Fixture::new(&format!("[data.d]\npath = \"d.parquet\"\n{SCATTER}"), &[("d.parquet", &bytes)]);
+    let commands: [&[&str]; 2] = [&["render", "spec.toml", "--out", "out"], &["data", "spec.toml", "d"]];
+    for args in commands {
+        let stderr = fails(fixture.dir.path(), args);
+        assert!(stderr.contains("d.parquet"), "{stderr}");
+        assert!(!stderr.contains("panicked"), "{stderr}");
+    }
+}

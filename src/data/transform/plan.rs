@@ -235,7 +235,9 @@ pub fn scan(source: &DataSource, spec_dir: &Path, policy: PathPolicy) -> Result<
             };
             let mut lf = lf.map_err(failed)?;
             // Check the file now (header, schema), so a bad file is a load error, not a step's.
-            let schema = lf.collect_schema().map_err(failed)?;
+            let schema = crate::data::contained::contain(|| lf.collect_schema())
+                .map_err(|message| LoadError::Parse { origin: origin.clone(), format, message })?
+                .map_err(failed)?;
             // A byte-order mark is not part of the first column's name.
             if let Some(first) = schema.iter_names().next()
                 && let Some(clean) = first.strip_prefix('\u{feff}')
