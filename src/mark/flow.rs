@@ -179,11 +179,12 @@ pub fn draw(chart: &Chart, options: &FlowOptions, index: usize, table: &Table) -
 /// The warning of a chart whose streamlines or separatrices stopped at the per-chart budget.
 fn budget_warning(chart: &str) -> String {
     format!(
-        "chart \"{chart}\": streamlines stopped at the limit of {} integration steps and {} seeding attempts \
-         per chart; the lines traced so far are drawn. Resample the field to a regular grid without \
-         tiny cells, lower `density`, or give fewer `seed_count` seeds",
+        "chart \"{chart}\": streamlines stopped at the per-chart limit ({} integration steps, {} seeding \
+         attempts, {} points examined for spacing); the lines traced so far are drawn. Resample the \
+         field to a regular grid without tiny cells, lower `density`, or give fewer `seed_count` seeds",
         budget::MAX_STEPS,
-        budget::MAX_SEED_ATTEMPTS
+        budget::MAX_SEED_ATTEMPTS,
+        budget::MAX_EXAMINED
     )
 }
 

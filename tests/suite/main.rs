@@ -15,6 +15,7 @@ mod flow;
 mod frame_fit;
 mod golden;
 mod hostile_inputs;
+mod hostile_work;
 mod layout;
 mod lint;
 mod lint_colour;

@@ -13,11 +13,17 @@ pub const MAX_STEPS: u64 = 4_000_000;
 /// Largest number of seeding attempts (candidate seeds tried) per chart.
 pub const MAX_SEED_ATTEMPTS: u64 = 1_000_000;
 
-/// Integration steps and seeding attempts left for one chart.
+/// Largest number of stored points examined for the spacing test per chart: a field whose lines
+/// all crowd into one background cell (coordinates spanning 1e-9 to 1e9) would otherwise make
+/// every step scan a growing cell, and take hours within the step budget.
+pub const MAX_EXAMINED: u64 = 400_000_000;
+
+/// Integration steps, seeding attempts and spacing work left for one chart.
 #[derive(Debug)]
 pub struct StepBudget {
     steps: Cell<u64>,
     attempts: Cell<u64>,
+    examined: Cell<u64>,
     exhausted: Cell<bool>,
 }
 
@@ -30,7 +36,27 @@ impl Default for StepBudget {
 impl StepBudget {
     /// A budget of `steps` integration steps and `attempts` seeding attempts.
     pub fn new(steps: u64, attempts: u64) -> Self {
-        Self { steps: Cell::new(steps), attempts: Cell::new(attempts), exhausted: Cell::new(false) }
+        Self {
+            steps: Cell::new(steps),
+            attempts: Cell::new(attempts),
+            examined: Cell::new(MAX_EXAMINED),
+            exhausted: Cell::new(false),
+        }
+    }
+
+    /// Accounts for `points` stored points examined by a spacing test; `false` (and the budget
+    /// marked exhausted) when that exceeds what is left.
+    pub fn examine(&self, points: u64) -> bool {
+        match self.examined.get().checked_sub(points) {
+            Some(rest) if !self.exhausted.get() => {
+                self.examined.set(rest);
+                true
+            }
+            _ => {
+                self.exhausted.set(true);
+                false
+            }
+        }
     }
 
     /// Takes one integration step; `false` (and the budget marked exhausted) when none is left.

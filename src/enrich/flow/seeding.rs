@@ -108,8 +108,9 @@ impl Background {
         }
     }
 
-    /// Whether any entry within `radius` (≤ cell size) of `p` satisfies `conflict`.
-    fn any_near(&self, p: [f64; 2], radius: f64, conflict: impl Fn(&Entry) -> bool) -> bool {
+    /// Whether any entry within `radius` (≤ cell size) of `p` satisfies `conflict`; the entries
+    /// looked at are taken from `budget`, and a spent budget counts as a conflict (tracing stops).
+    fn any_near(&self, p: [f64; 2], radius: f64, budget: &StepBudget, conflict: impl Fn(&Entry) -> bool) -> bool {
         let (i, j) = self.cell_of(p);
         let r2 = radius * radius;
         let near = |q: [f64; 2]| (q[0] - p[0]) * (q[0] - p[0]) + (q[1] - p[1]) * (q[1] - p[1]) < r2;
@@ -118,6 +119,9 @@ impl Background {
                 let Some(cell) = self.cells.get(cj * self.nx + ci) else {
                     continue;
                 };
+                if !budget.examine(cell.len() as u64) {
+                    return true;
+                }
                 if cell.iter().any(|e| near(e.point) && conflict(e)) {
                     return true;
                 }
@@ -155,7 +159,8 @@ pub fn evenly_spaced(field: &VectorField, options: &EvenlySpacedOptions, budget:
     let mut grid = Background::new(bounds, d_sep);
     let mut lines: Vec<Streamline> = Vec::new();
     let is_seed = |grid: &Background, p: [f64; 2]| {
-        field.speed(p[0], p[1]).is_some_and(|s| s > threshold) && !grid.any_near(p, d_sep * (1.0 - 1e-3), |_| true)
+        field.speed(p[0], p[1]).is_some_and(|s| s > threshold)
+            && !grid.any_near(p, d_sep * (1.0 - 1e-3), budget, |_| true)
     };
     let mut fallback = grid_seeds(bounds, grid.nx, grid.ny).into_iter();
     let centre = [0.5 * (bounds[0] + bounds[1]), 0.5 * (bounds[2] + bounds[3])];
@@ -190,7 +195,7 @@ pub fn evenly_spaced(field: &VectorField, options: &EvenlySpacedOptions, budget:
             // A far part of the line itself also counts, except its start seen from next to the
             // seed, so that closed orbits can close instead of stopping short.
             let near_seed = dist(q, seed) < d_test;
-            let close = grid.any_near(q, d_test, |e| {
+            let close = grid.any_near(q, d_test, budget, |e| {
                 e.line != id || ((e.param - param).abs() > self_gap && !(near_seed && e.param.abs() < 2.0 * d_test))
             });
             if !close {
