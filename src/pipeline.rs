@@ -52,30 +52,21 @@ impl Failed {
 /// Read a spec file, validate it, load its data and check every column reference, reporting all
 /// problems at once.
 pub fn load(spec_path: &Path, policy: PathPolicy) -> Result<Loaded, Failed> {
-    let source =
-        match crate::data::regular_file::read_capped(spec_path, crate::data::regular_file::MAX_SPEC_BYTES, "spec") {
-            Ok(bytes) => match String::from_utf8(bytes) {
-                Ok(text) => SourceFile { path: spec_path.to_path_buf(), text },
-                Err(_) => {
-                    return Err(Failed {
-                        source: SourceFile { path: spec_path.to_path_buf(), text: String::new() },
-                        diagnostics: vec![
-                            Diagnostic::error(format!("spec file `{}` is not UTF-8 text", spec_path.display()))
-                                .with_hint("save the spec as UTF-8"),
-                        ],
-                    });
-                }
-            },
-            Err(e) => {
-                return Err(Failed {
-                    source: SourceFile { path: spec_path.to_path_buf(), text: String::new() },
-                    diagnostics: vec![
-                        Diagnostic::error(format!("cannot read spec file `{}`: {e}", spec_path.display()))
-                            .with_hint("check the path; specs are TOML files such as examples/gallery.toml"),
-                    ],
-                });
-            }
-        };
+    let unread = |message: String, hint: &str| Failed {
+        source: SourceFile { path: spec_path.to_path_buf(), text: String::new() },
+        diagnostics: vec![Diagnostic::error(message).with_hint(hint)],
+    };
+    let bytes = crate::data::regular_file::read_capped(spec_path, crate::data::regular_file::MAX_SPEC_BYTES, "spec")
+        .map_err(|e| {
+            unread(
+                format!("cannot read spec file `{}`: {e}", spec_path.display()),
+                "check the path; specs are TOML files such as examples/gallery.toml",
+            )
+        })?;
+    let text = String::from_utf8(bytes).map_err(|_| {
+        unread(format!("spec file `{}` is not UTF-8 text", spec_path.display()), "save the spec as UTF-8")
+    })?;
+    let source = SourceFile { path: spec_path.to_path_buf(), text };
     let checked = spec::check(&source);
     let mut diagnostics = checked.diagnostics;
     let Some(doc) = checked.doc else {

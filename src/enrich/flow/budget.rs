@@ -47,26 +47,17 @@ impl StepBudget {
     /// Accounts for `points` stored points examined by a spacing test; `false` (and the budget
     /// marked exhausted) when that exceeds what is left.
     pub fn examine(&self, points: u64) -> bool {
-        match self.examined.get().checked_sub(points) {
-            Some(rest) if !self.exhausted.get() => {
-                self.examined.set(rest);
-                true
-            }
-            _ => {
-                self.exhausted.set(true);
-                false
-            }
-        }
+        Self::take(&self.examined, points, &self.exhausted)
     }
 
     /// Takes one integration step; `false` (and the budget marked exhausted) when none is left.
     pub fn step(&self) -> bool {
-        Self::take(&self.steps, &self.exhausted)
+        Self::take(&self.steps, 1, &self.exhausted)
     }
 
     /// Takes one seeding attempt; `false` (and the budget marked exhausted) when none is left.
     pub fn attempt(&self) -> bool {
-        Self::take(&self.attempts, &self.exhausted)
+        Self::take(&self.attempts, 1, &self.exhausted)
     }
 
     /// Whether tracing was cut short because the budget ran out.
@@ -74,8 +65,8 @@ impl StepBudget {
         self.exhausted.get()
     }
 
-    fn take(left: &Cell<u64>, exhausted: &Cell<bool>) -> bool {
-        match left.get().checked_sub(1) {
+    fn take(left: &Cell<u64>, amount: u64, exhausted: &Cell<bool>) -> bool {
+        match left.get().checked_sub(amount) {
             Some(rest) if !exhausted.get() => {
                 left.set(rest);
                 true
