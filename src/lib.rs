@@ -64,6 +64,7 @@ pub mod guide;
 pub mod layout;
 pub mod lint;
 pub mod mark;
+pub mod output;
 pub mod pipeline;
 pub mod render;
 pub mod report;

@@ -10,6 +10,7 @@ use serde_json::Value;
 use crate::data::{self, PathPolicy, Table};
 use crate::lint::{self, ChartLint};
 use crate::mark::{self, ChartOutput, MarkError};
+use crate::output;
 use crate::render;
 use crate::selection::{self, Highlight};
 use crate::spec::{self, Diagnostic, PathSeg, SourceFile, Spec, SpecDoc};
@@ -525,6 +526,23 @@ pub struct Formats {
     pub geojson: bool,
 }
 
+impl Formats {
+    /// The file extensions these formats write.
+    pub fn extensions(&self) -> impl Iterator<Item = &'static str> {
+        [(self.svg, "svg"), (self.png, "png"), (self.csv, "csv"), (self.geojson, "geojson")]
+            .into_iter()
+            .filter_map(|(on, ext)| on.then_some(ext))
+    }
+}
+
+/// The files a loaded spec was read from: the spec itself and each data source's file, so that
+/// no output overwrites them.
+pub fn input_files(loaded: &Loaded) -> Vec<PathBuf> {
+    let spec_dir = loaded.source.path.parent().map(Path::to_path_buf).unwrap_or_else(|| PathBuf::from("."));
+    let data = loaded.spec.data.values().filter_map(|source| source.path.as_deref()).map(|p| spec_dir.join(p));
+    std::iter::once(loaded.source.path.clone()).chain(data).collect()
+}
+
 /// Options of `dataink render`.
 #[derive(Clone, Debug)]
 pub struct RenderOptions {
@@ -536,6 +554,9 @@ pub struct RenderOptions {
     pub charts: Vec<String>,
     /// Device pixels per CSS pixel for PNG output.
     pub scale: f64,
+    /// Called once, with the folder, when another run holds the output folder's lock and this
+    /// one waits for it.
+    pub waiting: Option<fn(&Path)>,
 }
 
 /// What rendering one chart produced.
@@ -703,13 +724,21 @@ pub fn render_all(
     if !problems.is_empty() {
         return Err(problems.into());
     }
-    if let Err(e) = std::fs::create_dir_all(&options.out_dir) {
-        return Err(vec![Diagnostic::error(format!(
-            "cannot create output folder `{}`: {e}",
-            options.out_dir.display()
-        ))]
-        .into());
-    }
+    let _lock = output::OutputLock::acquire(&options.out_dir, || {
+        if let Some(waiting) = options.waiting {
+            waiting(&options.out_dir);
+        }
+    })
+    .map_err(|e| vec![Diagnostic::error(e.to_string())])?;
+    let planned: Vec<PathBuf> = selected
+        .iter()
+        .flat_map(|(_, chart)| {
+            options.formats.extensions().map(|ext| options.out_dir.join(format!("{}.{ext}", chart.name)))
+        })
+        .collect();
+    output::refuse_inputs(&planned, &input_files(loaded)).map_err(|clash| {
+        vec![Diagnostic::error(clash.to_string()).with_hint("give another --out folder, or rename the chart")]
+    })?;
     let results: Vec<Result<(usize, Rendered), Diagnostic>> = selected
         .par_iter()
         .map(|(index, chart)| {
@@ -752,7 +781,7 @@ fn write_chart(
 ) -> Result<Vec<PathBuf>, Diagnostic> {
     let mut files = Vec::new();
     let write = |path: PathBuf, bytes: &[u8], files: &mut Vec<PathBuf>| -> Result<(), Diagnostic> {
-        std::fs::write(&path, bytes)
+        output::write_file(&path, bytes)
             .map_err(|e| Diagnostic::error(format!("cannot write `{}`: {e}", path.display())))?;
         files.push(path);
         Ok(())

@@ -274,8 +274,11 @@ fn report(
     };
     let options =
         dataink::report::ReportOptions { policy, deny_warnings, generated: chrono::Utc::now(), html_template };
-    let written = dataink::report::build(&loaded, &linted, &options)
-        .and_then(|report| dataink::report::write(&report, out).map(|files| (report.passed, files)));
+    let written = dataink::report::build(&loaded, &linted, &options).and_then(|report| {
+        let mut inputs = pipeline::input_files(&loaded);
+        inputs.extend(template.map(std::path::Path::to_path_buf));
+        dataink::report::write(&report, out, &inputs, || say_waiting(out)).map(|files| (report.passed, files))
+    });
     match written {
         Ok((passed, files)) => {
             let files: Vec<String> = files.iter().map(|f| f.display().to_string()).collect();
@@ -376,7 +379,8 @@ pub fn run() -> ExitCode {
                 csv: format.contains(&Format::Csv),
                 geojson: format.contains(&Format::Geojson),
             };
-            let options = RenderOptions { out_dir: out, formats, charts: chart, scale };
+            let waiting = if quiet { None } else { Some(say_waiting as fn(&std::path::Path)) };
+            let options = RenderOptions { out_dir: out, formats, charts: chart, scale, waiting };
             let bar = progress_bar(loaded.spec.chart.len(), quiet);
             let result = pipeline::render_all(&loaded, &options, &|name| {
                 bar.set_message(name.to_string());
@@ -403,6 +407,11 @@ pub fn run() -> ExitCode {
             if diagnostics.is_empty() { ExitCode::SUCCESS } else { ExitCode::from(2) }
         }
     }
+}
+
+/// Tell the user that another run is writing into `dir` and this one waits for it.
+fn say_waiting(dir: &std::path::Path) {
+    errln!("waiting for another dataink run writing into `{}` to finish", dir.display());
 }
 
 /// A progress bar on an interactive terminal; hidden otherwise (CI logs stay quiet).

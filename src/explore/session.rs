@@ -400,19 +400,20 @@ impl Session {
                 if names.is_empty() { String::new() } else { format!(" (saved: {})", names.join(", ")) }
             );
             let path = dir.join("selection.toml");
-            std::fs::write(&path, header + &toml).map_err(|e| format!("cannot write `{}`: {e}", path.display()))?;
+            crate::output::write_file(&path, (header + &toml).as_bytes())
+                .map_err(|e| format!("cannot write `{}`: {e}", path.display()))?;
             files.push(path);
         }
         for &i in which {
             let Some(v) = self.charts.get(i) else { continue };
             let Some(output) = self.saved_output(v) else { continue };
             let svg = dir.join(format!("{}.svg", v.name));
-            std::fs::write(&svg, crate::render::to_svg(&output.scene))
+            crate::output::write_file(&svg, crate::render::to_svg(&output.scene).as_bytes())
                 .map_err(|e| format!("cannot write `{}`: {e}", svg.display()))?;
             files.push(svg);
             let png = dir.join(format!("{}.png", v.name));
             let bytes = crate::render::to_png(&output.scene, self.scale).map_err(|e| format!("{}: {e}", v.name))?;
-            std::fs::write(&png, bytes).map_err(|e| format!("cannot write `{}`: {e}", png.display()))?;
+            crate::output::write_file(&png, &bytes).map_err(|e| format!("cannot write `{}`: {e}", png.display()))?;
             files.push(png);
         }
         Ok(files)

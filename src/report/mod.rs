@@ -96,6 +96,10 @@ pub enum ReportError {
         /// 1-based line of the block.
         line: usize,
     },
+    /// The output folder's lock could not be taken.
+    Lock(crate::output::LockError),
+    /// An output file would overwrite one of the run's inputs.
+    OverwritesInput(crate::output::InputClash),
     /// An output file could not be written.
     Write {
         /// The file.
@@ -125,6 +129,10 @@ impl fmt::Display for ReportError {
                 "template `{name}` line {line}: `{{% autoescape %}}` blocks are not allowed; report templates always \
                  escape HTML, so remove the block (the chart SVGs are already marked safe)"
             ),
+            ReportError::Lock(e) => write!(f, "{e}"),
+            ReportError::OverwritesInput(clash) => {
+                write!(f, "{clash}; give another --out folder")
+            }
             ReportError::Write { path, source } => {
                 write!(f, "cannot write `{}`: {source}; check that the output folder is writable", path.display())
             }
@@ -151,13 +159,22 @@ pub fn build(loaded: &Loaded, linted: &[Linted], options: &ReportOptions) -> Res
     Ok(Report { html, markdown, passed })
 }
 
-/// Write `index.html` and `report.md` into `dir` (created if missing); returns their paths.
-pub fn write(report: &Report, dir: &Path) -> Result<[PathBuf; 2], ReportError> {
-    std::fs::create_dir_all(dir).map_err(|source| ReportError::Write { path: dir.to_path_buf(), source })?;
+/// Write `index.html` and `report.md` into `dir` (created if missing), each atomically, holding
+/// the folder's lock (`waiting` is called if another run holds it), and refusing to overwrite
+/// any of `inputs` (the spec, its data files, the template); returns their paths.
+pub fn write(
+    report: &Report,
+    dir: &Path,
+    inputs: &[PathBuf],
+    waiting: impl FnOnce(),
+) -> Result<[PathBuf; 2], ReportError> {
+    let _lock = crate::output::OutputLock::acquire(dir, waiting).map_err(ReportError::Lock)?;
     let html = dir.join("index.html");
     let markdown = dir.join("report.md");
+    crate::output::refuse_inputs(&[html.clone(), markdown.clone()], inputs).map_err(ReportError::OverwritesInput)?;
     for (path, text) in [(&html, &report.html), (&markdown, &report.markdown)] {
-        std::fs::write(path, text).map_err(|source| ReportError::Write { path: path.clone(), source })?;
+        crate::output::write_file(path, text.as_bytes())
+            .map_err(|source| ReportError::Write { path: path.clone(), source })?;
     }
     Ok([html, markdown])
 }

@@ -24,4 +24,5 @@ mod multivariate;
 mod networks;
 mod report;
 mod resources;
+mod safe_output;
 mod transform;
