@@ -352,7 +352,9 @@ fn read_path_uncontained(
     let parse_failed = |message: String| LoadError::Parse { origin: origin.clone(), format, message };
     match format {
         DataFormat::Npy => Ok(Reading::Table(super::matrix::read_npy(resolved)?.to_table(source.extent))),
-        DataFormat::Matrix => Ok(Reading::Table(read_csv_matrix(resolved, separator)?.to_table(source.extent))),
+        DataFormat::Matrix => Ok(Reading::Table(
+            read_csv_matrix(resolved, separator, source.null_values.as_deref())?.to_table(source.extent),
+        )),
         DataFormat::Tree => Ok(Reading::Table(super::nested::read_tree_json(resolved)?)),
         DataFormat::Json => {
             let bytes = compressed::read_bytes(resolved)?;
@@ -373,7 +375,8 @@ fn read_path_uncontained(
         }
         DataFormat::Csv | DataFormat::Parquet | DataFormat::Arrow => {
             let text: Vec<&str> = rules.keys().map(String::as_str).collect();
-            let read = |cols| read_frame(resolved, format, separator, cols, &text);
+            let dialect = CsvDialect { separator, text_columns: &text, null_values: source.null_values.as_deref() };
+            let read = |cols| read_frame(resolved, format, &dialect, cols);
             let df = match columns {
                 Some(cols) if !cols.is_empty() => read(Some(cols)).or_else(|_| read(None)),
                 _ => read(None),
@@ -390,18 +393,29 @@ pub fn load_file(
     separator: u8,
     columns: Option<&[String]>,
 ) -> Result<Table, LoadError> {
-    let df = read_frame(path, format, separator, columns, &[])?;
+    let dialect = CsvDialect { separator, text_columns: &[], null_values: None };
+    let df = read_frame(path, format, &dialect, columns)?;
     frame_to_table(&df, &format!("`{}`", path.display()))
 }
 
+/// How a CSV file is read.
+#[derive(Clone, Copy, Debug)]
+pub struct CsvDialect<'a> {
+    /// The field separator.
+    pub separator: u8,
+    /// Columns read as raw text.
+    pub text_columns: &'a [&'a str],
+    /// Texts read as missing; [`super::missing::MISSING_TEXTS`] when `None`.
+    pub null_values: Option<&'a [String]>,
+}
+
 /// Read a CSV, Parquet or Arrow file (decompressed first when its extension says so) into a
-/// frame, optionally only some of its columns; CSV columns in `text_columns` are read as raw text.
+/// frame, optionally only some of its columns; CSV files are read as `dialect` says.
 pub fn read_frame(
     path: &Path,
     format: DataFormat,
-    separator: u8,
+    dialect: &CsvDialect<'_>,
     columns: Option<&[String]>,
-    text_columns: &[&str],
 ) -> Result<DataFrame, LoadError> {
     let origin = format!("`{}`", path.display());
     if Compression::of(path).is_some() {
@@ -410,7 +424,7 @@ pub fn read_frame(
             return Err(LoadError::NoColumns(origin));
         }
         let head = bytes.get(..8).unwrap_or(&bytes).to_vec();
-        return frame_from(Cursor::new(bytes), &head, &origin, format, separator, columns, text_columns);
+        return frame_from(Cursor::new(bytes), &head, &origin, format, dialect, columns);
     }
     let mut file = super::regular_file::open(path).map_err(|e| LoadError::from_io(path, e))?;
     if file.metadata().map(|m| m.len() == 0).unwrap_or(false) {
@@ -419,7 +433,7 @@ pub fn read_frame(
     let mut head = [0u8; 8];
     let got = std::io::Read::read(&mut file, &mut head).map_err(|e| LoadError::from_io(path, e))?;
     std::io::Seek::rewind(&mut file).map_err(|e| LoadError::from_io(path, e))?;
-    frame_from(file, head.get(..got).unwrap_or(&[]), &origin, format, separator, columns, text_columns)
+    frame_from(file, head.get(..got).unwrap_or(&[]), &origin, format, dialect, columns)
 }
 
 /// Read a frame from a file or bytes in memory.
@@ -428,20 +442,22 @@ fn frame_from<R: polars::io::mmap::MmapBytesReader + 'static>(
     head: &[u8],
     origin: &str,
     format: DataFormat,
-    separator: u8,
+    dialect: &CsvDialect<'_>,
     columns: Option<&[String]>,
-    text_columns: &[&str],
 ) -> Result<DataFrame, LoadError> {
     let df = match format {
         DataFormat::Csv => {
             let text: Schema =
-                text_columns.iter().map(|c| Field::new(PlSmallStr::from(*c), DataType::String)).collect();
+                dialect.text_columns.iter().map(|c| Field::new(PlSmallStr::from(*c), DataType::String)).collect();
             CsvReadOptions::default()
                 .with_has_header(true)
                 .with_columns(columns.map(|c| c.iter().map(|n| PlSmallStr::from(n.as_str())).collect()))
-                .with_schema_overwrite((!text_columns.is_empty()).then(|| Arc::new(text)))
+                .with_schema_overwrite((!dialect.text_columns.is_empty()).then(|| Arc::new(text)))
                 .with_infer_schema_length(Some(10_000))
-                .map_parse_options(|p| p.with_separator(separator))
+                .map_parse_options(|p| {
+                    p.with_separator(dialect.separator)
+                        .with_null_values(super::missing::csv_null_values(dialect.null_values))
+                })
                 .into_reader_with_file_handle(reader)
                 .finish()
         }
@@ -558,14 +574,21 @@ fn detect_time_text(values: ColumnValues) -> ColumnValues {
     ColumnValues::Time(cats.codes.iter().map(|&c| parsed.get(c as usize).copied().unwrap_or(f64::NAN)).collect())
 }
 
-/// A headerless CSV of numbers, read through polars, as a matrix (rows along y).
-pub fn read_csv_matrix(path: &Path, separator: u8) -> Result<super::matrix::Matrix, LoadError> {
+/// A headerless CSV of numbers, read through polars, as a matrix (rows along y); cells whose text
+/// is one of `null_values` (default [`super::missing::MISSING_TEXTS`]) are missing.
+pub fn read_csv_matrix(
+    path: &Path,
+    separator: u8,
+    null_values: Option<&[String]>,
+) -> Result<super::matrix::Matrix, LoadError> {
     let file = Cursor::new(compressed::read_bytes(path)?);
     let origin = format!("`{}`", path.display());
     let df = CsvReadOptions::default()
         .with_has_header(false)
         .with_infer_schema_length(None)
-        .map_parse_options(|p| p.with_separator(separator))
+        .map_parse_options(|p| {
+            p.with_separator(separator).with_null_values(super::missing::csv_null_values(null_values))
+        })
         .into_reader_with_file_handle(file)
         .finish()
         .map_err(|e| parse_error(&origin, DataFormat::Matrix, e))?;

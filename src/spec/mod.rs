@@ -403,6 +403,7 @@ y = "y"
 path = "data/iris.csv"
 format = "csv"
 delimiter = ";"
+null_values = ["-999"]
 
 [data.rows]
 values = [{ x = 1, y = 2.5, when = 1979-05-27 }, { x = 2, y = 3.0, label = "b" }]
@@ -488,6 +489,7 @@ point_size = "d"
                 transform: None,
                 json_path: None,
                 parse: None,
+                null_values: Some(vec!["-999".to_owned()]),
             },
         );
         data.insert(
@@ -505,6 +507,7 @@ point_size = "d"
                 transform: None,
                 json_path: None,
                 parse: None,
+                null_values: None,
             },
         );
         let field = |f: &str| Channel::Field(f.to_owned());

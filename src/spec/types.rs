@@ -132,6 +132,13 @@ pub struct DataSource {
     /// `parse = { when = "date:%b %d %Y", id = "text" }`.
     #[serde(default)]
     pub parse: Option<BTreeMap<String, String>>,
+    /// For CSV files: the cell texts read as missing, in every column. Default: empty, `NA`,
+    /// `N/A`, `n/a`, `NaN`, `nan`, `-nan`, `-NaN`, `null`, `NULL`, `None`, `#N/A`, `<NA>`; a list
+    /// replaces it (`null_values = ["-999"]`), and `null_values = []` reads every text as written
+    /// (an empty cell is still missing in a numeric column).
+    #[serde(default)]
+    #[schemars(example = &["-999", "NA"])]
+    pub null_values: Option<Vec<String>>,
 }
 
 /// Supported file formats.

@@ -271,3 +271,40 @@ fn canvas_too_small_for_its_guides() {
     assert!(out.contains("error: chart \"c\": the canvas is too small"), "{out}");
     assert!(out.contains("= hint: make `size` larger or `font_size` smaller"), "{out}");
 }
+
+#[test]
+fn missing_values_as_people_write_them_keep_a_column_numeric() {
+    // Each spelling alone in a numeric column: before, `nan` or `NA` turned `y` into text,
+    // drawn as band categories with no warning.
+    for missing in ["nan", "NA", "N/A", "null", "None", "#N/A", "-nan", "<NA>"] {
+        let csv = format!("x,y\n1,2\n2,{missing}\n3,4\n");
+        let fx = Fixture::new(&spec_for("d.csv"), &[("d.csv", csv.as_bytes())]);
+        let out = fx.draw().unwrap_or_else(|e| panic!("{missing}: {e}"));
+        assert_eq!(out[0].derived.len(), 2, "{missing}");
+        assert_eq!(
+            out[0].warnings,
+            vec![
+                "chart \"c\": dropped 1 of 3 rows with missing or non-finite values (`y`: 1 missing or NaN)"
+                    .to_string()
+            ],
+            "{missing}"
+        );
+    }
+}
+
+#[test]
+fn null_values_replaces_the_missing_list() {
+    let spec = |list: &str| {
+        format!(
+            "[data.d]\npath = \"d.csv\"\nnull_values = {list}\n[[chart]]\nname = \"c\"\nkind = \"scatter\"\ndata = \"d\"\nx = \"x\"\ny = \"y\"\n"
+        )
+    };
+    // A sentinel the source names is missing; `NA` is then an ordinary text again.
+    let csv: &[u8] = b"x,y\n1,2\n2,-999\n3,4\n";
+    let out = Fixture::new(&spec("[\"-999\"]"), &[("d.csv", csv)]).draw().expect("draws");
+    assert_eq!(out[0].derived.len(), 2);
+    let loaded = Fixture::new(&spec("[]"), &[("d.csv", b"x,y\n1,2\n2,NA\n3,4\n")]).load().expect("loads");
+    let y = loaded.tables["d"].column("y").expect("y");
+    let dataink::data::ColumnValues::Text(categories) = &y.values else { panic!("`NA` is text under `[]`: {y:?}") };
+    assert_eq!(categories.levels, ["2", "NA", "4"]);
+}

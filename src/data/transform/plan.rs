@@ -217,6 +217,7 @@ pub fn scan(source: &DataSource, spec_dir: &Path, policy: PathPolicy) -> Result<
                         .with_has_header(true)
                         .with_infer_schema_length(Some(10_000))
                         .with_try_parse_dates(true)
+                        .with_null_values(crate::data::missing::csv_null_values(source.null_values.as_deref()))
                         .map_parse_options(|p| p.with_separator(separator))
                         .finish(),
                 )
