@@ -14,7 +14,7 @@ const MAGIC: &[u8] = b"ARROW1";
 /// Read an Arrow IPC file's bytes (from a file or decompressed into memory) into a frame,
 /// optionally only some columns. The error is a message for the user.
 pub fn read_ipc<R: polars::io::mmap::MmapBytesReader>(
-    reader: R,
+    mut reader: R,
     head: &[u8],
     columns: Option<&[String]>,
 ) -> Result<DataFrame, String> {
@@ -25,6 +25,7 @@ pub fn read_ipc<R: polars::io::mmap::MmapBytesReader>(
             "not an Arrow IPC file (it does not start with `ARROW1`)".into()
         });
     }
+    super::ipc_bounds::check(&mut reader)?;
     IpcReader::new(reader).with_columns(columns.map(<[String]>::to_vec)).finish().map_err(|e| first_line(&e))
 }
 
@@ -66,5 +67,35 @@ mod tests {
         let full = ipc_bytes(&mut df);
         let cut = full[..full.len() / 2].to_vec();
         assert!(read_ipc(Cursor::new(cut.clone()), &cut, None).is_err());
+    }
+
+    /// Replace every little-endian `from` in `bytes` by `to`; returns how many were replaced.
+    fn replace_i64(bytes: &mut [u8], from: i64, to: i64) -> usize {
+        let (from, to) = (from.to_le_bytes(), to.to_le_bytes());
+        let mut n = 0;
+        for at in 0..bytes.len().saturating_sub(7) {
+            if bytes[at..at + 8] == from {
+                bytes[at..at + 8].copy_from_slice(&to);
+                n += 1;
+            }
+        }
+        n
+    }
+
+    #[test]
+    fn declared_sizes_beyond_the_file_are_refused_before_allocating() {
+        // 100 doubles: an 800-byte buffer in a 100-row batch. Declaring 5,368,709,120 rows in a
+        // 42,949,672,960-byte buffer made the reader allocate 40 GiB and abort the process.
+        let mut df = df!("x" => [1.5f64; 100]).expect("frame");
+        let mut bytes = ipc_bytes(&mut df);
+        assert!(replace_i64(&mut bytes, 800, 42_949_672_960) > 0);
+        assert!(replace_i64(&mut bytes, 100, 5_368_709_120) > 0);
+        let err = read_ipc(Cursor::new(bytes.clone()), &bytes, None).expect_err("refused");
+        assert!(err.starts_with("record batch 1: "), "{err}");
+        // Only the row count: the rows no longer fit the bytes that hold them.
+        let mut bytes = ipc_bytes(&mut df);
+        assert!(replace_i64(&mut bytes, 100, 5_368_709_120) > 0);
+        let err = read_ipc(Cursor::new(bytes.clone()), &bytes, None).expect_err("refused");
+        assert_eq!(err, "record batch 1: 5368709120 rows declared in 800 bytes of data");
     }
 }

@@ -2,9 +2,9 @@
 //!
 //! Readers (CSV, Parquet, JSON records, inline `values`) live in [`load`], with the formats beyond
 //! them each in its own module: Arrow IPC ([`ipc`]), GeoJSON ([`geojson`]), JSON paths and grids
-//! ([`json_path`]), gzip/zstd files ([`compressed`]), per-column `parse` rules ([`parse`]) and
-//! the non-ISO date warning ([`date_guess`]); a source's transform steps, compiled onto a
-//! polars lazy plan, in [`transform`]; the rule for which
+//! ([`json_path`]), gzip/zstd files ([`compressed`]), per-column `parse` rules ([`parse`]), the
+//! texts read as missing ([`missing`]) and the non-ISO date warning ([`date_guess`]); a source's
+//! transform steps, compiled onto a polars lazy plan, in [`transform`]; the rule for which
 //! paths may be read lives in [`paths`]. Chart kinds never see polars: they get plain columns of
 //! numbers, times (milliseconds since the Unix epoch, UTC) or categories.
 
@@ -14,9 +14,11 @@ pub mod date_guess;
 pub mod frame;
 pub mod geojson;
 pub mod ipc;
+pub mod ipc_bounds;
 pub mod json_path;
 pub mod load;
 pub mod matrix;
+pub mod missing;
 pub mod nested;
 pub mod network;
 pub mod parse;

@@ -44,10 +44,8 @@ fn fuzz_dir() -> PathBuf {
 
 /// Targets with a known, documented finding that is not fixed yet: the short run (the one `cargo
 /// test` does) leaves them out so it guards everything else; a long run or `DATAINK_FUZZ_TARGET`
-/// still fuzzes them. `arrow`: a buffer length in a record batch message is allocated before it is
-/// checked against the file (polars-arrow `read_uncompressed_buffer`), so a mutated length asks
-/// for tens of GB.
-const OPEN_IN_SHORT_RUN: &[&str] = &["arrow"];
+/// still fuzzes them. None today.
+const OPEN_IN_SHORT_RUN: &[&str] = &[];
 
 /// The parent: replay the regressions, then fuzz each target for its time; 1 if anything failed.
 fn fuzz() -> i32 {
