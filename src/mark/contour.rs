@@ -138,12 +138,16 @@ pub fn draw(chart: &Chart, options: &ContourOptions, index: usize, table: &Table
     }
     if draw_lines {
         let line_color = if fill { Color::rgb(0x20, 0x20, 0x20).with_opacity(0.55) } else { Color::BLACK };
-        for line in &lines {
-            let cmds = frame::polyline(&line.points, line.closed, &to_px);
-            let color = if fill { line_color } else { map.at((line.level - lo) / (hi - lo)) };
+        // One path per level (its lines as subpaths): a noisy field has many small rings, and
+        // a scene item each would cost far more than their points.
+        for same_level in lines.chunk_by(|a, b| a.level == b.level) {
+            let level = same_level[0].level;
+            let cmds: Vec<PathCmd> =
+                same_level.iter().flat_map(|line| frame::polyline(&line.points, line.closed, &to_px)).collect();
+            let color = if fill { line_color } else { map.at((level - lo) / (hi - lo)) };
             marks.push(
                 Item::new(Role::DataMark, Shape::Path(cmds), Style::stroke(color, if fill { 0.8 } else { 1.4 }))
-                    .labelled(format!("z = {}", line.level)),
+                    .labelled(format!("z = {level}")),
             );
         }
         if options.labels.unwrap_or(true) {
@@ -158,7 +162,7 @@ pub fn draw(chart: &Chart, options: &ContourOptions, index: usize, table: &Table
     derived.push("line", DerivedColumn::Number(derived_line));
     derived.push(&x_opts.field, DerivedColumn::Number(derived_x));
     derived.push(&y_opts.field, DerivedColumn::Number(derived_y));
-    Ok(ChartOutput { scene, derived, warnings, geojson: Some(geojson(&lines, &bands)) })
+    Ok(ChartOutput { scene, derived, warnings, geojson: Some(super::geojson::ContourFeatures { lines, bands }) })
 }
 
 /// One colour per band, by the band's rank rather than its value, so that unevenly spaced
@@ -283,36 +287,4 @@ fn point_along(px: &[Point], distance: f64) -> Option<(Point, f64)> {
         walked += seg;
     }
     None
-}
-
-/// Contour lines as `LineString` features (`level`) and bands as `MultiPolygon` features
-/// (`lower`, `upper`), in data coordinates. GeoJSON rings repeat their first point and run
-/// counter-clockwise for outer rings, clockwise for holes (RFC 7946), as the bands already do.
-pub fn geojson(lines: &[contour::ContourLine], bands: &[contour::Band]) -> serde_json::Value {
-    use serde_json::json;
-    let coords = |pts: &[(f64, f64)], close: bool| -> Vec<[f64; 2]> {
-        let mut v: Vec<[f64; 2]> = pts.iter().map(|&(x, y)| [x, y]).collect();
-        if close && let Some(&first) = v.first() {
-            v.push(first);
-        }
-        v
-    };
-    let mut features = Vec::new();
-    for line in lines {
-        features.push(json!({
-            "type": "Feature",
-            "properties": { "kind": "line", "level": line.level, "closed": line.closed },
-            "geometry": { "type": "LineString", "coordinates": coords(&line.points, line.closed) },
-        }));
-    }
-    for band in bands {
-        let polygons: Vec<Vec<Vec<[f64; 2]>>> =
-            band.polygons.iter().map(|rings| rings.iter().map(|r| coords(r, true)).collect()).collect();
-        features.push(json!({
-            "type": "Feature",
-            "properties": { "kind": "band", "lower": band.lower, "upper": band.upper },
-            "geometry": { "type": "MultiPolygon", "coordinates": polygons },
-        }));
-    }
-    json!({ "type": "FeatureCollection", "features": features })
 }

@@ -13,6 +13,7 @@ pub mod face;
 pub mod faces;
 pub mod flow;
 pub mod frame;
+pub mod geojson;
 pub mod geometry;
 pub mod graph;
 pub mod gridded;
@@ -55,7 +56,7 @@ pub struct ChartOutput {
     pub warnings: Vec<String>,
     /// Derived geometry as a GeoJSON FeatureCollection in data coordinates (`--format geojson`),
     /// for kinds whose output is geometry (contour lines and bands).
-    pub geojson: Option<serde_json::Value>,
+    pub geojson: Option<geojson::ContourFeatures>,
 }
 
 /// Why a chart could not be drawn. Each error carries the spec path it is about.

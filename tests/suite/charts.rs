@@ -219,7 +219,7 @@ fn contour_geojson_has_closed_oriented_rings() {
         }
     }
     let out = Fixture::new(&grid_spec(&rows, "levels = [0.5, 1.5, 2.5]\n"), &[]).draw().expect("draws");
-    let geojson = out[0].geojson.as_ref().expect("contour charts export GeoJSON");
+    let geojson = out[0].geojson.as_ref().expect("contour charts export GeoJSON").to_value();
     let features = geojson["features"].as_array().expect("features");
     let lines: Vec<_> = features.iter().filter(|f| f["properties"]["kind"] == "line").collect();
     let bands: Vec<_> = features.iter().filter(|f| f["properties"]["kind"] == "band").collect();

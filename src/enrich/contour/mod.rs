@@ -39,10 +39,12 @@ use crate::enrich::grid::Grid;
 /// Most distinct levels one call accepts.
 pub const MAX_LEVELS: usize = 1000;
 
-/// Most (cell, level) crossings one call traces (2²⁶ ≈ 67 million). Each crossing yields about
-/// one output point per line (two for bands, whose rings share lines), so this bounds the output
-/// at a few gigabytes at worst.
-pub const MAX_CROSSED_CELLS: usize = 1 << 26;
+/// Most (cell, level) crossings one call traces (2²² ≈ 4.2 million). Each crossing yields about
+/// one output point per line (two for bands, whose rings share lines), and a chart draws both, so
+/// this bounds a chart's contour geometry near a gigabyte at worst (a 500 × 500 grid of uniform
+/// noise with ten levels, about 1.6 million crossings, peaks at 650 MB as a whole process). Fields
+/// that cross more cells are noise at the grid's scale: an image shows them better.
+pub const MAX_CROSSED_CELLS: usize = 1 << 22;
 
 /// How a saddle cell (corners alternating above/below around the cell, marching-squares cases 5
 /// and 10) connects its four crossings.
@@ -119,7 +121,8 @@ impl fmt::Display for ContourError {
             ContourError::TooManyCrossings { count, max } => write!(
                 f,
                 "these levels cross grid cells {count} times but at most {max} crossings are \
-                 traced; use fewer levels, or smooth or resample the grid to fewer cells"
+                 traced; use fewer levels, smooth or resample the grid to fewer cells, or draw it as \
+                 `kind = \"image\"`"
             ),
         }
     }
