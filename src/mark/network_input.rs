@@ -20,6 +20,10 @@ pub struct NetworkInput<'t> {
     pub warnings: Vec<String>,
 }
 
+/// Most edge rows a graph or linkmap chart reads: layouts and the drawing grow with them, and
+/// past this many a node-link view is a solid blot (aggregate parallel edges into weights).
+pub const MAX_EDGE_ROWS: usize = 250_000;
+
 /// Read the network of a graph or linkmap chart. Nodes without a link are left out (with a
 /// warning) unless `nodes.isolated` or, when the spec does not say, `keep_isolated` keeps them.
 pub fn network_of<'t>(
@@ -30,6 +34,18 @@ pub fn network_of<'t>(
     edges: &Table,
     nodes: Option<&'t Table>,
 ) -> Result<NetworkInput<'t>, MarkError> {
+    if edges.rows > MAX_EDGE_ROWS {
+        return Err(MarkError::at(
+            index,
+            &["data"],
+            format!(
+                "chart \"{}\": the edge table has {} rows but a network chart draws at most {MAX_EDGE_ROWS}",
+                chart.name, edges.rows
+            ),
+            "aggregate parallel edges into weights first, e.g. transform = [{ aggregate = { n = \"count()\" }, \
+             groupby = [\"source\", \"target\"] }] with weight = \"n\", or filter the edges",
+        ));
+    }
     let source = encode::column(chart, index, "source", source, edges)?;
     let target = encode::column(chart, index, "target", target, edges)?;
     let weight = match weight {

@@ -9,8 +9,24 @@ use crate::guide::legend::{Legend, Symbol};
 use crate::scene::Color;
 use crate::spec::{Chart, TreeSource};
 
+/// Most rows (nodes) a treemap or hyperbolic tree reads: past this many, leaves are smaller than
+/// a pixel and the layout's work is wasted.
+pub const MAX_TREE_ROWS: usize = 250_000;
+
 /// The chart's tree, or an error pointing at `tree`.
 pub fn tree_of(chart: &Chart, index: usize, source: &TreeSource, table: &Table) -> Result<Tree, MarkError> {
+    if table.rows > MAX_TREE_ROWS {
+        return Err(MarkError::at(
+            index,
+            &["data"],
+            format!(
+                "chart \"{}\": the tree has {} rows but a tree chart draws at most {MAX_TREE_ROWS}",
+                chart.name, table.rows
+            ),
+            "aggregate the leaves to a coarser level first (an `aggregate` transform grouped by the parent path), or \
+             filter to one branch",
+        ));
+    }
     let built = match (&source.path, &source.id, &source.parent) {
         (Some(path), None, None) => {
             let column = encode::column(chart, index, "tree", path, table)?;
