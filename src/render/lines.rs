@@ -745,7 +745,11 @@ mod tests {
                 }
             }
             let Some(path) = pb.finish() else { continue };
-            let stroke = tiny_skia::Stroke { width: b.width as f32, line_join: join, ..tiny_skia::Stroke::default() };
+            let stroke = tiny_skia::Stroke {
+                width: super::super::png::stroke_width(b.width),
+                line_join: join,
+                ..tiny_skia::Stroke::default()
+            };
             p.stroke_path(&path, &super::super::png::paint(c), &stroke, Transform::identity(), None);
         }
         p

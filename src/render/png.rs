@@ -260,10 +260,21 @@ pub(crate) fn paint(c: Color) -> Paint<'static> {
     p
 }
 
+/// The widest stroke handed to tiny-skia, in canvas units: the spec bounds its widths far below
+/// this, and the renderer cannot fail, so any wider scene stroke (which made tiny-skia panic at
+/// 10⁹ and above) is drawn at this width.
+const MAX_STROKE_WIDTH: f64 = 10_000.0;
+
+/// A scene stroke width as tiny-skia takes it: clamped to `[0, MAX_STROKE_WIDTH]`, non-finite as 0
+/// (tiny-skia's hairline).
+pub(crate) fn stroke_width(width: f64) -> f32 {
+    if width.is_finite() { width.clamp(0.0, MAX_STROKE_WIDTH) as f32 } else { 0.0 }
+}
+
 /// A tiny-skia stroke for a scene stroke, with dashes dropped when the path is so long that
 /// dashing it would produce more than [`MAX_DASHES`] dashes.
 pub(crate) fn skia_stroke(stroke: &Stroke, path_length: f64) -> tiny_skia::Stroke {
-    let mut s = tiny_skia::Stroke { width: stroke.width as f32, ..tiny_skia::Stroke::default() };
+    let mut s = tiny_skia::Stroke { width: stroke_width(stroke.width), ..tiny_skia::Stroke::default() };
     if let Some(d) = dash_pattern(&stroke.dash) {
         let period: f64 = d.iter().sum();
         if path_length / period * d.len() as f64 / 2.0 <= MAX_DASHES {
@@ -697,6 +708,22 @@ mod tests {
                 Role::Grid,
                 Shape::Path(vec![PathCmd::MoveTo(p(0.0, 0.0)), PathCmd::LineTo(p(1e300, 1.0))]),
                 Style { fill: None, stroke: bad_stroke(1.0, vec![]) },
+            ),
+            // Widths that made tiny-skia panic (1e10) or abort while unwinding (1e9).
+            Item::new(
+                Role::DataMark,
+                Shape::Path(vec![PathCmd::MoveTo(p(5.0, 5.0)), PathCmd::LineTo(p(50.0, 40.0))]),
+                Style { fill: None, stroke: bad_stroke(1e10, vec![]) },
+            ),
+            Item::new(
+                Role::DataMark,
+                Shape::Path(vec![PathCmd::MoveTo(p(5.0, 40.0)), PathCmd::LineTo(p(50.0, 5.0))]),
+                Style { fill: None, stroke: bad_stroke(1e9, vec![]) },
+            ),
+            Item::new(
+                Role::DataMark,
+                Shape::Path(vec![PathCmd::MoveTo(p(5.0, 20.0)), PathCmd::LineTo(p(50.0, 20.0))]),
+                Style { fill: None, stroke: bad_stroke(nan, vec![]) },
             ),
             Item::new(
                 Role::Grid,

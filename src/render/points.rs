@@ -144,7 +144,8 @@ fn stamp_coverage(size: usize, cx: f64, cy: f64, r: f64, ring: Option<f64>) -> O
     let circle = PathBuilder::from_circle(cx as f32, cy as f32, r as f32)?;
     let path = match ring {
         None => circle,
-        Some(w) => circle.stroke(&tiny_skia::Stroke { width: w as f32, ..tiny_skia::Stroke::default() }, 1.0)?,
+        Some(w) => circle
+            .stroke(&tiny_skia::Stroke { width: super::png::stroke_width(w), ..tiny_skia::Stroke::default() }, 1.0)?,
     };
     mask.fill_path(&path, FillRule::Winding, true, Transform::identity());
     Some(mask.take())
