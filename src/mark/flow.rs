@@ -141,21 +141,22 @@ pub fn draw(chart: &Chart, options: &FlowOptions, index: usize, table: &Table) -
         path_options.step = (end - start).abs() / 400.0;
         path_options.max_length = end - start;
         if has(FlowLayer::Pathlines) {
-            let lines: Vec<Streamline> = seeds.iter().map(|&s| pathline(field, s, start, &path_options)).collect();
+            let lines: Vec<Streamline> =
+                seeds.iter().map(|&s| pathline(field, s, start, &path_options, &budget)).collect();
             for line in &lines {
                 marks.extend(polyline(&line.points, &to_px, PATHLINE, 1.2));
             }
             derived.add("pathline", &lines);
         }
         if has(FlowLayer::Streaklines) {
-            let lines = streaklines(field, &seeds, start, end, &path_options);
+            let lines = streaklines(field, &seeds, (start, end), &path_options, &budget);
             for line in &lines {
                 marks.extend(polyline(line, &to_px, STREAKLINE, 1.4));
             }
             derived.add_points("streakline", &lines);
         }
         if has(FlowLayer::Timelines) {
-            let lines = timelines(field, &seeds, start, end, &path_options);
+            let lines = timelines(field, &seeds, (start, end), &path_options, &budget);
             for line in &lines {
                 marks.extend(polyline(line, &to_px, TIMELINE, 1.4));
             }
@@ -179,7 +180,7 @@ pub fn draw(chart: &Chart, options: &FlowOptions, index: usize, table: &Table) -
 /// The warning of a chart whose streamlines or separatrices stopped at the per-chart budget.
 fn budget_warning(chart: &str) -> String {
     format!(
-        "chart \"{chart}\": streamlines stopped at the per-chart limit ({} integration steps, {} seeding \
+        "chart \"{chart}\": streamlines or particle traces stopped at the per-chart limit ({} integration steps, {} seeding \
          attempts, {} points examined for spacing); the lines traced so far are drawn. Resample the \
          field to a regular grid without tiny cells, lower `density`, or give fewer `seed_count` seeds",
         budget::MAX_STEPS,
@@ -424,9 +425,9 @@ fn trace_seeds(
 fn streaklines(
     field: &VectorField,
     seeds: &[[f64; 2]],
-    start: f64,
-    end: f64,
+    (start, end): (f64, f64),
     options: &StreamlineOptions,
+    budget: &StepBudget,
 ) -> Vec<Vec<[f64; 2]>> {
     let [x0, x1, y0, y1] = field.bounds();
     let gap = ((x1 - x0).hypot(y1 - y0)) / 20.0;
@@ -435,7 +436,7 @@ fn streaklines(
         let mut piece: Vec<[f64; 2]> = Vec::new();
         for k in (0..=STREAK_RELEASES).rev() {
             let release = start + (end - start) * k as f64 / STREAK_RELEASES as f64;
-            let at = position_at(field, seed, release, end, options);
+            let at = position_at(field, seed, (release, end), options, budget);
             let far = match (at, piece.last()) {
                 (Some(p), Some(q)) => (p[0] - q[0]).hypot(p[1] - q[1]) > gap,
                 _ => false,
@@ -459,14 +460,14 @@ fn streaklines(
 fn timelines(
     field: &VectorField,
     seeds: &[[f64; 2]],
-    start: f64,
-    end: f64,
+    (start, end): (f64, f64),
     options: &StreamlineOptions,
+    budget: &StepBudget,
 ) -> Vec<Vec<[f64; 2]>> {
     (0..=TIMELINE_STEPS)
         .map(|m| {
             let t = start + (end - start) * m as f64 / TIMELINE_STEPS as f64;
-            seeds.iter().filter_map(|&s| position_at(field, s, start, t, options)).collect::<Vec<_>>()
+            seeds.iter().filter_map(|&s| position_at(field, s, (start, t), options, budget)).collect::<Vec<_>>()
         })
         .filter(|l| l.len() > 1)
         .collect()
@@ -477,15 +478,15 @@ fn timelines(
 fn position_at(
     field: &VectorField,
     seed: [f64; 2],
-    release: f64,
-    t: f64,
+    (release, t): (f64, f64),
     options: &StreamlineOptions,
+    budget: &StepBudget,
 ) -> Option<[f64; 2]> {
     if t <= release {
         return field.contains(seed[0], seed[1]).then_some(seed);
     }
     let options = StreamlineOptions { max_length: t - release, ..*options };
-    let line = pathline(field, seed, release, &options);
+    let line = pathline(field, seed, release, &options, budget);
     let (&last, &time) = (line.points.last()?, line.params.last()?);
     (time >= t - 1e-9 * (t - release).abs().max(1.0)).then_some(last)
 }

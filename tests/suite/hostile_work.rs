@@ -94,3 +94,25 @@ fn contours_of_noise_above_the_crossing_cap_are_refused() {
     assert!(err.contains("crossings are traced"), "{err}");
     assert!(err.contains("kind = \"image\""), "{err}");
 }
+
+/// Streaklines from a rake of 10,000 seeds release 161 particles each, hundreds of steps per
+/// particle (about 6 × 10⁸ steps): particle traces now take their steps from the chart's budget
+/// and the chart ends with the budget's warning.
+#[test]
+fn streaklines_from_ten_thousand_seeds_finish_within_the_budget() {
+    let mut csv = String::from("x,y,t,u,v\n");
+    for t in [0, 10] {
+        for y in 0..10 {
+            for x in 0..10 {
+                csv.push_str(&format!("{x},{y},{t},0.05,0.01\n"));
+            }
+        }
+    }
+    let spec = "[data.f]\npath = \"f.csv\"\n[[chart]]\nname = \"s\"\nkind = \"flow\"\ndata = \"f\"\nx = \"x\"\ny = \"y\"\nu = \"u\"\nv = \"v\"\nt = \"t\"\nlayers = [\"streaklines\"]\nseeds = \"rake\"\nrake = [[0.5, 0.5], [0.5, 8.5]]\nseed_count = 10000\ntitle = \"s\"\n";
+    let fixture = Fixture::new(spec, &[("f.csv", csv.as_bytes())]);
+    let out = run_dataink(fixture.dir.path(), &["render", "spec.toml", "--out", "out"], 120)
+        .expect("the streakline chart finishes within 120 s");
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(0), "{stderr}");
+    assert!(stderr.contains("streamlines or particle traces stopped at the per-chart limit"), "{stderr}");
+}

@@ -158,11 +158,18 @@ pub fn trace_with(
 
 /// Traces the pathline of a particle released at `seed` at time `t0` through an unsteady field
 /// (velocity mode; `options.mode` is ignored, `step` and `max_length` are durations).
-/// A steady field gives its streamline parametrised by time. Closure is not detected.
-pub fn pathline(field: &VectorField, seed: [f64; 2], t0: f64, options: &StreamlineOptions) -> Streamline {
+/// A steady field gives its streamline parametrised by time. Closure is not detected. Every step
+/// is taken from `budget`; a spent budget ends the trace early.
+pub fn pathline(
+    field: &VectorField,
+    seed: [f64; 2],
+    t0: f64,
+    options: &StreamlineOptions,
+    budget: &StepBudget,
+) -> Streamline {
     let options = StreamlineOptions { mode: Mode::Velocity, ..*options };
     let tracer = Tracer { field, options: &options, time_dependent: !field.ts().is_empty(), closure: 0.0 };
-    tracer.run(seed, t0, &mut |_, _| true)
+    tracer.run(seed, t0, &mut |_, _| budget.step())
 }
 
 /// One half of a curve: points after the seed, their parameters, and why it stopped.
@@ -487,7 +494,7 @@ mod tests {
         let mut o = StreamlineOptions::for_field(&field);
         o.step = 0.1;
         o.direction = Direction::Forward;
-        let line = pathline(&field, [1.0, 1.0], 0.0, &o);
+        let line = pathline(&field, [1.0, 1.0], 0.0, &o, &StepBudget::default());
         assert_eq!(line.forward, StopReason::TimeRange);
         // x = 1 + t, y = 1 + t²/2 at t = 2.
         let end = line.points[line.points.len() - 1];
