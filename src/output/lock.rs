@@ -1,11 +1,12 @@
-//! One run at a time per output folder: an advisory lock on a file in the folder, held while the
-//! run writes, so two renders into one folder never leave one's SVG beside the other's PNG.
+//! One run at a time per output folder: an advisory lock on the folder itself, held while the
+//! run writes, so two renders into one folder never leave one's SVG beside the other's PNG. On
+//! Unix the folder is locked directly (nothing is created in it); elsewhere through a lock file.
 
-use std::fs::{File, OpenOptions};
+use std::fs::File;
 use std::io;
 use std::path::{Path, PathBuf};
 
-/// The lock file each output folder gets.
+/// The lock file an output folder gets where folders cannot be locked directly (not on Unix).
 pub const LOCK_FILE: &str = ".dataink.lock";
 
 /// The held lock of an output folder; released when dropped (or when the process ends, however
@@ -18,7 +19,7 @@ pub struct OutputLock {
 /// Why the lock could not be taken.
 #[derive(Debug)]
 pub struct LockError {
-    /// The lock file.
+    /// The folder (or its lock file).
     pub path: PathBuf,
     /// What went wrong.
     pub source: io::Error,
@@ -26,7 +27,7 @@ pub struct LockError {
 
 impl std::fmt::Display for LockError {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        write!(f, "cannot lock the output folder through `{}`: {}", self.path.display(), self.source)
+        write!(f, "cannot lock the output folder `{}`: {}", self.path.display(), self.source)
     }
 }
 
@@ -37,10 +38,10 @@ impl OutputLock {
     /// (`waiting` is called once before the wait). Temporary files that a killed run left in
     /// `dir` are removed once the lock is held.
     pub fn acquire(dir: &Path, waiting: impl FnOnce()) -> Result<OutputLock, LockError> {
-        let path = dir.join(LOCK_FILE);
-        let fail = |source| LockError { path: path.clone(), source };
+        let fail = |source| LockError { path: dir.to_path_buf(), source };
         std::fs::create_dir_all(dir).map_err(fail)?;
-        let file = open_no_follow(&path).map_err(fail)?;
+        let (file, path) = open_lock_target(dir).map_err(fail)?;
+        let fail = |source| LockError { path: path.clone(), source };
         match file.try_lock() {
             Ok(()) => {}
             Err(std::fs::TryLockError::WouldBlock) => {
@@ -54,17 +55,18 @@ impl OutputLock {
     }
 }
 
-/// Open (creating) the lock file without following a symbolic link at its name.
-fn open_no_follow(path: &Path) -> io::Result<File> {
-    let mut options = OpenOptions::new();
-    options.read(true).write(true).create(true).truncate(false);
-    #[cfg(unix)]
-    {
-        use std::os::unix::fs::OpenOptionsExt;
-        // O_NOFOLLOW: a link planted at the lock's name is an error, not a file created elsewhere.
-        options.custom_flags(libc::O_NOFOLLOW);
-    }
-    options.open(path)
+/// What is locked: the folder itself on Unix, where `flock` works on a folder's descriptor.
+#[cfg(unix)]
+fn open_lock_target(dir: &Path) -> io::Result<(File, PathBuf)> {
+    Ok((File::open(dir)?, dir.to_path_buf()))
+}
+
+/// What is locked: a lock file in the folder (created if missing).
+#[cfg(not(unix))]
+fn open_lock_target(dir: &Path) -> io::Result<(File, PathBuf)> {
+    let path = dir.join(LOCK_FILE);
+    let file = std::fs::OpenOptions::new().read(true).write(true).create(true).truncate(false).open(&path)?;
+    Ok((file, path))
 }
 
 /// Remove the temporary files of earlier runs (only this module's names; nothing else).
@@ -116,17 +118,15 @@ mod tests {
         let mut names: Vec<String> =
             std::fs::read_dir(dir.path()).unwrap().map(|e| e.unwrap().file_name().into_string().unwrap()).collect();
         names.sort();
-        assert_eq!(names, [LOCK_FILE, "c.svg", "notes.tmp"]);
+        assert_eq!(names, ["c.svg", "notes.tmp"]);
     }
 
     #[cfg(unix)]
     #[test]
-    fn a_link_at_the_lock_name_is_refused() {
+    fn the_folder_is_locked_without_a_file_in_it() {
         let dir = tempfile::tempdir().unwrap();
-        let outside = tempfile::tempdir().unwrap();
-        std::os::unix::fs::symlink(outside.path().join("made"), dir.path().join(LOCK_FILE)).unwrap();
-        let err = OutputLock::acquire(dir.path(), || {}).unwrap_err();
-        assert!(err.to_string().contains("cannot lock the output folder"), "{err}");
-        assert!(!outside.path().join("made").exists());
+        let out = dir.path().join("out");
+        let _lock = OutputLock::acquire(&out, || {}).unwrap();
+        assert_eq!(std::fs::read_dir(&out).unwrap().count(), 0);
     }
 }

@@ -105,10 +105,10 @@ fn a_failed_write_is_an_error_and_leaves_nothing_partial() {
     assert!(stderr.contains("cannot write `out/a.svg`: File too large"), "{stderr}");
     let outputs = fx.dir.path().join("out");
     assert_every_final_file_parses(&outputs);
-    // No temporary file stays behind either: only the lock and whole outputs.
+    // No temporary file stays behind either: only whole outputs.
     let all: Vec<String> =
         std::fs::read_dir(&outputs).unwrap().flatten().map(|e| e.file_name().to_string_lossy().into_owned()).collect();
-    assert!(all.iter().all(|n| n == ".dataink.lock" || !n.starts_with('.')), "{all:?}");
+    assert!(all.iter().all(|n| !n.starts_with('.')), "{all:?}");
 }
 
 #[cfg(unix)]
