@@ -150,3 +150,43 @@ fn flipped_byte_in_parquet_metadata_is_an_error_not_a_panic() {
         assert!(!stderr.contains("panicked"), "{stderr}");
     }
 }
+
+/// Control and bidi characters in every user string that reaches a page.
+const HIDDEN: [char; 4] = ['\u{0}', '\u{7}', '\u{1b}', '\u{202e}'];
+
+#[test]
+fn control_and_bidi_characters_reach_no_output() {
+    // TOML escapes in the spec; raw characters in the CSV's header and cells.
+    let hostile = r"\u0000\u0007\u001B[31m\u202E";
+    let spec = format!(
+        "title = \"spec {hostile} title\"\n[data.d]\npath = \"d.csv\"\n[[chart]]\nname = \"c\"\nkind = \"scatter\"\n\
+         data = \"d\"\ntitle = \"chart {hostile} title\"\ncaption = \"caption {hostile}\"\n\
+         x = \"x\\u0007\\u202E|col\"\ny = {{ field = \"y\", title = \"y {hostile}\" }}\ncolor = \"who\"\n"
+    );
+    let raw = "\u{0}\u{7}\u{1b}[31m\u{202e}";
+    let csv = format!("\"x\u{7}\u{202e}|col\",y,who\n1,2,a{raw}\n2,3,b{raw}\n3,1,c|d\n");
+    let fx = Fixture::new(&spec, &[("d.csv", csv.as_bytes())]);
+    let out = run_dataink(fx.dir.path(), &["report", "spec.toml", "--out", "report"], 60).expect("finished");
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(matches!(out.status.code(), Some(0 | 1)), "{stderr}");
+    let ok = run_dataink(fx.dir.path(), &["render", "spec.toml", "--out", "out"], 60).expect("finished");
+    assert_eq!(ok.status.code(), Some(0), "{}", String::from_utf8_lossy(&ok.stderr));
+
+    let read = |p: &str| std::fs::read_to_string(fx.dir.path().join(p)).expect(p);
+    let (html, md, svg) = (read("report/index.html"), read("report/report.md"), read("out/c.svg"));
+    for (name, text) in [("index.html", &html), ("report.md", &md), ("c.svg", &svg)] {
+        for c in HIDDEN {
+            assert!(!text.contains(c), "{name} holds {c:?}");
+        }
+    }
+    // The visible text stays: titles, categories and the column name.
+    assert!(html.contains("<title>spec [31m title · dataink report</title>"), "{html}");
+    assert!(html.contains("chart [31m title"), "chart title");
+    assert!(svg.contains("a[31m") && svg.contains("x|col"), "{svg}");
+    // Markdown: every table row keeps its six cells, a `|` in user text is escaped.
+    for row in md.lines().filter(|l| l.starts_with('|')) {
+        let cells = row.replace("\\|", "").matches('|').count();
+        assert_eq!(cells, 7, "{row}");
+    }
+}
+
