@@ -190,3 +190,69 @@ fn control_and_bidi_characters_reach_no_output() {
     }
 }
 
+/// The `id` column of a data file read through a spec, as the charts see it.
+fn id_column(file: &str, bytes: &[u8]) -> Vec<Option<String>> {
+    let fx = Fixture::new(&format!("[data.d]\npath = \"{file}\"\n{SCATTER}"), &[(file, bytes)]);
+    let loaded = fx.load().unwrap_or_else(|e| panic!("{file}: {e}"));
+    let table = &loaded.tables["d"];
+    let id = table.column("id").expect("an id column");
+    let categories = id.categories().unwrap_or_else(|| panic!("{file}: id read as {}", id.type_name()));
+    (0..id.len()).map(|row| categories.value(row).map(str::to_string)).collect()
+}
+
+#[test]
+fn integers_above_i64_read_as_exact_text() {
+    let expected = [Some("18446744073709551615".to_string()), Some("7".to_string())];
+    let array = br#"[{"id": 18446744073709551615, "x": 1, "y": 2}, {"id": 7, "x": 2, "y": 3}]"#;
+    assert_eq!(id_column("d.json", array), expected);
+    let lines = b"{\"id\": 18446744073709551615, \"x\": 1, \"y\": 2}\n{\"id\": 7, \"x\": 2, \"y\": 3}\n";
+    assert_eq!(id_column("d.jsonl", lines), expected);
+    // Asked for, the text converts to the nearest float.
+    let fx = Fixture::new(
+        &format!("[data.d]\npath = \"d.json\"\nparse = {{ id = \"number\" }}\n{SCATTER}"),
+        &[("d.json", array)],
+    );
+    let loaded = fx.load().unwrap_or_else(|e| panic!("{e}"));
+    let ids = loaded.tables["d"].column("id").and_then(|c| c.numbers()).expect("numbers").to_vec();
+    assert_eq!(ids, [18446744073709551615.0, 7.0]);
+}
+
+/// `[{"x":1,"y":1,"z":[[...]]}]` with `depth` levels in all.
+fn nested_records(depth: usize, lines: bool) -> Vec<u8> {
+    let inner = depth - if lines { 1 } else { 2 };
+    let record = format!("{{\"x\":1,\"y\":1,\"z\":{}1{}}}", "[".repeat(inner), "]".repeat(inner));
+    if lines { format!("{record}\n").into_bytes() } else { format!("[{record}]").into_bytes() }
+}
+
+#[test]
+fn nesting_past_the_limit_is_refused_before_parsing() {
+    for file in ["d.json", "d.jsonl"] {
+        let fx = Fixture::new(
+            &format!("[data.d]\npath = \"{file}\"\n{SCATTER}"),
+            &[(file, &nested_records(20_000, file.ends_with('l')))],
+        );
+        let err = fails(fx.dir.path(), &["render", "spec.toml", "--out", "out"]);
+        assert!(err.contains(file), "{err}");
+        assert!(err.contains("nest 20000 levels deep (level 65 opens at byte"), "{err}");
+        assert!(err.contains("more than the limit of 64 levels"), "{err}");
+    }
+    let tree = format!("{}{}", "{\"name\":\"n\",\"children\":[".repeat(10_000), "]}".repeat(10_000));
+    let fx = Fixture::new(
+        "[data.d]\npath = \"t.json\"\nformat = \"tree\"\n[[chart]]\nname = \"c\"\nkind = \"treemap\"\ndata = \"d\"\n",
+        &[("t.json", tree.as_bytes())],
+    );
+    let err = fails(fx.dir.path(), &["render", "spec.toml", "--out", "out"]);
+    assert!(err.contains("nest 20000 levels deep") && err.contains("limit of 128 levels"), "{err}");
+}
+
+#[test]
+fn sixty_levels_of_records_still_read() {
+    use dataink::data::json_path::{JsonContent, read_json};
+    for lines in [false, true] {
+        // The reader takes them (a chart still cannot use the nested column itself).
+        match read_json(&nested_records(60, lines), None, lines) {
+            Ok(JsonContent::Frame(df)) => assert_eq!((df.height(), df.width()), (1, 3), "lines: {lines}"),
+            other => panic!("lines: {lines}: {other:?}"),
+        }
+    }
+}
