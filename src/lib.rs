@@ -61,6 +61,7 @@
 
 pub mod data;
 pub mod enrich;
+pub mod excerpt;
 pub mod explore;
 pub mod guide;
 pub mod layout;

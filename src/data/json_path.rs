@@ -20,9 +20,6 @@ use crate::spec::suggest::did_you_mean;
 /// The keys (all of them, no others) of an object read as a grid.
 pub const GRID_KEYS: [&str; 3] = ["height", "values", "width"];
 
-/// Most keys listed when a `json_path` step is not found.
-const LISTED_KEYS: usize = 20;
-
 /// What a JSON file holds.
 #[derive(Debug)]
 pub enum JsonContent {
@@ -123,7 +120,7 @@ pub fn select<'v>(root: &'v Value, path: &str) -> Result<&'v Value, JsonError> {
                 None => {
                     let keys: Vec<&str> = map.keys().map(String::as_str).collect();
                     let hint = match did_you_mean(step, keys.iter().copied()) {
-                        Some(best) => format!("did you mean `{best}`? {}", listing(&keys)),
+                        Some(best) => format!("did you mean `{}`? {}", crate::excerpt::quote(best), listing(&keys)),
                         None => listing(&keys),
                     };
                     return Err(JsonError::Path { message: format!("{at} has no key `{step}`"), hint });
@@ -153,15 +150,12 @@ pub fn select<'v>(root: &'v Value, path: &str) -> Result<&'v Value, JsonError> {
     Ok(here)
 }
 
-/// "keys: `a`, `b`" with at most [`LISTED_KEYS`] names.
+/// "keys: `a`, `b`", bounded by [`crate::excerpt::list`].
 fn listing(keys: &[&str]) -> String {
     if keys.is_empty() {
         return "the object has no keys".into();
     }
-    let shown: Vec<String> = keys.iter().take(LISTED_KEYS).map(|k| format!("`{k}`")).collect();
-    let more = keys.len().saturating_sub(LISTED_KEYS);
-    let tail = if more > 0 { format!(" and {more} more") } else { String::new() };
-    format!("keys: {}{tail}", shown.join(", "))
+    format!("keys: {}", crate::excerpt::list(keys.iter().copied(), true))
 }
 
 fn kind_of(v: &Value) -> &'static str {

@@ -490,9 +490,10 @@ fn parse_error(origin: &str, format: DataFormat, e: PolarsError) -> LoadError {
     LoadError::Parse { origin: origin.to_string(), format, message: first_line(&e) }
 }
 
-/// The first line of a polars message: the rest is long context that does not help the user.
+/// The first line of a polars message (the rest is long context that does not help the user),
+/// bounded like any quoted value ([`super::transform::first_line`]).
 pub(crate) fn first_line(e: &PolarsError) -> String {
-    e.to_string().lines().next().unwrap_or("").trim().to_string()
+    super::transform::first_line(&e.to_string())
 }
 
 /// Convert a polars frame into a [`Table`].

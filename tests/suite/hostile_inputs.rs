@@ -256,3 +256,37 @@ fn sixty_levels_of_records_still_read() {
         }
     }
 }
+
+/// A spec drawing `x` and `y` of `d.csv` whose bytes the caller writes.
+fn csv_fixture(csv: &[u8]) -> Fixture {
+    Fixture::new(&format!("[data.d]\npath = \"d.csv\"\n{SCATTER}"), &[("d.csv", csv)])
+}
+
+#[test]
+fn a_huge_cell_is_quoted_in_a_few_hundred_characters() {
+    // Past the 10,000 rows polars looks at to choose the column types, so `x` is read as numbers.
+    let mut csv = String::from("x,y\n");
+    for i in 0..10_050 {
+        csv.push_str(&format!("{i},{i}\n"));
+    }
+    csv.push_str(&format!("1{},5\n", "9.5".repeat(5 * 1024 * 1024 / 3)));
+    let fx = csv_fixture(csv.as_bytes());
+    let err = fails(fx.dir.path(), &["render", "spec.toml", "--out", "out"]);
+    assert!(err.len() < 2048, "{} bytes: {}", err.len(), &err[..err.len().min(4096)]);
+    assert!(err.contains("d.csv"), "{err}");
+}
+
+#[test]
+fn a_missing_column_among_100000_lists_twenty() {
+    let header: Vec<String> = (0..100_000).map(|i| format!("column_{i}")).collect();
+    let mut csv = header.join(",");
+    csv.push('\n');
+    csv.push_str(&vec!["1"; 100_000].join(","));
+    csv.push('\n');
+    let spec = "[data.d]\npath = \"d.csv\"\n[[chart]]\nname = \"c\"\nkind = \"scatter\"\ndata = \"d\"\nx = \"column_1\"\ny = \"nope\"\n";
+    let fx = Fixture::new(spec, &[("d.csv", csv.as_bytes())]);
+    let err = fails(fx.dir.path(), &["render", "spec.toml", "--out", "out"]);
+    assert!(err.contains("has no column `nope`"), "{}", &err[..err.len().min(4096)]);
+    assert!(err.contains("and 99980 more"), "{}", &err[..err.len().min(4096)]);
+    assert!(err.len() < 2048, "{} bytes", err.len());
+}
