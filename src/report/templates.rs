@@ -1,7 +1,7 @@
 //! The template engine set up for reports: minijinja with HTML auto-escaping forced for every
-//! template whatever its file name, the `safe` filter removed, `{% autoescape %}` blocks refused,
-//! and undefined values as errors (so a misspelt variable in a user template is reported, not
-//! printed as nothing).
+//! template whatever its file name, every printed value stripped of control and bidi characters,
+//! the `safe` filter removed, `{% autoescape %}` blocks refused, and undefined values as errors
+//! (so a misspelt variable in a user template is reported, not printed as nothing).
 
 use minijinja::value::ValueKind;
 use minijinja::{AutoEscape, Environment, ErrorKind, UndefinedBehavior, Value};
