@@ -15,6 +15,8 @@
 //!    using the shared [`guide`]s (scales, ticks, axes, legends, colour maps).
 //! 4. [`render`] — draw a scene as SVG or PNG with the one embedded font in [`text`]. Rendering a
 //!    valid scene cannot fail: sizes are checked before anything is allocated.
+//!    User text is cleaned by the one rule in [`visible`] (no control or bidi characters) there,
+//!    in the report and in diagnostics.
 //!
 //! 5. [`lint`] — check each drawn chart against "good visualization" rules (scale shown, labels,
 //!    integrity, colour, comparison), reading the scene the reader will see.
@@ -59,6 +61,7 @@
 
 pub mod data;
 pub mod enrich;
+pub mod excerpt;
 pub mod explore;
 pub mod guide;
 pub mod layout;
@@ -72,3 +75,4 @@ pub mod scene;
 pub mod selection;
 pub mod spec;
 pub mod text;
+pub mod visible;

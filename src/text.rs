@@ -60,28 +60,18 @@ fn vertical_em() -> (f64, f64) {
     }
 }
 
-/// Whether `c` is dropped (or turned into a space) by [`sanitize`].
-fn is_unwanted(c: char) -> bool {
-    c.is_control() || c == '\u{FFFE}' || c == '\u{FFFF}'
-}
-
-/// The characters of `content` as drawn: tab, line feed and carriage return become spaces,
-/// other control characters (and the XML-forbidden U+FFFE/U+FFFF) are dropped.
+/// The characters of `content` as drawn (see [`sanitize`]).
 fn clean_chars(content: &str) -> impl Iterator<Item = char> + '_ {
-    content.chars().filter_map(|c| match c {
-        '\t' | '\n' | '\r' => Some(' '),
-        c if is_unwanted(c) => None,
-        c => Some(c),
-    })
+    crate::visible::single_line_chars(content)
 }
 
-/// `content` with control characters removed, exactly as measured and drawn.
+/// `content` with hidden characters removed, exactly as measured and drawn.
 ///
-/// Tab, line feed and carriage return become a single space each (text is one line), all other
-/// control characters and the non-characters U+FFFE/U+FFFF are dropped. Both renderers and
-/// [`measure`] apply this, so they agree on what is drawn.
+/// Tab, line feed and carriage return become a single space each (text is one line); control
+/// characters, U+FFFE/U+FFFF and bidi controls are dropped ([`crate::visible`]). Both renderers
+/// and [`measure`] apply this, so they agree on what is drawn.
 pub fn sanitize(content: &str) -> String {
-    clean_chars(content).collect()
+    crate::visible::single_line(content).into_owned()
 }
 
 /// The glyph for `c`, or `.notdef` when the font has none.
@@ -329,6 +319,7 @@ mod tests {
         assert_eq!(sanitize("a\u{7}b\u{0}c\u{1b}d"), "abcd");
         assert_eq!(sanitize("a\nb\tc"), "a b c");
         assert_eq!(sanitize("x\u{FFFF}"), "x");
+        assert_eq!(sanitize("\u{202e}evil\u{2069}"), "evil");
         assert_eq!(measure("ab\u{7}", 10.0).width, measure("ab", 10.0).width);
         // Missing glyphs (Hebrew) still advance.
         assert!(measure("שלום", 10.0).width > 0.0);

@@ -4,22 +4,21 @@
 //! keys `width`, `height` and `values` (row-major numbers, `values[row * width + column]`), which
 //! is read like a `.npy` grid into `x`, `y`, `value` columns.
 //!
-//! Nesting deeper than serde_json's limit of 128 levels is refused with its message.
+//! Nesting deeper than [`MAX_RECORD_DEPTH`] levels is refused before any parser runs, and
+//! integers too wide for an `i64` are read as text ([`super::json_scan`]).
 
 use std::io::Cursor;
 
 use polars::prelude::*;
 use serde_json::Value;
 
+use super::json_scan::{MAX_RECORD_DEPTH, TooDeep, check_depth, quote_wide_integers};
 use super::load::first_line;
 use super::matrix::{MAX_CELLS, Matrix};
 use crate::spec::suggest::did_you_mean;
 
 /// The keys (all of them, no others) of an object read as a grid.
 pub const GRID_KEYS: [&str; 3] = ["height", "values", "width"];
-
-/// Most keys listed when a `json_path` step is not found.
-const LISTED_KEYS: usize = 20;
 
 /// What a JSON file holds.
 #[derive(Debug)]
@@ -42,10 +41,13 @@ pub enum JsonError {
         /// How to fix it (the keys that exist, a "did you mean").
         hint: String,
     },
+    /// Arrays and objects nest deeper than [`MAX_RECORD_DEPTH`].
+    TooDeep(TooDeep),
 }
 
 /// Read JSON bytes; `lines` for newline-delimited records (`.jsonl`, `.ndjson`).
 pub fn read_json(bytes: &[u8], json_path: Option<&str>, lines: bool) -> Result<JsonContent, JsonError> {
+    check_depth(bytes, MAX_RECORD_DEPTH).map_err(JsonError::TooDeep)?;
     let first = bytes.iter().find(|b| !b.is_ascii_whitespace() && **b != 0xef && **b != 0xbb && **b != 0xbf);
     match (json_path, lines, first) {
         (None, true, _) => return records(bytes, JsonFormat::JsonLines).map(JsonContent::Frame),
@@ -118,7 +120,7 @@ pub fn select<'v>(root: &'v Value, path: &str) -> Result<&'v Value, JsonError> {
                 None => {
                     let keys: Vec<&str> = map.keys().map(String::as_str).collect();
                     let hint = match did_you_mean(step, keys.iter().copied()) {
-                        Some(best) => format!("did you mean `{best}`? {}", listing(&keys)),
+                        Some(best) => format!("did you mean `{}`? {}", crate::excerpt::quote(best), listing(&keys)),
                         None => listing(&keys),
                     };
                     return Err(JsonError::Path { message: format!("{at} has no key `{step}`"), hint });
@@ -148,15 +150,12 @@ pub fn select<'v>(root: &'v Value, path: &str) -> Result<&'v Value, JsonError> {
     Ok(here)
 }
 
-/// "keys: `a`, `b`" with at most [`LISTED_KEYS`] names.
+/// "keys: `a`, `b`", bounded by [`crate::excerpt::list`].
 fn listing(keys: &[&str]) -> String {
     if keys.is_empty() {
         return "the object has no keys".into();
     }
-    let shown: Vec<String> = keys.iter().take(LISTED_KEYS).map(|k| format!("`{k}`")).collect();
-    let more = keys.len().saturating_sub(LISTED_KEYS);
-    let tail = if more > 0 { format!(" and {more} more") } else { String::new() };
-    format!("keys: {}{tail}", shown.join(", "))
+    format!("keys: {}", crate::excerpt::list(keys.iter().copied(), true))
 }
 
 fn kind_of(v: &Value) -> &'static str {
@@ -170,9 +169,11 @@ fn kind_of(v: &Value) -> &'static str {
     }
 }
 
-/// Records (an array of objects, or objects one per line) into a frame through polars.
+/// Records (an array of objects, or objects one per line) into a frame through polars; integers
+/// wider than an `i64` are read as text.
 fn records(bytes: &[u8], format: JsonFormat) -> Result<DataFrame, JsonError> {
-    JsonReader::new(Cursor::new(bytes))
+    let bytes = quote_wide_integers(bytes);
+    JsonReader::new(Cursor::new(&*bytes))
         .with_json_format(format)
         .infer_schema_len(None)
         .finish()
@@ -314,11 +315,11 @@ mod tests {
         };
         assert!(m.starts_with("EOF while parsing"), "{m}");
         let deep = format!("{}{}", "[".repeat(200), "]".repeat(200));
-        let JsonError::Syntax(m) = read_json(format!("{{\"a\": {deep}}}").as_bytes(), Some("a"), false).expect_err("")
+        let JsonError::TooDeep(e) = read_json(format!("{{\"a\": {deep}}}").as_bytes(), Some("a"), false).expect_err("")
         else {
-            panic!("a syntax error")
+            panic!("a depth error")
         };
-        assert!(m.starts_with("recursion limit exceeded"), "{m}");
+        assert_eq!((e.depth, e.offset, e.limit), (201, 69, MAX_RECORD_DEPTH));
     }
 
     #[test]

@@ -64,6 +64,15 @@ pub enum LoadError {
         /// The keys that exist, a "did you mean".
         hint: String,
     },
+    /// A JSON file nests arrays and objects deeper than its format's limit.
+    TooDeep {
+        /// The file.
+        origin: String,
+        /// The format read.
+        format: DataFormat,
+        /// How deep, where, and the limit.
+        error: super::json_scan::TooDeep,
+    },
     /// A `parse` rule could not be applied to its column.
     ColumnParse {
         /// The file (or `inline values`).
@@ -102,6 +111,9 @@ impl fmt::Display for LoadError {
                 write!(f, "cannot decompress `{}` as {}: {message}", path.display(), compression.name())
             }
             LoadError::JsonPath { origin, message, .. } => write!(f, "in {origin}: {message}"),
+            LoadError::TooDeep { origin, format, error } => {
+                write!(f, "cannot read {origin} as {}: {error}", format_name(*format))
+            }
             LoadError::ColumnParse { origin, error } => write!(
                 f,
                 "column `{}` of {origin} cannot be read with parse rule \"{}\": {}",
@@ -171,6 +183,11 @@ impl LoadError {
                 compression.name()
             ),
             LoadError::JsonPath { hint, .. } => hint.clone(),
+            LoadError::TooDeep { format, error, .. } => format!(
+                "flatten the nested values: reading {} allows at most {} levels of arrays and objects (see README, Limits)",
+                format_name(*format),
+                error.limit
+            ),
             LoadError::ColumnParse { error, .. } => error.hint.clone(),
             LoadError::NotApplicable { key, .. } => format!("remove `{key}` from the data source"),
         }
@@ -366,10 +383,15 @@ fn read_path_uncontained(
                 Err(super::json_path::JsonError::Path { message, hint }) => {
                     Err(LoadError::JsonPath { origin: origin.clone(), message, hint })
                 }
+                Err(super::json_path::JsonError::TooDeep(error)) => {
+                    Err(LoadError::TooDeep { origin: origin.clone(), format, error })
+                }
             }
         }
         DataFormat::Geojson => {
             let bytes = compressed::read_bytes(resolved)?;
+            super::json_scan::check_depth(&bytes, super::json_scan::MAX_RECORD_DEPTH)
+                .map_err(|error| LoadError::TooDeep { origin: origin.clone(), format, error })?;
             let value: serde_json::Value = serde_json::from_slice(&bytes).map_err(|e| parse_failed(e.to_string()))?;
             Ok(Reading::Frame(super::geojson::read_geojson(&value).map_err(parse_failed)?))
         }
@@ -484,9 +506,10 @@ fn parse_error(origin: &str, format: DataFormat, e: PolarsError) -> LoadError {
     LoadError::Parse { origin: origin.to_string(), format, message: first_line(&e) }
 }
 
-/// The first line of a polars message: the rest is long context that does not help the user.
+/// The first line of a polars message (the rest is long context that does not help the user),
+/// bounded like any quoted value ([`super::transform::first_line`]).
 pub(crate) fn first_line(e: &PolarsError) -> String {
-    e.to_string().lines().next().unwrap_or("").trim().to_string()
+    super::transform::first_line(&e.to_string())
 }
 
 /// Convert a polars frame into a [`Table`].

@@ -2,7 +2,8 @@
 //!
 //! Readers (CSV, Parquet, JSON records, inline `values`) live in [`load`], with the formats beyond
 //! them each in its own module: Arrow IPC ([`ipc`]), GeoJSON ([`geojson`]), JSON paths and grids
-//! ([`json_path`]), gzip/zstd files ([`compressed`]), per-column `parse` rules ([`parse`]), the
+//! ([`json_path`]), the depth limit and wide-integer quoting applied before any JSON parse
+//! ([`json_scan`]), gzip/zstd files ([`compressed`]), per-column `parse` rules ([`parse`]), the
 //! texts read as missing ([`missing`]) and the non-ISO date warning ([`date_guess`]); a source's
 //! transform steps, compiled onto a polars lazy plan, in [`transform`]; the rule for which
 //! paths may be read lives in [`paths`]. Chart kinds never see polars: they get plain columns of
@@ -16,6 +17,7 @@ pub mod geojson;
 pub mod ipc;
 pub mod ipc_bounds;
 pub mod json_path;
+pub mod json_scan;
 pub mod load;
 pub mod matrix;
 pub mod missing;

@@ -22,6 +22,11 @@ const OWN_COLUMNS: [&str; 5] = ["id", "parent", "path", "name", "depth"];
 pub fn read_tree_json(path: &Path) -> Result<Table, LoadError> {
     let origin = format!("`{}`", path.display());
     let bytes = super::compressed::read_bytes(path)?;
+    super::json_scan::check_depth(&bytes, super::json_scan::MAX_TREE_DEPTH).map_err(|error| LoadError::TooDeep {
+        origin: origin.clone(),
+        format: DataFormat::Tree,
+        error,
+    })?;
     let value: Value = serde_json::from_slice(&bytes).map_err(|e| LoadError::Parse {
         origin: origin.clone(),
         format: DataFormat::Tree,

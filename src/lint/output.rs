@@ -35,9 +35,10 @@ fn place(spec_path: &str, f: &Finding) -> String {
     }
 }
 
-/// Control characters dropped, so user text cannot move a terminal's cursor.
+/// Hidden characters dropped ([`crate::visible`]), so user text cannot move a terminal's cursor
+/// or reorder what it shows.
 fn clean(s: &str) -> String {
-    s.chars().filter(|c| !c.is_control() || *c == ' ').collect()
+    crate::visible::single_line(s).into_owned()
 }
 
 /// `3 charts linted: 1 error, 2 warnings, 0 notes (1 allowed)`.

@@ -1,8 +1,9 @@
 //! The template engine set up for reports: minijinja with HTML auto-escaping forced for every
-//! template whatever its file name, the `safe` filter removed, `{% autoescape %}` blocks refused,
-//! and undefined values as errors (so a misspelt variable in a user template is reported, not
-//! printed as nothing).
+//! template whatever its file name, every printed value stripped of control and bidi characters,
+//! the `safe` filter removed, `{% autoescape %}` blocks refused, and undefined values as errors
+//! (so a misspelt variable in a user template is reported, not printed as nothing).
 
+use minijinja::value::ValueKind;
 use minijinja::{AutoEscape, Environment, ErrorKind, UndefinedBehavior, Value};
 
 use super::ReportError;
@@ -58,7 +59,27 @@ pub fn environment<'s>() -> Environment<'s> {
     // Our SVG arrives already marked safe; nothing else may be.
     env.remove_filter("safe");
     env.add_filter("md", md);
+    env.set_formatter(|out, state, value| minijinja::escape_formatter(out, state, &shown(value)));
     env
+}
+
+/// A value as printed by `{{ ... }}`: its text with hidden characters removed
+/// ([`crate::visible::multiline`]: no control or bidi characters), whether it is a plain string,
+/// a safe one (the SVGs, `|e` output) or a list or map printed whole. Escaping comes after.
+fn shown(value: &Value) -> Value {
+    use crate::visible::multiline;
+    use std::borrow::Cow;
+    match value.kind() {
+        ValueKind::String => match value.as_str().map(multiline) {
+            Some(Cow::Owned(clean)) if value.is_safe() => Value::from_safe_string(clean),
+            Some(Cow::Owned(clean)) => Value::from(clean),
+            _ => value.clone(),
+        },
+        ValueKind::Seq | ValueKind::Map | ValueKind::Iterable | ValueKind::Plain => {
+            Value::from(multiline(&value.to_string()).into_owned())
+        }
+        _ => value.clone(),
+    }
 }
 
 /// Render `template` with `context`.
@@ -175,6 +196,23 @@ mod tests {
         let err = render_str("line one\n{{ chart.titel }}", minijinja::context! {}).expect_err("undefined");
         let text = err.to_string();
         assert!(text.contains("t.txt"), "{text}");
+    }
+
+    #[test]
+    fn printed_values_lose_control_and_bidi_characters() {
+        let hostile = "t\u{0}\u{7}\u{1b}[31m\u{202e}x\r\ny";
+        let ctx = minijinja::context! {
+            s => hostile,
+            list => vec![hostile],
+            svg => Value::from_safe_string(format!("<svg>{hostile}</svg>")),
+        };
+        let out =
+            render_str("{{ s }}|{{ s|e }}|{{ s|md }}|{{ list }}|{{ list|join(',') }}|{{ svg }}", ctx).expect("renders");
+        for c in ['\u{0}', '\u{7}', '\u{1b}', '\u{202e}', '\r'] {
+            assert!(!out.contains(c), "{c:?} in {out:?}");
+        }
+        assert!(out.starts_with("t[31mx\ny|t[31mx\ny|t\\[31mx  y|"), "{out:?}");
+        assert!(out.ends_with("|<svg>t[31mx\ny</svg>"), "{out:?}");
     }
 
     #[test]

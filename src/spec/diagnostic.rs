@@ -256,10 +256,10 @@ fn sanitize(text: &str) -> String {
     out
 }
 
-/// Characters never printed as they are: controls and bidirectional formatting.
+/// Characters never printed as they are: the hidden characters of [`crate::visible`] (controls,
+/// bidirectional formatting) except tab, which callers expand.
 fn is_unsafe(c: char) -> bool {
-    (c.is_control() && c != '\t')
-        || matches!(c, '\u{202a}'..='\u{202e}' | '\u{2066}'..='\u{2069}' | '\u{200e}' | '\u{200f}')
+    c != '\t' && crate::visible::is_hidden(c)
 }
 
 /// A piece of a source line as printed (tabs expanded, unsafe characters replaced) and its width

@@ -26,12 +26,13 @@ where
 }
 
 /// A hint listing what exists, led by a "did you mean" when one name is close to `wanted`:
-/// "did you mean `b`? columns: `a`, `b`" (names in backticks when `quoted`).
+/// "did you mean `b`? columns: `a`, `b`" (names in backticks when `quoted`; at most
+/// [`crate::excerpt::MAX_LISTED`] of them, each cut like any quoted value).
 pub fn hint(wanted: &str, names: &[&str], label: &str, quoted: bool) -> String {
-    let listing: Vec<String> = names.iter().map(|n| if quoted { format!("`{n}`") } else { (*n).to_string() }).collect();
+    let listing = crate::excerpt::list(names.iter().copied(), quoted);
     match did_you_mean(wanted, names.iter().copied()) {
-        Some(best) => format!("did you mean `{best}`? {label}: {}", listing.join(", ")),
-        None => format!("{label}: {}", listing.join(", ")),
+        Some(best) => format!("did you mean `{}`? {label}: {listing}", crate::excerpt::quote(best)),
+        None => format!("{label}: {listing}"),
     }
 }
 

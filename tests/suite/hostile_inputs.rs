@@ -150,3 +150,143 @@ fn flipped_byte_in_parquet_metadata_is_an_error_not_a_panic() {
         assert!(!stderr.contains("panicked"), "{stderr}");
     }
 }
+
+/// Control and bidi characters in every user string that reaches a page.
+const HIDDEN: [char; 4] = ['\u{0}', '\u{7}', '\u{1b}', '\u{202e}'];
+
+#[test]
+fn control_and_bidi_characters_reach_no_output() {
+    // TOML escapes in the spec; raw characters in the CSV's header and cells.
+    let hostile = r"\u0000\u0007\u001B[31m\u202E";
+    let spec = format!(
+        "title = \"spec {hostile} title\"\n[data.d]\npath = \"d.csv\"\n[[chart]]\nname = \"c\"\nkind = \"scatter\"\n\
+         data = \"d\"\ntitle = \"chart {hostile} title\"\ncaption = \"caption {hostile}\"\n\
+         x = \"x\\u0007\\u202E|col\"\ny = {{ field = \"y\", title = \"y {hostile}\" }}\ncolor = \"who\"\n"
+    );
+    let raw = "\u{0}\u{7}\u{1b}[31m\u{202e}";
+    let csv = format!("\"x\u{7}\u{202e}|col\",y,who\n1,2,a{raw}\n2,3,b{raw}\n3,1,c|d\n");
+    let fx = Fixture::new(&spec, &[("d.csv", csv.as_bytes())]);
+    let out = run_dataink(fx.dir.path(), &["report", "spec.toml", "--out", "report"], 60).expect("finished");
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(matches!(out.status.code(), Some(0 | 1)), "{stderr}");
+    let ok = run_dataink(fx.dir.path(), &["render", "spec.toml", "--out", "out"], 60).expect("finished");
+    assert_eq!(ok.status.code(), Some(0), "{}", String::from_utf8_lossy(&ok.stderr));
+
+    let read = |p: &str| std::fs::read_to_string(fx.dir.path().join(p)).expect(p);
+    let (html, md, svg) = (read("report/index.html"), read("report/report.md"), read("out/c.svg"));
+    for (name, text) in [("index.html", &html), ("report.md", &md), ("c.svg", &svg)] {
+        for c in HIDDEN {
+            assert!(!text.contains(c), "{name} holds {c:?}");
+        }
+    }
+    // The visible text stays: titles, categories and the column name.
+    assert!(html.contains("<title>spec [31m title · dataink report</title>"), "{html}");
+    assert!(html.contains("chart [31m title"), "chart title");
+    assert!(svg.contains("a[31m") && svg.contains("x|col"), "{svg}");
+    // Markdown: every table row keeps its six cells, a `|` in user text is escaped.
+    for row in md.lines().filter(|l| l.starts_with('|')) {
+        let cells = row.replace("\\|", "").matches('|').count();
+        assert_eq!(cells, 7, "{row}");
+    }
+}
+
+/// The `id` column of a data file read through a spec, as the charts see it.
+fn id_column(file: &str, bytes: &[u8]) -> Vec<Option<String>> {
+    let fx = Fixture::new(&format!("[data.d]\npath = \"{file}\"\n{SCATTER}"), &[(file, bytes)]);
+    let loaded = fx.load().unwrap_or_else(|e| panic!("{file}: {e}"));
+    let table = &loaded.tables["d"];
+    let id = table.column("id").expect("an id column");
+    let categories = id.categories().unwrap_or_else(|| panic!("{file}: id read as {}", id.type_name()));
+    (0..id.len()).map(|row| categories.value(row).map(str::to_string)).collect()
+}
+
+#[test]
+fn integers_above_i64_read_as_exact_text() {
+    let expected = [Some("18446744073709551615".to_string()), Some("7".to_string())];
+    let array = br#"[{"id": 18446744073709551615, "x": 1, "y": 2}, {"id": 7, "x": 2, "y": 3}]"#;
+    assert_eq!(id_column("d.json", array), expected);
+    let lines = b"{\"id\": 18446744073709551615, \"x\": 1, \"y\": 2}\n{\"id\": 7, \"x\": 2, \"y\": 3}\n";
+    assert_eq!(id_column("d.jsonl", lines), expected);
+    // Asked for, the text converts to the nearest float.
+    let fx = Fixture::new(
+        &format!("[data.d]\npath = \"d.json\"\nparse = {{ id = \"number\" }}\n{SCATTER}"),
+        &[("d.json", array)],
+    );
+    let loaded = fx.load().unwrap_or_else(|e| panic!("{e}"));
+    let ids = loaded.tables["d"].column("id").and_then(|c| c.numbers()).expect("numbers").to_vec();
+    assert_eq!(ids, [18446744073709551615.0, 7.0]);
+}
+
+/// `[{"x":1,"y":1,"z":[[...]]}]` with `depth` levels in all.
+fn nested_records(depth: usize, lines: bool) -> Vec<u8> {
+    let inner = depth - if lines { 1 } else { 2 };
+    let record = format!("{{\"x\":1,\"y\":1,\"z\":{}1{}}}", "[".repeat(inner), "]".repeat(inner));
+    if lines { format!("{record}\n").into_bytes() } else { format!("[{record}]").into_bytes() }
+}
+
+#[test]
+fn nesting_past_the_limit_is_refused_before_parsing() {
+    for file in ["d.json", "d.jsonl"] {
+        let fx = Fixture::new(
+            &format!("[data.d]\npath = \"{file}\"\n{SCATTER}"),
+            &[(file, &nested_records(20_000, file.ends_with('l')))],
+        );
+        let err = fails(fx.dir.path(), &["render", "spec.toml", "--out", "out"]);
+        assert!(err.contains(file), "{err}");
+        assert!(err.contains("nest 20000 levels deep (level 65 opens at byte"), "{err}");
+        assert!(err.contains("more than the limit of 64 levels"), "{err}");
+    }
+    let tree = format!("{}{}", "{\"name\":\"n\",\"children\":[".repeat(10_000), "]}".repeat(10_000));
+    let fx = Fixture::new(
+        "[data.d]\npath = \"t.json\"\nformat = \"tree\"\n[[chart]]\nname = \"c\"\nkind = \"treemap\"\ndata = \"d\"\n",
+        &[("t.json", tree.as_bytes())],
+    );
+    let err = fails(fx.dir.path(), &["render", "spec.toml", "--out", "out"]);
+    assert!(err.contains("nest 20000 levels deep") && err.contains("limit of 128 levels"), "{err}");
+}
+
+#[test]
+fn sixty_levels_of_records_still_read() {
+    use dataink::data::json_path::{JsonContent, read_json};
+    for lines in [false, true] {
+        // The reader takes them (a chart still cannot use the nested column itself).
+        match read_json(&nested_records(60, lines), None, lines) {
+            Ok(JsonContent::Frame(df)) => assert_eq!((df.height(), df.width()), (1, 3), "lines: {lines}"),
+            other => panic!("lines: {lines}: {other:?}"),
+        }
+    }
+}
+
+/// A spec drawing `x` and `y` of `d.csv` whose bytes the caller writes.
+fn csv_fixture(csv: &[u8]) -> Fixture {
+    Fixture::new(&format!("[data.d]\npath = \"d.csv\"\n{SCATTER}"), &[("d.csv", csv)])
+}
+
+#[test]
+fn a_huge_cell_is_quoted_in_a_few_hundred_characters() {
+    // Past the 10,000 rows polars looks at to choose the column types, so `x` is read as numbers.
+    let mut csv = String::from("x,y\n");
+    for i in 0..10_050 {
+        csv.push_str(&format!("{i},{i}\n"));
+    }
+    csv.push_str(&format!("1{},5\n", "9.5".repeat(5 * 1024 * 1024 / 3)));
+    let fx = csv_fixture(csv.as_bytes());
+    let err = fails(fx.dir.path(), &["render", "spec.toml", "--out", "out"]);
+    assert!(err.len() < 2048, "{} bytes: {}", err.len(), &err[..err.len().min(4096)]);
+    assert!(err.contains("d.csv"), "{err}");
+}
+
+#[test]
+fn a_missing_column_among_100000_lists_twenty() {
+    let header: Vec<String> = (0..100_000).map(|i| format!("column_{i}")).collect();
+    let mut csv = header.join(",");
+    csv.push('\n');
+    csv.push_str(&vec!["1"; 100_000].join(","));
+    csv.push('\n');
+    let spec = "[data.d]\npath = \"d.csv\"\n[[chart]]\nname = \"c\"\nkind = \"scatter\"\ndata = \"d\"\nx = \"column_1\"\ny = \"nope\"\n";
+    let fx = Fixture::new(spec, &[("d.csv", csv.as_bytes())]);
+    let err = fails(fx.dir.path(), &["render", "spec.toml", "--out", "out"]);
+    assert!(err.contains("has no column `nope`"), "{}", &err[..err.len().min(4096)]);
+    assert!(err.contains("and 99980 more"), "{}", &err[..err.len().min(4096)]);
+    assert!(err.len() < 2048, "{} bytes", err.len());
+}

@@ -59,13 +59,8 @@ impl TransformError {
     }
 }
 
-/// The first line of a (polars) message, at most 300 characters: polars quotes offending values,
-/// and a long one must not flood the terminal.
+/// The first line of a (polars) message, bounded by [`crate::excerpt::message`]: polars quotes
+/// offending values, and a long one must not flood the terminal.
 pub fn first_line(text: &str) -> String {
-    let line = text.lines().next().unwrap_or("").trim();
-    let mut out: String = line.chars().take(300).collect();
-    if line.chars().count() > 300 {
-        out.push('…');
-    }
-    out
+    crate::excerpt::message(text.lines().next().unwrap_or("").trim()).into_owned()
 }
