@@ -70,9 +70,10 @@ pub const MAX_POINTS: usize = 1 << 24;
 /// Most distinct finite levels one [`Triangulation::contour_lines`] call traces.
 pub const MAX_LEVELS: usize = crate::enrich::contour::MAX_LEVELS;
 
-/// Most (triangle, level) crossings one [`Triangulation::contour_lines`] call traces (2²⁶ ≈ 67
-/// million); each yields one output point.
-pub const MAX_CROSSINGS: usize = 1 << 26;
+/// Most (triangle, level) crossings one [`Triangulation::contour_lines`] call traces, the same cap
+/// as gridded contours ([`crate::enrich::contour::MAX_CROSSED_CELLS`], 2²² ≈ 4.2 million); each
+/// yields one output point.
+pub const MAX_CROSSINGS: usize = crate::enrich::contour::MAX_CROSSED_CELLS;
 
 /// When more than this many points nearest the centre may lie on one line, spade's bulk loader
 /// would spend quadratic time on them (its seed), so the triangulation is built by insertion.
