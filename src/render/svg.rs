@@ -54,9 +54,30 @@ struct Writer {
     canvas: (f64, f64),
 }
 
-/// Device pixels per canvas unit of a point batch embedded as a raster (sharp on high-DPI
-/// screens and when zoomed in twice).
+/// Device pixels per canvas unit of a point batch (or a line batch or path above its vector
+/// limit) embedded as a raster (sharp on high-DPI screens and when zoomed in twice).
 pub const POINT_RASTER_SCALE: f64 = 2.0;
+
+/// The box finite points cover, each with its reach.
+struct Bounds {
+    lo: [f64; 2],
+    hi: [f64; 2],
+}
+
+impl Default for Bounds {
+    fn default() -> Bounds {
+        Bounds { lo: [f64::INFINITY; 2], hi: [f64::NEG_INFINITY; 2] }
+    }
+}
+
+impl Bounds {
+    fn add(&mut self, p: Point, reach: f64) {
+        if finite_point(p) {
+            (self.lo[0], self.lo[1]) = (self.lo[0].min(p.x - reach), self.lo[1].min(p.y - reach));
+            (self.hi[0], self.hi[1]) = (self.hi[0].max(p.x + reach), self.hi[1].max(p.y + reach));
+        }
+    }
+}
 
 impl Writer {
     /// Writes one item (and, for groups, its children).
@@ -89,6 +110,13 @@ impl Writer {
                 );
             }
             Shape::Path(cmds) => {
+                if cmds.len() > crate::scene::PATH_VECTOR_LIMIT {
+                    let reach = item.style.stroke.as_ref().map_or(0.0, |s| s.width);
+                    if let Some(raster) = self.raster_around(item, crate::scene::path_points(cmds), reach) {
+                        self.image(&common, &raster);
+                        return;
+                    }
+                }
                 let Some(cmds) = clean_path(cmds) else { return };
                 let _ = writeln!(self.out, "<path{common} d=\"{}\"{}/>", path_data(&cmds), style_attrs(&item.style));
             }
@@ -225,14 +253,32 @@ impl Writer {
 
     /// The batch drawn alone at [`POINT_RASTER_SCALE`], cut to the device pixels its points cover.
     fn point_raster(&self, item: &Item, batch: &PointBatch) -> Option<Raster> {
-        let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+        let outline = batch.stroke.as_ref().map_or(0.0, |s| s.width);
+        let reach = |i: usize| batch.radius.at(i).filter(|r| r.is_finite() && *r > 0.0).map(|r| r + outline);
+        let mut bounds = Bounds::default();
         for (i, c) in batch.centers.iter().enumerate() {
-            let r = batch.radius.at(i).unwrap_or(0.0);
-            if finite_point(*c) && r.is_finite() && r > 0.0 {
-                let reach = r + batch.stroke.as_ref().map_or(0.0, |s| s.width);
-                (lo[0], lo[1]) = (lo[0].min(c.x - reach), lo[1].min(c.y - reach));
-                (hi[0], hi[1]) = (hi[0].max(c.x + reach), hi[1].max(c.y + reach));
+            if let Some(r) = reach(i) {
+                bounds.add(*c, r);
             }
+        }
+        self.raster_of(item, bounds)
+    }
+
+    /// `item` drawn alone at [`POINT_RASTER_SCALE`], cut to the device pixels that `points`
+    /// (each reaching `reach` around it) cover.
+    fn raster_around(&self, item: &Item, points: impl Iterator<Item = Point>, reach: f64) -> Option<Raster> {
+        let reach = if reach.is_finite() { reach.max(0.0) + 1.0 } else { 1.0 };
+        let mut bounds = Bounds::default();
+        for p in points {
+            bounds.add(p, reach);
+        }
+        self.raster_of(item, bounds)
+    }
+
+    /// `item` drawn alone at [`POINT_RASTER_SCALE`], cut to `bounds` (in canvas units).
+    fn raster_of(&self, item: &Item, Bounds { lo, hi }: Bounds) -> Option<Raster> {
+        if !(lo[0] <= hi[0] && lo[1] <= hi[1]) {
+            return None;
         }
         let s = POINT_RASTER_SCALE;
         let (w, h) = self.canvas;
@@ -243,9 +289,6 @@ impl Writer {
             px(hi[0], w).ceil() as u32,
             px(hi[1], h).ceil() as u32,
         );
-        if !(lo[0] <= hi[0] && lo[1] <= hi[1]) {
-            return None;
-        }
         super::png::item_raster(item, self.canvas, s, bounds).ok()
     }
 
@@ -253,6 +296,12 @@ impl Writer {
     /// (with `data-row` when the item has one row per polyline). A non-finite vertex ends its
     /// subpath; polylines with nothing to draw are left out.
     fn lines(&mut self, item: &Item, common: &str, batch: &LineBatch) {
+        if batch.drawn_as_raster()
+            && let Some(raster) = self.raster_around(item, batch.points.iter().copied(), batch.width)
+        {
+            self.image(common, &raster);
+            return;
+        }
         let visible_width = batch.width.is_finite() && batch.width > 0.0;
         let stroke_color = |c: Option<Color>| match c {
             Some(c) if visible_width => stroke_color_attrs(c),
@@ -641,6 +690,43 @@ pub(crate) mod tests {
         // Bounds 19..30.9 × 29..40.9 at 2 device pixels per unit: 38..62 × 58..82.
         assert!(raster.contains("x=\"19\" y=\"29\" width=\"12\" height=\"12\""), "{}", &raster[..600]);
         assert!(raster.contains("data-role=\"data-mark\""));
+    }
+
+    #[test]
+    fn line_batches_and_paths_above_their_limits_become_one_image_of_their_bounds() {
+        let scene = |item: Item| Scene {
+            width: 200.0,
+            height: 100.0,
+            background: Color::WHITE,
+            title: None,
+            items: vec![item],
+        };
+        // Zig-zags between x = 20 and 40 inside y = 30..50: the raster covers that box and the stroke width + 1 around it.
+        let at = |i: usize| Point::new(20.0 + (i % 2) as f64 * 20.0, 30.0 + (i % 21) as f64);
+        let lines = |n: usize| {
+            let batch = LineBatch {
+                points: (0..n).map(at).collect(),
+                stride: 2,
+                color: PerPoint::Uniform(Color::BLACK),
+                width: 2.0,
+            };
+            to_svg(&scene(Item::new(Role::DataMark, Shape::Lines(batch), Style::default())))
+        };
+        let vector = lines(LineBatch::VECTOR_LIMIT);
+        assert_eq!(vector.matches("<path d").count(), LineBatch::VECTOR_LIMIT / 2);
+        let raster = lines(LineBatch::VECTOR_LIMIT + 2);
+        assert_eq!((raster.matches("<path").count(), raster.matches("<image").count()), (0, 1));
+        assert!(raster.contains("x=\"17\" y=\"27\" width=\"26\" height=\"26\""), "{}", &raster[..600]);
+        let path = |n: usize| {
+            let cmds = (0..n).map(|i| if i == 0 { PathCmd::MoveTo(at(i)) } else { PathCmd::LineTo(at(i)) }).collect();
+            let style = Style::stroke(Color::BLACK, 2.0);
+            to_svg(&scene(Item::new(Role::DataMark, Shape::Path(cmds), style)))
+        };
+        let vector = path(crate::scene::PATH_VECTOR_LIMIT);
+        assert_eq!((vector.matches("<path").count(), vector.matches("<image").count()), (1, 0));
+        let raster = path(crate::scene::PATH_VECTOR_LIMIT + 1);
+        assert_eq!((raster.matches("<path").count(), raster.matches("<image").count()), (0, 1));
+        assert!(raster.contains("x=\"17\" y=\"27\" width=\"26\" height=\"26\""), "{}", &raster[..600]);
     }
 
     #[test]

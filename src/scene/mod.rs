@@ -167,6 +167,23 @@ impl Style {
     }
 }
 
+/// Vector backends (SVG) draw a path of more commands than this as an embedded raster: a contour
+/// band or a network's edges with millions of vertices would make a file of hundreds of
+/// megabytes.
+pub const PATH_VECTOR_LIMIT: usize = 400_000;
+
+/// Points of a path's commands (end and control points), for its bounds.
+pub fn path_points(cmds: &[PathCmd]) -> impl Iterator<Item = Point> + '_ {
+    cmds.iter()
+        .flat_map(|c| match *c {
+            PathCmd::MoveTo(p) | PathCmd::LineTo(p) => [Some(p), None, None],
+            PathCmd::QuadTo(a, b) => [Some(a), Some(b), None],
+            PathCmd::CubicTo(a, b, c) => [Some(a), Some(b), Some(c)],
+            PathCmd::Close => [None, None, None],
+        })
+        .flatten()
+}
+
 /// One drawing command of a path.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum PathCmd {
@@ -284,6 +301,16 @@ pub struct LineBatch {
 }
 
 impl LineBatch {
+    /// Vector backends (SVG) draw a batch of more vertices than this as one embedded raster, as
+    /// they do large point batches.
+    pub const VECTOR_LIMIT: usize = 400_000;
+
+    /// Whether vector backends embed this batch as a raster (more than [`Self::VECTOR_LIMIT`]
+    /// vertices).
+    pub fn drawn_as_raster(&self) -> bool {
+        self.points.len() > Self::VECTOR_LIMIT
+    }
+
     /// Number of whole polylines (`points.len() / stride`; trailing vertices that do not make a whole polyline
     /// are ignored, and a stride below 2 gives none).
     pub fn len(&self) -> usize {
