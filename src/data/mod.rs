@@ -11,6 +11,7 @@
 
 pub mod compressed;
 pub mod contained;
+pub mod csv_tail;
 pub mod date_guess;
 pub mod frame;
 pub mod geojson;

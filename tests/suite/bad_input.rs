@@ -308,3 +308,13 @@ fn null_values_replaces_the_missing_list() {
     let dataink::data::ColumnValues::Text(categories) = &y.values else { panic!("`NA` is text under `[]`: {y:?}") };
     assert_eq!(categories.levels, ["2", "NA", "4"]);
 }
+
+#[test]
+fn a_quote_opening_the_last_field_is_refused_before_parsing() {
+    // polars' line parser read past its buffer on this ending (an abort in a debug build).
+    for ending in ["\"", "1,\""] {
+        let csv = format!("x,y\n1,2\n{ending}");
+        let out = data_error("d.csv", csv.as_bytes());
+        assert!(out.contains("the file ends with a quote that opens a field and is never closed"), "{out}");
+    }
+}

@@ -205,23 +205,39 @@ pub fn scan(source: &DataSource, spec_dir: &Path, policy: PathPolicy) -> Result<
         // Empty, missing and compressed files go to the readers, which say what is wrong.
         let readable = std::fs::metadata(&resolved).is_ok_and(|m| m.is_file() && m.len() > 0);
         let text = resolved.to_string_lossy().into_owned();
+        let separator = source.delimiter.as_deref().and_then(|d| d.bytes().next()).unwrap_or(if ext == "tsv" {
+            b'\t'
+        } else {
+            b','
+        });
+        let csv_scan = |null_values: Option<NullValues>| {
+            LazyCsvReader::new(PlRefPath::new(text.as_str()))
+                .with_has_header(true)
+                .with_infer_schema_length(Some(10_000))
+                .with_try_parse_dates(true)
+                .with_null_values(null_values)
+                .map_parse_options(|p| p.with_separator(separator))
+                .finish()
+        };
+        // Without the source's own list, a file of numbers only is scanned without comparing
+        // each cell with the missing texts (see below).
+        let is_csv = matches!(format, Some(DataFormat::Csv)) && matches!(ext.as_str(), "csv" | "tsv" | "txt");
+        let default_missing = is_csv && source.null_values.is_none();
+        if readable && is_csv {
+            let tail = crate::data::csv_tail::check_file(&resolved, separator)
+                .map_err(|e| LoadError::from_io(&resolved, e))?;
+            tail.map_err(|message| LoadError::Parse {
+                origin: format!("`{}`", resolved.display()),
+                format: DataFormat::Csv,
+                message: message.into(),
+            })?;
+        }
         let lazy = match format {
-            Some(DataFormat::Csv) if readable && matches!(ext.as_str(), "csv" | "tsv" | "txt") => {
-                let separator = source.delimiter.as_deref().and_then(|d| d.bytes().next()).unwrap_or(if ext == "tsv" {
-                    b'\t'
-                } else {
-                    b','
-                });
-                Some(
-                    LazyCsvReader::new(PlRefPath::new(text.as_str()))
-                        .with_has_header(true)
-                        .with_infer_schema_length(Some(10_000))
-                        .with_try_parse_dates(true)
-                        .with_null_values(crate::data::missing::csv_null_values(source.null_values.as_deref()))
-                        .map_parse_options(|p| p.with_separator(separator))
-                        .finish(),
-                )
-            }
+            Some(DataFormat::Csv) if readable && is_csv => Some(csv_scan(
+                (!default_missing)
+                    .then(|| crate::data::missing::csv_null_values(source.null_values.as_deref()))
+                    .flatten(),
+            )),
             Some(DataFormat::Parquet) if readable && matches!(ext.as_str(), "parquet" | "pq") => {
                 Some(LazyFrame::scan_parquet(PlRefPath::new(text.as_str()), ScanArgsParquet::default()))
             }
@@ -236,9 +252,17 @@ pub fn scan(source: &DataSource, spec_dir: &Path, policy: PathPolicy) -> Result<
             };
             let mut lf = lf.map_err(failed)?;
             // Check the file now (header, schema), so a bad file is a load error, not a step's.
-            let schema = crate::data::contained::contain(|| lf.collect_schema())
-                .map_err(|message| LoadError::Parse { origin: origin.clone(), format, message })?
-                .map_err(failed)?;
+            let schema_of = |lf: &mut LazyFrame| {
+                crate::data::contained::contain(|| lf.collect_schema())
+                    .map_err(|message| LoadError::Parse { origin: origin.clone(), format, message })?
+                    .map_err(failed)
+            };
+            let mut schema = schema_of(&mut lf)?;
+            // A text column may hold missing texts (and be numbers once they are read as missing).
+            if default_missing && crate::data::missing::may_hold_missing_text(&schema) {
+                lf = csv_scan(crate::data::missing::csv_null_values(None)).map_err(failed)?;
+                schema = schema_of(&mut lf)?;
+            }
             // A byte-order mark is not part of the first column's name.
             if let Some(first) = schema.iter_names().next()
                 && let Some(clean) = first.strip_prefix('\u{feff}')
