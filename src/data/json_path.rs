@@ -12,7 +12,7 @@ use std::io::Cursor;
 use polars::prelude::*;
 use serde_json::Value;
 
-use super::json_scan::{MAX_RECORD_DEPTH, TooDeep, check_depth, quote_wide_integers};
+use super::json_scan::{MAX_RECORD_DEPTH, TooDeep, quote_wide_integers, scan};
 use super::load::first_line;
 use super::matrix::{MAX_CELLS, Matrix};
 use crate::spec::suggest::did_you_mean;
@@ -47,11 +47,11 @@ pub enum JsonError {
 
 /// Read JSON bytes; `lines` for newline-delimited records (`.jsonl`, `.ndjson`).
 pub fn read_json(bytes: &[u8], json_path: Option<&str>, lines: bool) -> Result<JsonContent, JsonError> {
-    check_depth(bytes, MAX_RECORD_DEPTH).map_err(JsonError::TooDeep)?;
+    let long_integer = scan(bytes, MAX_RECORD_DEPTH).map_err(JsonError::TooDeep)?.long_integer;
     let first = bytes.iter().find(|b| !b.is_ascii_whitespace() && **b != 0xef && **b != 0xbb && **b != 0xbf);
     match (json_path, lines, first) {
-        (None, true, _) => return records(bytes, JsonFormat::JsonLines).map(JsonContent::Frame),
-        (None, false, Some(b'[')) => return records(bytes, JsonFormat::Json).map(JsonContent::Frame),
+        (None, true, _) => return records(bytes, JsonFormat::JsonLines, long_integer).map(JsonContent::Frame),
+        (None, false, Some(b'[')) => return records(bytes, JsonFormat::Json, long_integer).map(JsonContent::Frame),
         (Some(_), true, _) => {
             return Err(JsonError::Path {
                 message: "`json_path` needs one JSON document, not records one per line".into(),
@@ -65,7 +65,7 @@ pub fn read_json(bytes: &[u8], json_path: Option<&str>, lines: bool) -> Result<J
         Ok(v) => v,
         // Several objects one after another: records one per line in a `.json` file.
         Err(e) if json_path.is_none() && e.to_string().starts_with("trailing characters") => {
-            return records(bytes, JsonFormat::JsonLines).map(JsonContent::Frame);
+            return records(bytes, JsonFormat::JsonLines, long_integer).map(JsonContent::Frame);
         }
         Err(e) => return Err(JsonError::Syntax(e.to_string())),
     };
@@ -76,7 +76,7 @@ pub fn read_json(bytes: &[u8], json_path: Option<&str>, lines: bool) -> Result<J
     match target {
         Value::Array(_) => {
             let bytes = serde_json::to_vec(target).map_err(|e| JsonError::Syntax(e.to_string()))?;
-            records(&bytes, JsonFormat::Json).map(JsonContent::Frame)
+            records(&bytes, JsonFormat::Json, long_integer).map(JsonContent::Frame)
         }
         Value::Object(map) if is_grid(map) => grid(map).map(JsonContent::Grid).map_err(JsonError::Syntax),
         Value::Object(map) => {
@@ -171,8 +171,8 @@ fn kind_of(v: &Value) -> &'static str {
 
 /// Records (an array of objects, or objects one per line) into a frame through polars; integers
 /// wider than an `i64` are read as text.
-fn records(bytes: &[u8], format: JsonFormat) -> Result<DataFrame, JsonError> {
-    let bytes = quote_wide_integers(bytes);
+fn records(bytes: &[u8], format: JsonFormat, long_integer: bool) -> Result<DataFrame, JsonError> {
+    let bytes = if long_integer { quote_wide_integers(bytes) } else { std::borrow::Cow::Borrowed(bytes) };
     JsonReader::new(Cursor::new(&*bytes))
         .with_json_format(format)
         .infer_schema_len(None)

@@ -40,6 +40,20 @@ impl fmt::Display for TooDeep {
     }
 }
 
+/// The offset just past the string whose opening quote is at `open` (the end of `bytes` for an
+/// unterminated string); escapes are passed over.
+fn skip_string(bytes: &[u8], open: usize) -> usize {
+    let mut i = open + 1;
+    // Jump to the next quote or backslash: most of a JSON file is inside strings.
+    while let Some(skip) = bytes.get(i..).and_then(|rest| memchr::memchr2(b'"', b'\\', rest)) {
+        if bytes[i + skip] == b'"' {
+            return i + skip + 1;
+        }
+        i += skip + 2;
+    }
+    bytes.len()
+}
+
 /// The bytes outside JSON strings, each with its offset: `"` strings (escapes included) are
 /// passed over whole, their quotes included.
 fn outside_strings(bytes: &[u8]) -> impl Iterator<Item = (usize, u8)> + '_ {
@@ -47,45 +61,69 @@ fn outside_strings(bytes: &[u8]) -> impl Iterator<Item = (usize, u8)> + '_ {
     std::iter::from_fn(move || {
         while i < bytes.len() {
             let at = i;
-            let b = bytes[i];
-            i += 1;
-            if b != b'"' {
-                return Some((at, b));
+            if bytes[at] != b'"' {
+                i += 1;
+                return Some((at, bytes[at]));
             }
-            while i < bytes.len() {
-                match bytes[i] {
-                    b'\\' => i += 2,
-                    b'"' => {
-                        i += 1;
-                        break;
-                    }
-                    _ => i += 1,
-                }
-            }
+            i = skip_string(bytes, at);
         }
         None
     })
 }
 
+/// What one pass over JSON bytes found.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Scanned {
+    /// A run of at least 19 digits outside strings that may be a whole integer (not after a `.`,
+    /// not before `.`, `e` or `E`): only then can [`quote_wide_integers`] find anything.
+    pub long_integer: bool,
+}
+
+/// Digits a wide integer has at least (`i64::MIN` has 19 after its sign).
+const WIDE_DIGITS: usize = 19;
+
 /// Refuse `bytes` when its arrays and objects nest deeper than `limit`.
 pub fn check_depth(bytes: &[u8], limit: usize) -> Result<(), TooDeep> {
+    scan(bytes, limit).map(|_| ())
+}
+
+/// One tight pass over `bytes` (it runs before every JSON read): refuse nesting deeper than
+/// `limit`, and note whether an integer may be too wide for an `i64`.
+pub fn scan(bytes: &[u8], limit: usize) -> Result<Scanned, TooDeep> {
     let (mut depth, mut deepest, mut first_past) = (0usize, 0usize, None);
-    for (at, b) in outside_strings(bytes) {
-        match b {
+    let mut scanned = Scanned::default();
+    let mut i = 0;
+    while i < bytes.len() {
+        match bytes[i] {
+            b'"' => {
+                i = skip_string(bytes, i);
+                continue;
+            }
             b'[' | b'{' => {
                 depth += 1;
                 deepest = deepest.max(depth);
                 if depth > limit && first_past.is_none() {
-                    first_past = Some(at);
+                    first_past = Some(i);
                 }
             }
             b']' | b'}' => depth = depth.saturating_sub(1),
+            b'0'..=b'9' => {
+                let start = i;
+                while bytes.get(i).is_some_and(u8::is_ascii_digit) {
+                    i += 1;
+                }
+                let fraction = start > 0 && bytes[start - 1] == b'.';
+                let mantissa = matches!(bytes.get(i), Some(b'.' | b'e' | b'E'));
+                scanned.long_integer |= i - start >= WIDE_DIGITS && !fraction && !mantissa;
+                continue;
+            }
             _ => {}
         }
+        i += 1;
     }
     match first_past {
         Some(offset) => Err(TooDeep { depth: deepest, offset, limit }),
-        None => Ok(()),
+        None => Ok(scanned),
     }
 }
 
@@ -142,6 +180,9 @@ fn wide_integers(bytes: &[u8]) -> Vec<(usize, usize)> {
 /// Record `start..end` when it is a whole integer (no fraction or exponent) outside `i64`.
 fn push_if_wide(bytes: &[u8], start: usize, end: usize, found: &mut Vec<(usize, usize)>) {
     let literal = &bytes[start..end];
+    if literal.len() < WIDE_DIGITS {
+        return;
+    }
     let digits = literal.strip_prefix(b"-").unwrap_or(literal);
     let whole = !digits.is_empty() && digits.iter().all(u8::is_ascii_digit);
     let fits = std::str::from_utf8(literal).ok().and_then(|s| s.parse::<i64>().ok()).is_some();
@@ -169,6 +210,16 @@ mod tests {
         text.push_str(&format!("{{\"y\": {}{}}}\n", "[".repeat(20_000), "]".repeat(20_000)));
         let err = check_depth(text.as_bytes(), MAX_RECORD_DEPTH).expect_err("deep");
         assert_eq!((err.depth, err.offset), (20_001, 9 + 6 + 63));
+    }
+
+    #[test]
+    fn the_scan_notes_long_integers_outside_strings_only() {
+        let long = |text: &[u8]| scan(text, 64).expect("shallow").long_integer;
+        assert!(long(br#"[{"id": 18446744073709551615}]"#));
+        assert!(long(br#"[{"id": -9223372036854775809}]"#));
+        // Fractions, mantissas and digits inside strings are no integers.
+        assert!(!long(br#"[{"f": 0.0012345678901234567890, "m": 12345678901234567890e3}]"#));
+        assert!(!long(br#"[{"s": "18446744073709551615", "x": 1}]"#));
     }
 
     #[test]
