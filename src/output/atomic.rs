@@ -26,10 +26,7 @@ fn temporary_in(dir: &Path) -> PathBuf {
 /// link is followed), are synced, and the file is renamed over `path`. A symbolic link at `path`
 /// is replaced by the file, its target left untouched.
 pub fn write_file(path: &Path, bytes: &[u8]) -> io::Result<()> {
-    let dir = match path.parent() {
-        Some(p) if !p.as_os_str().is_empty() => p,
-        _ => Path::new("."),
-    };
+    let dir = super::folder_of(path);
     let temporary = temporary_in(dir);
     let written = write_new(&temporary, bytes).and_then(|()| std::fs::rename(&temporary, path));
     if written.is_err() {

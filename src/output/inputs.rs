@@ -46,10 +46,7 @@ fn places_of(input: &Path) -> Vec<PathBuf> {
 /// `path`'s file name joined to its folder's real path (the file itself may not exist yet).
 fn in_real_folder(path: &Path) -> Option<PathBuf> {
     let name = path.file_name()?;
-    let folder = match path.parent() {
-        Some(p) if !p.as_os_str().is_empty() => p,
-        _ => Path::new("."),
-    };
+    let folder = super::folder_of(path);
     Some(std::fs::canonicalize(folder).ok()?.join(name))
 }
 

@@ -10,3 +10,11 @@ mod lock;
 pub use atomic::{TEMP_SUFFIX, write_file};
 pub use inputs::{InputClash, refuse_inputs};
 pub use lock::{LOCK_FILE, LockError, OutputLock};
+
+/// The folder `path` is in (`.` for a bare file name).
+fn folder_of(path: &std::path::Path) -> &std::path::Path {
+    match path.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p,
+        _ => std::path::Path::new("."),
+    }
+}
