@@ -514,7 +514,15 @@ fn frame_from<R: polars::io::mmap::MmapBytesReader + 'static>(
                 .into_reader_with_file_handle(reader)
                 .finish()
         }
-        DataFormat::Parquet => ParquetReader::new(reader).with_columns(columns.map(<[String]>::to_vec)).finish(),
+        DataFormat::Parquet => {
+            let mut reader = reader;
+            super::parquet_bounds::check(&mut reader).map_err(|message| LoadError::Parse {
+                origin: origin.to_string(),
+                format,
+                message,
+            })?;
+            ParquetReader::new(reader).with_columns(columns.map(<[String]>::to_vec)).finish()
+        }
         DataFormat::Arrow => {
             return super::ipc::read_ipc(reader, head, columns).map_err(|message| LoadError::Parse {
                 origin: origin.to_string(),

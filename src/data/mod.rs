@@ -24,6 +24,7 @@ pub mod matrix;
 pub mod missing;
 pub mod nested;
 pub mod network;
+pub mod parquet_bounds;
 pub mod parse;
 pub mod paths;
 pub mod regular_file;

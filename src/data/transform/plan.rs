@@ -239,6 +239,15 @@ pub fn scan(source: &DataSource, spec_dir: &Path, policy: PathPolicy) -> Result<
                     .flatten(),
             )),
             Some(DataFormat::Parquet) if readable && matches!(ext.as_str(), "parquet" | "pq") => {
+                let mut file =
+                    crate::data::regular_file::open(&resolved).map_err(|e| LoadError::from_io(&resolved, e))?;
+                crate::data::contained::contain(|| crate::data::parquet_bounds::check(&mut file))
+                    .and_then(|checked| checked)
+                    .map_err(|message| LoadError::Parse {
+                        origin: format!("`{}`", resolved.display()),
+                        format: DataFormat::Parquet,
+                        message,
+                    })?;
                 Some(LazyFrame::scan_parquet(PlRefPath::new(text.as_str()), ScanArgsParquet::default()))
             }
             _ => None,
