@@ -186,6 +186,20 @@ mod tests {
         assert!(checked >= 2, "the gallery ships Parquet files");
     }
 
+    #[test]
+    fn a_file_another_writer_made_passes_and_reads() {
+        // pyarrow (scripts/parquet_fixture.py): dictionary pages, data pages V2 of 512 bytes,
+        // three row groups, zstd, nulls and a nested list column.
+        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/pyarrow_pages.parquet");
+        let mut file = std::fs::File::open(&path).expect("fixture");
+        check(&mut file).expect("a file pyarrow wrote is within bounds");
+        let df = ParquetReader::new(file).finish().expect("reads");
+        assert_eq!(df.height(), 3000);
+        // Every seventh `x` (i % 7 == 0) and every fifth list are missing.
+        assert_eq!(df.column("x").expect("x").null_count(), 429);
+        assert_eq!(df.column("l").expect("l").null_count(), 600);
+    }
+
     /// Encode `value` as a thrift compact zigzag varint.
     fn zigzag_varint(value: i32) -> Vec<u8> {
         let mut v = ((value << 1) ^ (value >> 31)) as u32;
