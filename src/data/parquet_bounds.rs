@@ -10,7 +10,7 @@
 //! expands at most [`MAX_EXPANSION`] times. Only the footer and the page headers are read, not the
 //! pages themselves.
 
-use std::io::{Read, Seek, SeekFrom};
+use std::io::{BufReader, Read, Seek, SeekFrom};
 
 use polars_parquet::parquet::metadata::ColumnChunkMetadata;
 use polars_parquet::parquet::read::read_metadata;
@@ -23,6 +23,10 @@ pub const MAX_EXPANSION: u64 = 1024;
 /// Bytes any page or chunk may expand to regardless of its compressed size.
 const EXPANSION_FLOOR: u64 = 1 << 20;
 
+/// Bytes read ahead while walking page headers: the thrift decoder reads a byte at a time, and
+/// small pages lie close together, so one read serves many headers.
+const HEADER_READ_AHEAD: usize = 8 * 1024;
+
 /// Largest page header read (polars' reader allows the same order of size).
 const MAX_HEADER_BYTES: usize = 1 << 24;
 
@@ -32,12 +36,14 @@ pub fn check<R: Read + Seek>(reader: &mut R) -> Result<(), String> {
     let file_len = reader.seek(SeekFrom::End(0)).map_err(|e| e.to_string())?;
     reader.rewind().map_err(|e| e.to_string())?;
     let metadata = read_metadata(reader).map_err(|e| super::transform::first_line(&e.to_string()))?;
+    let mut buffered = Positioned { inner: BufReader::with_capacity(HEADER_READ_AHEAD, &mut *reader), at: None };
     for (g, group) in metadata.row_groups.iter().enumerate() {
         for (c, column) in group.parquet_columns().iter().enumerate() {
-            check_chunk(reader, column, file_len)
+            check_chunk(&mut buffered, column, file_len)
                 .map_err(|m| format!("row group {}, column chunk {}: {m}", g + 1, c + 1))?;
         }
     }
+    drop(buffered);
     reader.rewind().map_err(|e| e.to_string())
 }
 
@@ -52,7 +58,11 @@ fn expands_within_bounds(compressed: u64, uncompressed: u64) -> bool {
 }
 
 /// One column chunk: where it lies, what it declares, then its pages.
-fn check_chunk<R: Read + Seek>(reader: &mut R, column: &ColumnChunkMetadata, file_len: u64) -> Result<(), String> {
+fn check_chunk<R: Read + Seek>(
+    reader: &mut Positioned<R>,
+    column: &ColumnChunkMetadata,
+    file_len: u64,
+) -> Result<(), String> {
     let start = count(column.dictionary_page_offset().unwrap_or(column.data_page_offset()), "page offset")?;
     let compressed = count(column.compressed_size(), "compressed size")?;
     let uncompressed = count(column.uncompressed_size(), "uncompressed size")?;
@@ -68,16 +78,17 @@ fn check_chunk<R: Read + Seek>(reader: &mut R, column: &ColumnChunkMetadata, fil
 }
 
 /// The page headers from `start` to `end`, until the chunk's `values` are seen.
-fn check_pages<R: Read + Seek>(reader: &mut R, start: u64, end: u64, values: u64) -> Result<(), String> {
+fn check_pages<R: Read + Seek>(reader: &mut Positioned<R>, start: u64, end: u64, values: u64) -> Result<(), String> {
     let (mut at, mut seen) = (start, 0u64);
     while at < end && seen < values {
-        reader.seek(SeekFrom::Start(at)).map_err(|e| e.to_string())?;
-        let mut counted = Counted { inner: reader.by_ref().take(end - at), read: 0 };
+        reader.go_to(at).map_err(|e| e.to_string())?;
+        let mut counted = Counted { inner: (&mut reader.inner).take(end - at), read: 0 };
         let header = {
             let mut protocol = TCompactInputProtocol::new(&mut counted, MAX_HEADER_BYTES);
             PageHeader::read_from_in_protocol(&mut protocol)
                 .map_err(|e| format!("an unreadable page header at byte {at}: {e}"))?
         };
+        reader.at = Some(at + counted.read);
         let page_values = check_page(&header, values).map_err(|m| format!("the page at byte {at}: {m}"))?;
         let body = count(header.compressed_page_size.into(), "compressed page size")?;
         at = (at + counted.read)
@@ -120,6 +131,29 @@ fn check_page(header: &PageHeader, chunk_values: u64) -> Result<u64, String> {
         return within_chunk(v2.num_values, "value");
     }
     Ok(0)
+}
+
+/// A buffered reader that knows its position, so a jump to a nearby page header stays inside
+/// the read-ahead instead of discarding it (file offsets are checked against the file's length,
+/// so they fit in `i64`).
+struct Positioned<R> {
+    inner: BufReader<R>,
+    /// Where the next byte comes from; `None` until the first jump.
+    at: Option<u64>,
+}
+
+impl<R: Read + Seek> Positioned<R> {
+    fn go_to(&mut self, target: u64) -> std::io::Result<()> {
+        // A relative jump keeps what is buffered when the target lies inside it.
+        match self.at {
+            Some(at) => self.inner.seek_relative(target as i64 - at as i64)?,
+            None => {
+                self.inner.seek(SeekFrom::Start(target))?;
+            }
+        }
+        self.at = Some(target);
+        Ok(())
+    }
 }
 
 /// A reader that counts the bytes read through it (the page header's length).
