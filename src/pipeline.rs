@@ -7,6 +7,7 @@ use std::path::{Path, PathBuf};
 use rayon::prelude::*;
 use serde_json::Value;
 
+use crate::data::transform::MissingScan;
 use crate::data::{self, PathPolicy, Table};
 use crate::lint::{self, ChartLint};
 use crate::mark::{self, ChartOutput, MarkError};
@@ -84,15 +85,23 @@ pub fn load(spec_path: &Path, policy: PathPolicy) -> Result<Loaded, Failed> {
     };
     let needed = needed_columns(&json);
     let mut tables = BTreeMap::new();
-    let plans = timed("plan data", || data::transform::build_plans(&sources, &doc, &spec_dir, policy, false));
+    let build = |missing| data::transform::build_plans(&sources, &doc, &spec_dir, policy, false, missing);
+    let plans = timed("plan data", || build(MissingScan::Fast));
+    let mut listed = None;
     diagnostics.extend(plans.errors.iter().map(|e| data::transform::to_diagnostic(e, &doc, &source.text)));
     for (name, source_spec) in &sources {
         let wanted: Option<Vec<String>> = needed.get(name).map(|set| set.iter().cloned().collect());
         if plans.failed.contains(name) {
             continue;
         }
-        if let Some(frame) = plans.frames.get(name) {
-            match timed(&format!("load data \"{name}\""), || collect_source(frame, wanted.as_deref(), name)) {
+        let collected = timed(&format!("load data \"{name}\""), || {
+            let listed_plans = || build(MissingScan::Listed);
+            data::transform::collect_retrying(&plans, &mut listed, listed_plans, name, |frame| {
+                collect_source(frame, wanted.as_deref(), name)
+            })
+        });
+        if let Some(collected) = collected {
+            match collected {
                 Ok(table) => {
                     let rules = source_spec.parse.as_ref();
                     let at = doc.span_of(&data::transform::plan::source_path(name, "transform"));
@@ -203,18 +212,20 @@ pub fn preview_sources(
         return Err(fail(source, vec![d]));
     }
     let spec_dir = spec_path.parent().map(Path::to_path_buf).unwrap_or_else(|| PathBuf::from("."));
-    let plans = data::transform::build_plans(&sources, &doc, &spec_dir, policy, true);
+    let build = |missing| data::transform::build_plans(&sources, &doc, &spec_dir, policy, true, missing);
+    let plans = build(MissingScan::Fast);
+    let mut listed = None;
     let mut diagnostics: Vec<Diagnostic> =
         plans.errors.iter().map(|e| data::transform::to_diagnostic(e, &doc, &source.text)).collect();
     let mut out = Vec::new();
-    for (name, frame) in &plans.frames {
+    for name in plans.frames.keys() {
         if only.is_some_and(|o| o != name) {
             continue;
         }
-        let mut lf = frame.clone();
-        let result = data::contained::contain(|| {
-            lf.collect_schema()
-                .and_then(|schema| {
+        let preview = |frame: &polars::prelude::LazyFrame| {
+            let mut lf = frame.clone();
+            data::contained::contain(|| {
+                lf.collect_schema().and_then(|schema| {
                     let count = frame.clone().select([polars::prelude::len()]).collect()?;
                     let n = count
                         .columns()
@@ -225,9 +236,13 @@ pub fn preview_sources(
                     let head = frame.clone().limit(rows as polars::prelude::IdxSize).collect()?;
                     Ok((schema, n, head))
                 })
-                .map_err(|e| data::transform::first_line(&e.to_string()))
-        })
-        .and_then(|r| r);
+            })
+            .and_then(|r| r.map_err(|e| data::transform::first_line(&e.to_string())))
+        };
+        let listed_plans = || build(MissingScan::Listed);
+        let Some(result) = data::transform::collect_retrying(&plans, &mut listed, listed_plans, name, preview) else {
+            continue;
+        };
         match result {
             Ok((schema, n, head)) => out.push(SourcePreview {
                 name: name.clone(),

@@ -29,8 +29,8 @@ pub fn holds_missing_text(df: &DataFrame) -> bool {
     })
 }
 
-/// Whether a schema read without the list has a text column, which may hold missing texts: a lazy
-/// scan then compares its cells with the list (a file of numbers only is scanned as it is).
+/// Whether a schema has a text column, which may hold missing texts: a lazy scan then compares
+/// its cells with the list (a file of numbers and dates only is scanned as it is).
 pub fn may_hold_missing_text(schema: &polars::prelude::Schema) -> bool {
     schema.iter_values().any(|dtype| dtype == &DataType::String)
 }

@@ -502,3 +502,74 @@ transform = [{ aggregate = { n = "count()" }, groupby = ["Origin"] }]"#,
     assert!(stdout.starts_with("data \"cars\": 3 rows, 2 columns\n  Origin: str\n  n: f64\n"), "{stdout}");
     assert!(stdout.contains("Japan"), "{stdout}");
 }
+
+/// `n` rows of `day,value`: dates from 2020-01-01 and the row index as the value, except that
+/// row `missing_at` holds `NA`.
+fn dated_rows(n: usize, missing_at: usize) -> String {
+    let mut csv = String::from("day,value\n");
+    let start = 18_262; // 2020-01-01 in days since the epoch
+    for i in 0..n {
+        let (y, m, d) = civil_from_days(start + i as i64);
+        let value = if i == missing_at { "NA".to_string() } else { i.to_string() };
+        csv.push_str(&format!("{y:04}-{m:02}-{d:02},{value}\n"));
+    }
+    csv
+}
+
+/// The proleptic Gregorian date of a day count since 1970-01-01 (Hinnant's algorithm).
+fn civil_from_days(z: i64) -> (i64, i64, i64) {
+    let z = z + 719_468;
+    let era = z.div_euclid(146_097);
+    let doe = z - era * 146_097;
+    let yoe = (doe - doe / 1460 + doe / 36_524 - doe / 146_096) / 365;
+    let doy = doe - (365 * yoe + yoe / 4 - yoe / 100);
+    let mp = (5 * doy + 2) / 153;
+    let d = doy - (153 * mp + 2) / 5 + 1;
+    let m = if mp < 10 { mp + 3 } else { mp - 9 };
+    (yoe + era * 400 + i64::from(m <= 2), m, d)
+}
+
+#[test]
+fn a_missing_text_below_the_inferred_rows_of_a_lazy_scan_is_missing() {
+    // The schema is inferred from the first 10,000 rows (numbers and dates only there), so the
+    // scan first skips the missing texts; the `NA` at row 12,000 makes it read the file again
+    // comparing cells with the list, instead of failing with "could not parse `NA`".
+    let csv = dated_rows(12_500, 12_000);
+    let text =
+        spec_columns("[data.d]\npath = \"d.csv\"\ntransform = [{ filter = \"value >= 0\" }]", "d", &["day", "value"]);
+    let loaded = Fixture::new(&text, &[("d.csv", csv.as_bytes())]).load().unwrap_or_else(|e| panic!("{e}"));
+    let t = &loaded.tables["d"];
+    // The filter drops the missing row (a comparison with a missing value is not true).
+    let values = numbers(t, "value");
+    assert_eq!(values.len(), 12_499);
+    assert_eq!(values[11_999], 11_999.0);
+    assert_eq!(values[12_000], 12_001.0);
+    // The dates are still instants after the second read: 2020-01-01 and 12,000 days on.
+    let Some(ColumnValues::Time(days)) = t.column("day").map(|c| &c.values) else { panic!("day is not a time") };
+    assert_eq!(days[0], 1_577_836_800_000.0);
+    assert_eq!(days[12_000], 1_577_836_800_000.0 + 12_001.0 * 86_400_000.0);
+}
+
+#[test]
+fn a_numbers_only_lazy_scan_keeps_its_dates_and_numbers() {
+    // No missing text anywhere: the fast scan reuses the inferred schema without the list.
+    let csv = dated_rows(300, usize::MAX);
+    let text =
+        spec_columns("[data.d]\npath = \"d.csv\"\ntransform = [{ filter = \"value >= 100\" }]", "d", &["day", "value"]);
+    let loaded = Fixture::new(&text, &[("d.csv", csv.as_bytes())]).load().unwrap_or_else(|e| panic!("{e}"));
+    let t = &loaded.tables["d"];
+    assert_eq!(numbers(t, "value"), (100..300).map(f64::from).collect::<Vec<_>>());
+    let Some(ColumnValues::Time(days)) = t.column("day").map(|c| &c.values) else { panic!("day is not a time") };
+    assert_eq!(days[0], 1_577_836_800_000.0 + 100.0 * 86_400_000.0);
+}
+
+#[test]
+fn a_text_that_is_not_missing_below_the_inferred_rows_is_an_error_once() {
+    let mut csv = dated_rows(10_500, usize::MAX);
+    csv.push_str("2049-01-01,lots\n");
+    let text =
+        spec_columns("[data.d]\npath = \"d.csv\"\ntransform = [{ filter = \"value >= 0\" }]", "d", &["day", "value"]);
+    let out = Fixture::new(&text, &[("d.csv", csv.as_bytes())]).load().expect_err("`lots` is not a number");
+    assert_eq!(out.matches("error:").count(), 1, "{out}");
+    assert!(out.contains("lots"), "{out}");
+}

@@ -23,7 +23,7 @@ use std::ops::Range;
 use crate::spec::PathSeg;
 
 pub use place::to_diagnostic;
-pub use plan::{PlanError, SourcePlans, build_plans};
+pub use plan::{MissingScan, PlanError, SourcePlans, build_plans, collect_retrying};
 
 /// A problem with a transform step, placed in the spec.
 #[derive(Clone, Debug, PartialEq)]

@@ -36,6 +36,21 @@ pub struct SourcePlans {
     pub errors: Vec<PlanError>,
     /// The sources that needed a plan and have none because of a problem.
     pub failed: BTreeSet<String>,
+    /// The file sources scanned without comparing cells with the missing texts
+    /// ([`MissingScan::Fast`]).
+    pub unlisted: BTreeSet<String>,
+}
+
+/// How a lazy CSV scan without the source's own `null_values` treats the default missing texts.
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+pub enum MissingScan {
+    /// The schema is inferred with the list; a file whose inferred columns are numbers and dates
+    /// only is then read without comparing each cell with the list (reused schema, no second
+    /// inference). A missing text below the inferred rows makes the collect fail: build the
+    /// plans again with [`MissingScan::Listed`] ([`collect_retrying`]).
+    Fast,
+    /// Every cell is compared with the list.
+    Listed,
 }
 
 impl std::fmt::Debug for SourcePlans {
@@ -44,6 +59,7 @@ impl std::fmt::Debug for SourcePlans {
             .field("frames", &self.frames.keys().collect::<Vec<_>>())
             .field("errors", &self.errors)
             .field("failed", &self.failed)
+            .field("unlisted", &self.unlisted)
             .finish()
     }
 }
@@ -69,6 +85,7 @@ pub fn build_plans(
     spec_dir: &Path,
     policy: PathPolicy,
     all: bool,
+    missing: MissingScan,
 ) -> SourcePlans {
     let referenced: BTreeSet<String> = sources.values().flat_map(dependencies).collect();
     let names: Vec<String> = sources.keys().cloned().collect();
@@ -77,10 +94,39 @@ pub fn build_plans(
     for name in sources.keys() {
         if all || needs_plan(name, &sources[name], &referenced) {
             let mut stack = Vec::new();
-            visit(name, sources, doc, spec_dir, policy, &names, &mut state, &mut stack, &mut plans);
+            let place = Place { sources, doc, spec_dir, policy, missing, names: &names };
+            visit(name, &place, &mut state, &mut stack, &mut plans);
         }
     }
     plans
+}
+
+/// Run `work` on the plan of `name` in `plans`; when it fails and a scan there skipped the
+/// missing texts, run it again on the [`MissingScan::Listed`] plans, which `listed` builds (once:
+/// they are kept in `cache`). `None` when no plan of `name` exists.
+pub fn collect_retrying<T, E>(
+    plans: &SourcePlans,
+    cache: &mut Option<SourcePlans>,
+    listed: impl FnOnce() -> SourcePlans,
+    name: &str,
+    work: impl Fn(&LazyFrame) -> Result<T, E>,
+) -> Option<Result<T, E>> {
+    let first = work(plans.frames.get(name)?);
+    if first.is_ok() || plans.unlisted.is_empty() {
+        return Some(first);
+    }
+    let again = cache.get_or_insert_with(listed);
+    Some(again.frames.get(name).map_or(first, work))
+}
+
+/// What every source's plan is made against.
+struct Place<'a> {
+    sources: &'a BTreeMap<String, DataSource>,
+    doc: &'a SpecDoc,
+    spec_dir: &'a Path,
+    policy: PathPolicy,
+    missing: MissingScan,
+    names: &'a [String],
 }
 
 #[derive(Clone, Copy, PartialEq)]
@@ -89,18 +135,14 @@ enum Visit {
     Done,
 }
 
-#[allow(clippy::too_many_arguments)]
 fn visit<'a>(
     name: &'a str,
-    sources: &'a BTreeMap<String, DataSource>,
-    doc: &SpecDoc,
-    spec_dir: &Path,
-    policy: PathPolicy,
-    names: &[String],
+    place: &Place<'a>,
     state: &mut BTreeMap<&'a str, Visit>,
     stack: &mut Vec<&'a str>,
     plans: &mut SourcePlans,
 ) {
+    let sources = place.sources;
     let Some(source) = sources.get(name) else { return };
     match state.get(name) {
         Some(Visit::Done) => return,
@@ -122,12 +164,12 @@ fn visit<'a>(
     stack.push(name);
     for dep in dependencies(source) {
         if let Some((key, _)) = sources.get_key_value(dep.as_str()) {
-            visit(key, sources, doc, spec_dir, policy, names, state, stack, plans);
+            visit(key, place, state, stack, plans);
         }
     }
     stack.pop();
     state.insert(name, Visit::Done);
-    match plan_one(name, source, doc, spec_dir, policy, names, plans) {
+    match plan_one(name, source, place, plans) {
         Some(frame) => {
             plans.frames.insert(name.to_owned(), frame);
         }
@@ -137,15 +179,8 @@ fn visit<'a>(
     }
 }
 
-fn plan_one(
-    name: &str,
-    source: &DataSource,
-    doc: &SpecDoc,
-    spec_dir: &Path,
-    policy: PathPolicy,
-    names: &[String],
-    plans: &mut SourcePlans,
-) -> Option<LazyFrame> {
+fn plan_one(name: &str, source: &DataSource, place: &Place, plans: &mut SourcePlans) -> Option<LazyFrame> {
+    let names = place.names;
     let base = match &source.from {
         Some(from) => match plans.frames.get(from) {
             Some(frame) => frame.clone(),
@@ -169,15 +204,20 @@ fn plan_one(
                 return None;
             }
         },
-        None => match scan(source, spec_dir, policy) {
-            Ok(frame) => frame,
+        None => match scan(source, place.spec_dir, place.policy, place.missing) {
+            Ok(Scanned { frame, unlisted }) => {
+                if unlisted {
+                    plans.unlisted.insert(name.to_owned());
+                }
+                frame
+            }
             Err(error) => {
                 plans.errors.push(PlanError::Load { source: name.to_owned(), error });
                 return None;
             }
         },
     };
-    let steps = doc.get(&source_path(name, "transform"));
+    let steps = place.doc.get(&source_path(name, "transform"));
     let Some(items) = steps.and_then(SpannedValue::as_array) else { return Some(base) };
     let env = Env { source: name, others: &plans.frames, names };
     match apply_steps(base, items, &source_path(name, "transform"), &env) {
@@ -194,10 +234,16 @@ pub fn source_path(name: &str, key: &str) -> Vec<PathSeg> {
     vec![PathSeg::Key("data".into()), PathSeg::Key(name.to_owned()), PathSeg::Key(key.to_owned())]
 }
 
+/// A source's rows as a lazy frame, and whether its cells skip the missing texts.
+struct Scanned {
+    frame: LazyFrame,
+    unlisted: bool,
+}
+
 /// The rows of a source as a lazy frame: plain CSV and Parquet files without `parse` rules are
 /// scanned lazily (so the transforms' projections and predicates reach the reader); other
 /// sources are read whole by their readers.
-pub fn scan(source: &DataSource, spec_dir: &Path, policy: PathPolicy) -> Result<LazyFrame, LoadError> {
+fn scan(source: &DataSource, spec_dir: &Path, policy: PathPolicy, missing: MissingScan) -> Result<Scanned, LoadError> {
     if let (Some(path), None) = (&source.path, &source.parse) {
         let resolved = resolve_data_path(spec_dir, path, policy).map_err(LoadError::Path)?;
         let ext = resolved.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase).unwrap_or_default();
@@ -210,8 +256,9 @@ pub fn scan(source: &DataSource, spec_dir: &Path, policy: PathPolicy) -> Result<
         } else {
             b','
         });
-        let csv_scan = |null_values: Option<NullValues>| {
+        let csv_scan = |null_values: Option<NullValues>, schema: Option<SchemaRef>| {
             LazyCsvReader::new(PlRefPath::new(text.as_str()))
+                .with_schema(schema)
                 .with_has_header(true)
                 .with_infer_schema_length(Some(10_000))
                 .with_try_parse_dates(true)
@@ -219,8 +266,6 @@ pub fn scan(source: &DataSource, spec_dir: &Path, policy: PathPolicy) -> Result<
                 .map_parse_options(|p| p.with_separator(separator))
                 .finish()
         };
-        // Without the source's own list, a file of numbers only is scanned without comparing
-        // each cell with the missing texts (see below).
         let is_csv = matches!(format, Some(DataFormat::Csv)) && matches!(ext.as_str(), "csv" | "tsv" | "txt");
         let default_missing = is_csv && source.null_values.is_none();
         if readable && is_csv {
@@ -233,11 +278,9 @@ pub fn scan(source: &DataSource, spec_dir: &Path, policy: PathPolicy) -> Result<
             })?;
         }
         let lazy = match format {
-            Some(DataFormat::Csv) if readable && is_csv => Some(csv_scan(
-                (!default_missing)
-                    .then(|| crate::data::missing::csv_null_values(source.null_values.as_deref()))
-                    .flatten(),
-            )),
+            Some(DataFormat::Csv) if readable && is_csv => {
+                Some(csv_scan(crate::data::missing::csv_null_values(source.null_values.as_deref()), None))
+            }
             Some(DataFormat::Parquet) if readable && matches!(ext.as_str(), "parquet" | "pq") => {
                 let mut file =
                     crate::data::regular_file::open(&resolved).map_err(|e| LoadError::from_io(&resolved, e))?;
@@ -266,11 +309,13 @@ pub fn scan(source: &DataSource, spec_dir: &Path, policy: PathPolicy) -> Result<
                     .map_err(|message| LoadError::Parse { origin: origin.clone(), format, message })?
                     .map_err(failed)
             };
-            let mut schema = schema_of(&mut lf)?;
-            // A text column may hold missing texts (and be numbers once they are read as missing).
-            if default_missing && crate::data::missing::may_hold_missing_text(&schema) {
-                lf = csv_scan(crate::data::missing::csv_null_values(None)).map_err(failed)?;
-                schema = schema_of(&mut lf)?;
+            let schema = schema_of(&mut lf)?;
+            // Numbers and dates only: the cells need not be compared with the missing texts.
+            let unlisted = default_missing
+                && missing == MissingScan::Fast
+                && !crate::data::missing::may_hold_missing_text(&schema);
+            if unlisted {
+                lf = csv_scan(None, Some(schema.clone())).map_err(failed)?;
             }
             // A byte-order mark is not part of the first column's name.
             if let Some(first) = schema.iter_names().next()
@@ -278,8 +323,9 @@ pub fn scan(source: &DataSource, spec_dir: &Path, policy: PathPolicy) -> Result<
             {
                 lf = lf.rename([first.as_str()], [clean], true);
             }
-            return Ok(lf);
+            return Ok(Scanned { frame: lf, unlisted });
         }
     }
-    Ok(crate::data::load::source_frame(source, spec_dir, policy)?.lazy())
+    let frame = crate::data::load::source_frame(source, spec_dir, policy)?.lazy();
+    Ok(Scanned { frame, unlisted: false })
 }
