@@ -584,7 +584,10 @@ pub fn continuous_map(index: usize, keys: &[&str], name: Option<&str>) -> Result
     let scheme = name.unwrap_or(color::DEFAULT_SEQUENTIAL);
     color::continuous(scheme).ok_or_else(|| {
         let names = color::continuous_names();
-        let hint = crate::spec::suggest::hint(scheme, names, "continuous schemes", false);
+        let mut hint = crate::spec::suggest::hint(scheme, names, "continuous schemes", false);
+        if let Some(note) = crate::spec::foreign::value(scheme) {
+            hint = format!("{note}; {hint}");
+        }
         MarkError::at(index, keys, format!("unknown continuous colour scheme `{scheme}`"), hint)
     })
 }

@@ -7,6 +7,7 @@
 //! (see [`SpecDoc::span_of`] and [`chart_path`]).
 
 pub mod diagnostic;
+pub(crate) mod foreign;
 pub mod schema;
 pub mod source;
 pub mod suggest;

@@ -429,9 +429,11 @@ impl<'s> Walker<'s> {
             message.push_str(&format!("; did you mean `{best}`?"));
         }
         let list: Vec<String> = values.iter().map(|v| format!("`{v}`")).collect();
-        self.diags.push(
-            Diagnostic::error(message).at(v.span.clone()).with_hint(format!("expected one of: {}", list.join(", "))),
-        );
+        let mut hint = format!("expected one of: {}", list.join(", "));
+        if let Some(note) = super::foreign::value(text) {
+            hint = format!("{note}; {hint}");
+        }
+        self.diags.push(Diagnostic::error(message).at(v.span.clone()).with_hint(hint));
     }
 
     fn check_number(&mut self, v: &SpannedValue, s: &'s Value, path: &[PathSeg], field: Field<'s>) {
@@ -666,8 +668,12 @@ impl<'s> Walker<'s> {
             .filter(|(_, b)| b.get("properties").and_then(|p| p.get(&e.key)).is_some())
             .map(|(k, _)| format!("{} = \"{k}\"", tag.unwrap_or("kind")))
             .collect();
+        let translation = super::foreign::key(&e.key).filter(|t| allowed.contains(&t.key));
         if !owners.is_empty() {
             d = d.with_label(format!("only for {}", owners.join(" or ")));
+        } else if let Some(translation) = translation {
+            self.diags.push(d.with_label(translation.label).with_hint(translation.hint));
+            return;
         } else if let Some(best) = did_you_mean(&e.key, allowed.iter().copied()) {
             d = d.with_label(format!("did you mean `{best}`?"));
         }

@@ -318,3 +318,32 @@ fn a_quote_opening_the_last_field_is_refused_before_parsing() {
         assert!(out.contains("the file ends with a quote that opens a field and is never closed"), "{out}");
     }
 }
+
+#[test]
+fn keys_and_values_from_other_tools_get_the_dataink_spelling() {
+    let values = "[data.d]\nvalues = [{ x = 1, y = 2 }, { x = 2, y = 3 }]\n";
+    let out = |extra: &str| Fixture::new(&format!("{values}{XY_CHART}{extra}\n"), &[]).load().expect_err("unknown key");
+    // matplotlib's `cmap = "jet"`: not "did you mean `color`", but how a scheme is named.
+    let cmap = out("colormap = \"jet\"");
+    assert!(cmap.contains("error: unknown key `colormap` in chart \"c\"\n"), "{cmap}");
+    assert!(cmap.contains("a colour map is the `scheme` of a colour encoding"), "{cmap}");
+    assert!(cmap.contains("= hint: write `color = { field = \"COLUMN\", scheme = \"viridis\" }`"), "{cmap}");
+    let log = out("y_scale = \"log\"");
+    assert!(log.contains("= hint: write `y = { field = \"COLUMN\", scale = \"log\" }`"), "{log}");
+    assert!(!log.contains("keys allowed here"), "{log}");
+    let label = out("xlabel = \"Time\"");
+    assert!(label.contains("= hint: write `x = { field = \"COLUMN\", title = \"...\", unit = \"...\" }`"), "{label}");
+    let hue = out("hue = \"species\"");
+    assert!(hue.contains("= hint: write `color = \"COLUMN\"`"), "{hue}");
+    // A rainbow scheme is named as one, with the schemes to use instead.
+    let fractional = "[data.d]\nvalues = [{ x = 1, y = 2.5 }, { x = 2, y = 3.25 }]\n";
+    let jet = Fixture::new(&format!("{fractional}{XY_CHART}color = {{ field = \"y\", scheme = \"jet\" }}\n"), &[])
+        .draw()
+        .expect_err("jet");
+    assert!(jet.contains("error: unknown continuous colour scheme `jet`\n"), "{jet}");
+    assert!(jet.contains("rainbow maps") && jet.contains("use `viridis`, `cividis` or `magma`"), "{jet}");
+    // interp1d's methods: the harmonic-mean slopes are `pchip`.
+    let interp = "[data.d]\nvalues = [{ x = 1, y = 2 }, { x = 2, y = 3 }, { x = 3, y = 1 }]\n[[chart]]\nname = \"c\"\nkind = \"interp1d\"\ndata = \"d\"\nx = \"x\"\ny = \"y\"\nmethods = [\"harmonic\"]\n";
+    let harmonic = Fixture::new(interp, &[]).load().expect_err("harmonic");
+    assert!(harmonic.contains("(Fritsch–Carlson) is `pchip`; expected one of:"), "{harmonic}");
+}
