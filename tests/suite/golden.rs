@@ -1,19 +1,45 @@
-//! Golden images: a few gallery charts compared with committed references.
+//! Reference images: every chart of every spec in `examples/` compared with its committed
+//! reference in `tests/golden/SPEC/` (the SVG kept gzipped).
 //!
 //! PNGs must match within 1/255 per channel with zero pixels beyond that; SVGs must match in every
 //! non-numeric token and in every number within 0.01. Regenerate with `UPDATE_GOLDENS=1 cargo test
 //! --test suite golden`; on failure the actual output and a diff image go to `target/golden-failures/`.
 
-use std::path::PathBuf;
+use std::io::{Read, Write};
+use std::path::{Path, PathBuf};
 
 use dataink::data::PathPolicy;
 use dataink::pipeline;
 use dataink::render;
 
-const CHARTS: &[&str] = &["iris-scatter", "decay", "stock-prices"];
-
-fn golden_dir() -> PathBuf {
+fn golden_root() -> PathBuf {
     crate::common::root().join("tests/golden")
+}
+
+/// The example specs, by file stem.
+fn example_specs() -> Vec<(String, PathBuf)> {
+    let dir = crate::common::root().join("examples");
+    let mut specs: Vec<(String, PathBuf)> = std::fs::read_dir(&dir)
+        .expect("examples folder")
+        .map(|entry| entry.expect("entry").path())
+        .filter(|path| path.extension().is_some_and(|e| e == "toml"))
+        .map(|path| (path.file_stem().expect("stem").to_string_lossy().into_owned(), path))
+        .collect();
+    specs.sort();
+    specs
+}
+
+/// A gzip stream with no timestamp, so an unchanged reference rewrites to the same bytes.
+fn gzip(text: &str) -> Vec<u8> {
+    let mut encoder = flate2::GzBuilder::new().mtime(0).write(Vec::new(), flate2::Compression::best());
+    encoder.write_all(text.as_bytes()).expect("gzip");
+    encoder.finish().expect("gzip")
+}
+
+fn gunzip(bytes: &[u8]) -> String {
+    let mut text = String::new();
+    flate2::read::GzDecoder::new(bytes).read_to_string(&mut text).expect("gzipped SVG reference");
+    text
 }
 
 fn failure_dir() -> PathBuf {
@@ -69,13 +95,15 @@ fn tokens(svg: &str) -> (Vec<String>, Vec<f64>) {
     (texts, numbers)
 }
 
-fn compare_png(name: &str, actual: &[u8]) {
-    let path = golden_dir().join(format!("{name}.png"));
+fn compare_png(dir: &Path, name: &str, actual: &[u8]) -> Result<(), String> {
+    let path = dir.join(format!("{name}.png"));
     let expected =
         std::fs::read(&path).unwrap_or_else(|_| panic!("missing golden {}; run with UPDATE_GOLDENS=1", path.display()));
     let (ew, eh, e) = decode(&expected);
     let (aw, ah, a) = decode(actual);
-    assert_eq!((aw, ah), (ew, eh), "{name}.png size");
+    if (aw, ah) != (ew, eh) {
+        return Err(format!("{name}.png is {aw}×{ah}, its reference {ew}×{eh}"));
+    }
     let mut differing = 0usize;
     let mut diff = vec![0u8; a.len()];
     for (i, (pa, pe)) in a.chunks_exact(4).zip(e.chunks_exact(4)).enumerate() {
@@ -94,56 +122,91 @@ fn compare_png(name: &str, actual: &[u8]) {
         enc.set_color(png::ColorType::Rgba);
         enc.set_depth(png::BitDepth::Eight);
         enc.write_header().and_then(|mut w| w.write_image_data(&diff)).expect("write diff");
-        panic!("{name}.png: {differing} pixels differ by more than 1/255 (see {})", dir.display());
+        return Err(format!("{name}.png: {differing} pixels differ by more than 1/255 (see {})", dir.display()));
     }
+    Ok(())
 }
 
-fn compare_svg(name: &str, actual: &str) {
-    let path = golden_dir().join(format!("{name}.svg"));
-    let expected = std::fs::read_to_string(&path).unwrap_or_else(|_| panic!("missing golden {}", path.display()));
+fn compare_svg(dir: &Path, name: &str, actual: &str) -> Result<(), String> {
+    let path = dir.join(format!("{name}.svg.gz"));
+    let expected = gunzip(
+        &std::fs::read(&path)
+            .unwrap_or_else(|_| panic!("missing golden {}; run with UPDATE_GOLDENS=1", path.display())),
+    );
     let (et, en) = tokens(&expected);
     let (at, an) = tokens(actual);
     let fail = |what: String| {
         std::fs::create_dir_all(failure_dir()).expect("failure dir");
         std::fs::write(failure_dir().join(format!("{name}.actual.svg")), actual).expect("write");
-        panic!("{name}.svg: {what}");
+        Err(format!("{name}.svg: {what}"))
     };
     if et != at {
         let first = et.iter().zip(&at).position(|(a, b)| a != b).unwrap_or(et.len().min(at.len()));
-        fail(format!("text differs at token {first}: expected {:?}, got {:?}", et.get(first), at.get(first)));
+        return fail(format!("text differs at token {first}: expected {:?}, got {:?}", et.get(first), at.get(first)));
     }
-    for (i, (e, a)) in en.iter().zip(&an).enumerate() {
-        if (e - a).abs() > 0.01 {
-            fail(format!("number {i} differs: expected {e}, got {a}"));
-        }
+    match en.iter().zip(&an).enumerate().find(|(_, (e, a))| (*e - *a).abs() > 0.01) {
+        Some((i, (e, a))) => fail(format!("number {i} differs: expected {e}, got {a}")),
+        None => Ok(()),
     }
 }
 
 #[test]
-fn gallery_charts_match_their_goldens() {
-    let loaded = pipeline::load(&crate::common::root().join("examples/gallery.toml"), PathPolicy::InsideSpecFolder)
-        .unwrap_or_else(|f| panic!("{}", f.render()));
-    for name in CHARTS {
-        let (index, chart) = loaded
-            .spec
-            .chart
-            .iter()
-            .enumerate()
-            .find(|(_, c)| c.name == *name)
-            .unwrap_or_else(|| panic!("gallery has {name}"));
-        let out = pipeline::draw_chart(&loaded, index, chart).unwrap_or_else(|e| panic!("{e}"));
-        let png = render::png::to_png(&out.scene, 1.0).expect("png");
-        let svg = render::svg::to_svg(&out.scene);
-        crate::common::assert_svg_parses(&svg);
-        if updating() {
-            std::fs::create_dir_all(golden_dir()).expect("golden dir");
-            std::fs::write(golden_dir().join(format!("{name}.png")), &png).expect("write golden");
-            std::fs::write(golden_dir().join(format!("{name}.svg")), &svg).expect("write golden");
-            continue;
+fn every_example_chart_matches_its_reference() {
+    let mut failures = Vec::new();
+    let mut checked = 0;
+    for (stem, path) in example_specs() {
+        let dir = golden_root().join(&stem);
+        let loaded = pipeline::load(&path, PathPolicy::InsideSpecFolder).unwrap_or_else(|f| panic!("{}", f.render()));
+        for (index, chart) in loaded.spec.chart.iter().enumerate() {
+            let name = &chart.name;
+            let out = pipeline::draw_chart(&loaded, index, chart).unwrap_or_else(|e| panic!("{stem}/{name}: {e}"));
+            let png = render::png::to_png(&out.scene, 1.0).expect("png");
+            let svg = render::svg::to_svg(&out.scene);
+            crate::common::assert_svg_parses(&svg);
+            checked += 1;
+            if updating() {
+                std::fs::create_dir_all(&dir).expect("golden dir");
+                std::fs::write(dir.join(format!("{name}.png")), &png).expect("write golden");
+                std::fs::write(dir.join(format!("{name}.svg.gz")), gzip(&svg)).expect("write golden");
+                continue;
+            }
+            failures.extend(compare_png(&dir, name, &png).err().map(|e| format!("{stem}/{e}")));
+            failures.extend(compare_svg(&dir, name, &svg).err().map(|e| format!("{stem}/{e}")));
         }
-        compare_png(name, &png);
-        compare_svg(name, &svg);
     }
+    // The gallery alone has 35 charts: an empty walk is a broken test, not a pass.
+    assert!(checked >= 35, "only {checked} example charts found");
+    assert!(
+        failures.is_empty(),
+        "{} of {checked} charts differ from their references:\n{}",
+        failures.len(),
+        failures.join("\n")
+    );
+}
+
+#[test]
+fn a_reference_differs_when_one_pixel_does() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let mut pixels = vec![255u8; 4 * 4 * 4];
+    let encode = |data: &[u8]| {
+        let mut bytes = Vec::new();
+        let mut enc = png::Encoder::new(&mut bytes, 4, 4);
+        enc.set_color(png::ColorType::Rgba);
+        enc.set_depth(png::BitDepth::Eight);
+        enc.write_header().and_then(|mut w| w.write_image_data(data)).expect("encode");
+        bytes
+    };
+    std::fs::write(dir.path().join("t.png"), encode(&pixels)).expect("write");
+    // One channel off by 1/255 is within tolerance; by 2/255 it is a differing pixel.
+    pixels[5] = 254;
+    assert_eq!(compare_png(dir.path(), "t", &encode(&pixels)), Ok(()));
+    pixels[5] = 253;
+    let error = compare_png(dir.path(), "t", &encode(&pixels)).expect_err("one pixel differs");
+    assert!(error.starts_with("t.png: 1 pixels differ"), "{error}");
+    std::fs::write(dir.path().join("t.svg.gz"), gzip(r#"<rect x="1.5" fill="red"/>"#)).expect("write");
+    assert_eq!(compare_svg(dir.path(), "t", r#"<rect x="1.505" fill="red"/>"#), Ok(()));
+    assert!(compare_svg(dir.path(), "t", r#"<rect x="1.52" fill="red"/>"#).is_err());
+    assert!(compare_svg(dir.path(), "t", r#"<rect x="1.5" fill="blue"/>"#).is_err());
 }
 
 #[test]
