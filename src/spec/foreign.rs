@@ -12,6 +12,17 @@ pub struct Translation {
     pub hint: &'static str,
 }
 
+impl Translation {
+    /// The hint with the chart's own column for `COLUMN` when the chart names one (a column whose
+    /// name needs escaping in TOML is left as the placeholder).
+    pub fn hint_for(&self, column: Option<&str>) -> String {
+        match column.filter(|c| !c.contains(['"', '\\']) && !c.chars().any(char::is_control)) {
+            Some(column) => self.hint.replace("\"COLUMN\"", &format!("\"{column}\"")),
+            None => self.hint.to_owned(),
+        }
+    }
+}
+
 const fn t(key: &'static str, label: &'static str, hint: &'static str) -> Translation {
     Translation { key, label, hint }
 }
@@ -75,7 +86,7 @@ pub fn key(name: &str) -> Option<Translation> {
 pub fn value(text: &str) -> Option<&'static str> {
     Some(match text.to_ascii_lowercase().as_str() {
         "jet" | "hsv" | "gist_rainbow" | "nipy_spectral" => {
-            "`jet` and its kin are rainbow maps: their bright bands (cyan, yellow) show edges the data does not have, and they do not read in grey; use `viridis`, `cividis` or `magma` for ordered values and `rdbu` for values around a midpoint (`rainbow` and `turbo` exist for cyclic or legacy needs)"
+            "`jet`, `hsv` and their kin are rainbow maps: their bright bands (cyan, yellow) show edges the data does not have, and they do not read in grey; use `viridis`, `cividis` or `magma` for ordered values and `rdbu` for values around a midpoint (`rainbow` and `turbo` exist for cyclic or legacy needs)"
         }
         "coolwarm" | "bwr" | "seismic" | "rdbu_r" => {
             "a diverging map around a midpoint is `rdbu` (also `brbg`, `puor`, `piyg`, `prgn`, `rdylbu`)"
@@ -110,6 +121,13 @@ mod tests {
             let translation = key(name).expect(name);
             assert!(translation.hint.starts_with(&format!("write `{}", translation.key)), "{name}: {translation:?}");
         }
+    }
+
+    #[test]
+    fn the_hint_names_the_charts_own_column() {
+        assert_eq!(Y_SCALE.hint_for(Some("CO2")), "write `y = { field = \"CO2\", scale = \"log\" }`");
+        assert_eq!(Y_SCALE.hint_for(None), Y_SCALE.hint);
+        assert_eq!(Y_SCALE.hint_for(Some("a\"b")), Y_SCALE.hint);
     }
 
     #[test]

@@ -596,7 +596,7 @@ impl<'s> Walker<'s> {
                 None if props.is_none() => {}
                 _ => {
                     let allowed = self.ordered_keys(s);
-                    self.unknown_key(e, &allowed, path, elsewhere, tag);
+                    self.unknown_key(v, e, &allowed, path, elsewhere, tag);
                 }
             }
         }
@@ -653,8 +653,10 @@ impl<'s> Walker<'s> {
         self.diags.push(diag.at(v.span.clone()));
     }
 
+    /// An unknown key `e` of the table `table`.
     fn unknown_key(
         &mut self,
+        table: &SpannedValue,
         e: &TableEntry,
         allowed: &[&str],
         path: &[PathSeg],
@@ -672,7 +674,10 @@ impl<'s> Walker<'s> {
         if !owners.is_empty() {
             d = d.with_label(format!("only for {}", owners.join(" or ")));
         } else if let Some(translation) = translation {
-            self.diags.push(d.with_label(translation.label).with_hint(translation.hint));
+            // The chart's own column for the channel, written as a name or as `{ field = ... }`.
+            let channel = table.get(translation.key);
+            let column = channel.and_then(|c| c.as_str().or_else(|| c.get("field").and_then(SpannedValue::as_str)));
+            self.diags.push(d.with_label(translation.label).with_hint(translation.hint_for(column)));
             return;
         } else if let Some(best) = did_you_mean(&e.key, allowed.iter().copied()) {
             d = d.with_label(format!("did you mean `{best}`?"));
@@ -788,7 +793,7 @@ impl<'s> Walker<'s> {
                 self.check(&e.value, prop, path, Field { key: Some(key), schema: Some(prop) }, depth + 1);
                 path.pop();
             } else if schemas.iter().all(Option::is_none) {
-                self.unknown_key(e, &union, path, &[], Some(tag));
+                self.unknown_key(v, e, &union, path, &[], Some(tag));
             }
         }
         let required_by_all = options.first().map(|(_, b)| self.ordered_keys(b)).unwrap_or_default();

@@ -329,10 +329,11 @@ fn keys_and_values_from_other_tools_get_the_dataink_spelling() {
     assert!(cmap.contains("a colour map is the `scheme` of a colour encoding"), "{cmap}");
     assert!(cmap.contains("= hint: write `color = { field = \"COLUMN\", scheme = \"viridis\" }`"), "{cmap}");
     let log = out("y_scale = \"log\"");
-    assert!(log.contains("= hint: write `y = { field = \"COLUMN\", scale = \"log\" }`"), "{log}");
+    // The hint names the chart's own column where it has one.
+    assert!(log.contains("= hint: write `y = { field = \"y\", scale = \"log\" }`"), "{log}");
     assert!(!log.contains("keys allowed here"), "{log}");
     let label = out("xlabel = \"Time\"");
-    assert!(label.contains("= hint: write `x = { field = \"COLUMN\", title = \"...\", unit = \"...\" }`"), "{label}");
+    assert!(label.contains("= hint: write `x = { field = \"x\", title = \"...\", unit = \"...\" }`"), "{label}");
     let hue = out("hue = \"species\"");
     assert!(hue.contains("= hint: write `color = \"COLUMN\"`"), "{hue}");
     // A rainbow scheme is named as one, with the schemes to use instead.
