@@ -573,3 +573,18 @@ fn a_text_that_is_not_missing_below_the_inferred_rows_is_an_error_once() {
     assert_eq!(out.matches("error:").count(), 1, "{out}");
     assert!(out.contains("lots"), "{out}");
 }
+
+#[test]
+fn a_source_drawn_from_a_scan_with_a_late_missing_text_reads_it_as_missing() {
+    // The late `NA` is in `raw`; the chart reads `recent`, which starts from it.
+    let csv = dated_rows(12_500, 12_000);
+    let text = spec_columns(
+        "[data.raw]\npath = \"d.csv\"\n[data.recent]\nfrom = \"raw\"\ntransform = [{ filter = \"value >= 11000\" }]",
+        "recent",
+        &["day", "value"],
+    );
+    let loaded = Fixture::new(&text, &[("d.csv", csv.as_bytes())]).load().unwrap_or_else(|e| panic!("{e}"));
+    let values = numbers(&loaded.tables["recent"], "value");
+    assert_eq!(values.len(), 1_499);
+    assert!(!values.contains(&12_000.0) && values.contains(&12_001.0));
+}

@@ -36,8 +36,8 @@ pub struct SourcePlans {
     pub errors: Vec<PlanError>,
     /// The sources that needed a plan and have none because of a problem.
     pub failed: BTreeSet<String>,
-    /// The file sources scanned without comparing cells with the missing texts
-    /// ([`MissingScan::Fast`]).
+    /// The sources whose plan reads a file without comparing cells with the missing texts
+    /// ([`MissingScan::Fast`]), itself or through a source it draws from.
     pub unlisted: BTreeSet<String>,
 }
 
@@ -101,8 +101,8 @@ pub fn build_plans(
     plans
 }
 
-/// Run `work` on the plan of `name` in `plans`; when it fails and a scan there skipped the
-/// missing texts, run it again on the [`MissingScan::Listed`] plans, which `listed` builds (once:
+/// Run `work` on the plan of `name` in `plans`; when it fails and the plan skipped the missing
+/// texts, run it again on the [`MissingScan::Listed`] plans, which `listed` builds (once:
 /// they are kept in `cache`). `None` when no plan of `name` exists.
 pub fn collect_retrying<T, E>(
     plans: &SourcePlans,
@@ -112,7 +112,7 @@ pub fn collect_retrying<T, E>(
     work: impl Fn(&LazyFrame) -> Result<T, E>,
 ) -> Option<Result<T, E>> {
     let first = work(plans.frames.get(name)?);
-    if first.is_ok() || plans.unlisted.is_empty() {
+    if first.is_ok() || !plans.unlisted.contains(name) {
         return Some(first);
     }
     let again = cache.get_or_insert_with(listed);
@@ -169,6 +169,9 @@ fn visit<'a>(
     }
     stack.pop();
     state.insert(name, Visit::Done);
+    if dependencies(source).iter().any(|dep| plans.unlisted.contains(dep)) {
+        plans.unlisted.insert(name.to_owned());
+    }
     match plan_one(name, source, place, plans) {
         Some(frame) => {
             plans.frames.insert(name.to_owned(), frame);
