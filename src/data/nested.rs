@@ -50,6 +50,14 @@ pub fn flatten(root: &Value) -> Result<Table, String> {
         Value::Array(items) => items.iter().collect(),
         other => vec![other],
     };
+    // A flat array of records linked by `parent` is a table, not a nested tree: flattening it
+    // would drop those links and draw every record as a top-level leaf.
+    let nested = tops.iter().any(|t| t.get(CHILDREN).is_some());
+    if tops.len() > 1 && !nested && tops.iter().any(|t| t.get("parent").is_some()) {
+        return Err("the file is a flat array of records with `parent` fields, not a nested tree with `children`; \
+                    remove `format = \"tree\"` to read it as a table, whose `id` and `parent` columns give the tree"
+            .to_owned());
+    }
     let mut flat: Vec<Flat> = Vec::new();
     // Depth-first, children in order, without recursion (trees can be deep).
     let mut stack: Vec<(Option<usize>, &Value, usize)> = tops.iter().rev().map(|v| (None, *v, 0)).collect();
@@ -186,5 +194,12 @@ mod tests {
         assert!(flatten(&bad).unwrap_err().contains("must be a JSON object, found a number"));
         let empty: Value = serde_json::from_str("[]").unwrap();
         assert!(flatten(&empty).is_err());
+        // vega-datasets' flare.json: records linked by `parent`, not nested.
+        let flat: Value =
+            serde_json::from_str(r#"[{"id": 1, "name": "flare"}, {"id": 2, "name": "vis", "parent": 1}]"#).unwrap();
+        assert!(flatten(&flat).unwrap_err().contains("remove `format = \"tree\"`"));
+        // Several top-level trees are still trees.
+        let forest: Value = serde_json::from_str(r#"[{"name": "a", "children": []}, {"name": "b"}]"#).unwrap();
+        assert_eq!(flatten(&forest).unwrap().rows, 2);
     }
 }
