@@ -31,8 +31,21 @@ pub struct Loaded {
     pub tables: BTreeMap<String, Table>,
     /// Every selection, evaluated once against its data source (shared by the charts naming it).
     pub highlights: BTreeMap<String, Highlight>,
+    /// The keys each chart (by name) left out and took from a column of the conventional name
+    /// ([`spec::defaults`]).
+    pub defaults: BTreeMap<String, Vec<spec::defaults::Taken>>,
     /// Warnings found while loading (printed, not fatal).
     pub warnings: Vec<Diagnostic>,
+}
+
+/// The defaults taken by chart index, keyed by the charts' names instead.
+fn chart_defaults(
+    json: &Value,
+    taken: BTreeMap<usize, Vec<spec::defaults::Taken>>,
+) -> BTreeMap<String, Vec<spec::defaults::Taken>> {
+    let charts = json.get("chart").and_then(Value::as_array);
+    let name = |i: usize| charts?.get(i)?.get("name")?.as_str().map(str::to_owned);
+    taken.into_iter().filter_map(|(i, t)| Some((name(i)?, t))).collect()
 }
 
 /// A spec that failed its checks: every problem found, with the text to render them against.
@@ -69,12 +82,14 @@ pub fn load(spec_path: &Path, policy: PathPolicy) -> Result<Loaded, Failed> {
         unread(format!("spec file `{}` is not UTF-8 text", spec_path.display()), "save the spec as UTF-8")
     })?;
     let source = SourceFile { path: spec_path.to_path_buf(), text };
-    let checked = spec::check(&source);
-    let mut diagnostics = checked.diagnostics;
-    let Some(doc) = checked.doc else {
-        return Err(Failed { source, diagnostics });
+    let (checked, deferred) = spec::check_deferring(&source);
+    // Problems with the spec itself, replaced when it is checked again with its defaults filled.
+    let mut spec_problems = checked.diagnostics;
+    let mut diagnostics = Vec::new();
+    let Some(mut doc) = checked.doc else {
+        return Err(Failed { source, diagnostics: spec_problems });
     };
-    let json = doc.to_json();
+    let mut json = doc.to_json();
     let spec_dir = spec_path.parent().map(Path::to_path_buf).unwrap_or_else(|| PathBuf::from("."));
 
     // Load every data source that is itself valid, even if other parts of the spec are not, so
@@ -84,6 +99,7 @@ pub fn load(spec_path: &Path, policy: PathPolicy) -> Result<Loaded, Failed> {
         None => valid_sources(&json),
     };
     let needed = needed_columns(&json);
+    let conventional = conventional_columns(&json);
     let mut tables = BTreeMap::new();
     let build = |missing| data::transform::build_plans(&sources, &doc, &spec_dir, policy, false, missing);
     let plans = timed("plan data", || build(MissingScan::Fast));
@@ -91,13 +107,14 @@ pub fn load(spec_path: &Path, policy: PathPolicy) -> Result<Loaded, Failed> {
     diagnostics.extend(plans.errors.iter().map(|e| data::transform::to_diagnostic(e, &doc, &source.text)));
     for (name, source_spec) in &sources {
         let wanted: Option<Vec<String>> = needed.get(name).map(|set| set.iter().cloned().collect());
+        let maybe: Vec<String> = conventional.get(name).map(|set| set.iter().cloned().collect()).unwrap_or_default();
         if plans.failed.contains(name) {
             continue;
         }
         let collected = timed(&format!("load data \"{name}\""), || {
             let listed_plans = || build(MissingScan::Listed);
             data::transform::collect_retrying(&plans, &mut listed, listed_plans, name, |frame| {
-                collect_source(frame, wanted.as_deref(), name)
+                collect_source(frame, wanted.as_deref(), &maybe, name)
             })
         });
         if let Some(collected) = collected {
@@ -126,7 +143,8 @@ pub fn load(spec_path: &Path, policy: PathPolicy) -> Result<Loaded, Failed> {
         let key = if source_spec.path.is_some() { "path" } else { "values" };
         let at = doc.span_of(&[PathSeg::Key("data".into()), PathSeg::Key(name.clone()), PathSeg::Key(key.into())]);
         match timed(&format!("load data \"{name}\""), || {
-            data::load_source_with_warnings(source_spec, &spec_dir, policy, wanted.as_deref())
+            let with_maybe = wanted.as_ref().map(|w| [w.as_slice(), &maybe].concat());
+            data::load_source_with_warnings(source_spec, &spec_dir, policy, with_maybe.as_deref())
         }) {
             Ok(loaded) => {
                 for warning in loaded.warnings {
@@ -139,18 +157,32 @@ pub fn load(spec_path: &Path, policy: PathPolicy) -> Result<Loaded, Failed> {
             }
         }
     }
+    let mut typed = checked.spec;
+    let mut defaults = BTreeMap::new();
+    if deferred {
+        let filled = spec::defaults::fill(&mut doc, |name| {
+            tables.get(name).map(|t| t.column_names().into_iter().map(str::to_owned).collect())
+        });
+        let rechecked = spec::check_filled(doc, &filled);
+        spec_problems = rechecked.diagnostics;
+        typed = rechecked.spec;
+        doc = rechecked.doc.expect("a filled spec keeps its document");
+        json = doc.to_json();
+        defaults = chart_defaults(&json, filled.taken);
+    }
+    diagnostics.splice(0..0, spec_problems);
     diagnostics.extend(check_columns(&json, &doc, &tables));
-    let (highlights, selection_errors) = evaluate_selections(checked.spec.as_ref(), &doc, &tables);
+    let (highlights, selection_errors) = evaluate_selections(typed.as_ref(), &doc, &tables);
     diagnostics.extend(selection_errors);
-    if let Some(spec) = &checked.spec {
+    if let Some(spec) = &typed {
         diagnostics.extend(check_lint_config(spec, &doc));
     }
 
     let has_errors = diagnostics.iter().any(Diagnostic::is_error);
-    match checked.spec {
+    match typed {
         Some(mut spec) if !has_errors => {
             mark::categorical::share_domains(&mut spec.chart, &tables);
-            Ok(Loaded { source, spec, doc, tables, highlights, warnings: diagnostics })
+            Ok(Loaded { source, spec, doc, tables, highlights, defaults, warnings: diagnostics })
         }
         _ => Err(Failed { source, diagnostics }),
     }
@@ -267,8 +299,7 @@ fn in_data_table(doc: &SpecDoc, offset: usize) -> bool {
     let Some(data) = doc.get(&[PathSeg::Key("data".into())]) else { return false };
     data.entries().iter().any(|e| {
         let start = e.key_span.start.min(e.value.span.start);
-        let end = value_end(&e.value);
-        (start..=end).contains(&offset)
+        (start..=value_end(&e.value)).contains(&offset)
     })
 }
 
@@ -284,17 +315,24 @@ fn value_end(value: &spec::SpannedValue) -> usize {
 }
 
 /// Run a source's plan, reading only the columns its charts use when they all exist (else every
-/// column, so a missing-column diagnostic can list the real ones).
-fn collect_source(frame: &polars::prelude::LazyFrame, wanted: Option<&[String]>, name: &str) -> Result<Table, String> {
+/// column, so a missing-column diagnostic can list the real ones), and those of `maybe` (columns
+/// a chart would take by convention) that exist.
+fn collect_source(
+    frame: &polars::prelude::LazyFrame,
+    wanted: Option<&[String]>,
+    maybe: &[String],
+    name: &str,
+) -> Result<Table, String> {
     use polars::prelude::col;
     let df = data::contained::contain(|| {
         let mut lf = frame.clone();
         let schema = lf.collect_schema().map_err(|e| data::transform::first_line(&e.to_string()))?;
         if let Some(columns) = wanted
-            && !columns.is_empty()
+            && !(columns.is_empty() && maybe.is_empty())
             && columns.iter().all(|c| schema.contains(c))
         {
-            lf = lf.select(columns.iter().map(|c| col(c.as_str())).collect::<Vec<_>>());
+            let present = maybe.iter().filter(|c| schema.contains(c.as_str()) && !columns.contains(c));
+            lf = lf.select(columns.iter().chain(present).map(|c| col(c.as_str())).collect::<Vec<_>>());
         }
         lf.collect().map_err(|e| format!("the transforms fail: {}", data::transform::first_line(&e.to_string())))
     })??;
@@ -380,7 +418,10 @@ fn valid_sources(doc: &Value) -> BTreeMap<String, spec::DataSource> {
     let mut out = BTreeMap::new();
     if let Some(Value::Object(map)) = doc.get("data") {
         for (name, value) in map {
-            if let Ok(source) = serde_json::from_value::<spec::DataSource>(value.clone()) {
+            // A source naming none of `path`, `values` and `from` is already reported.
+            if let Ok(source) = serde_json::from_value::<spec::DataSource>(value.clone())
+                && (source.path.is_some() || source.values.is_some() || source.from.is_some())
+            {
                 out.insert(name.clone(), source);
             }
         }
@@ -461,6 +502,18 @@ fn needed_columns(doc: &Value) -> BTreeMap<String, std::collections::BTreeSet<St
                 }
             }
         }
+    }
+    out
+}
+
+/// The columns each data source may provide for the conventional defaults of its charts' keys
+/// ([`spec::defaults::candidate_columns`]): read when the source has them.
+fn conventional_columns(doc: &Value) -> BTreeMap<String, std::collections::BTreeSet<String>> {
+    let mut out: BTreeMap<String, std::collections::BTreeSet<String>> = BTreeMap::new();
+    for chart in doc.get("chart").and_then(Value::as_array).into_iter().flatten() {
+        let Some(data_name) = chart.get("data").and_then(Value::as_str) else { continue };
+        let names = spec::defaults::candidate_columns(chart).into_iter().map(str::to_owned);
+        out.entry(data_name.to_string()).or_default().extend(names);
     }
     out
 }
@@ -721,7 +774,7 @@ pub fn render_all(
     // Check every canvas before any drawing allocates it.
     let mut problems = Vec::new();
     for (index, chart) in &selected {
-        let [w, h] = chart.size.unwrap_or(mark::DEFAULT_SIZE);
+        let [w, h] = mark::canvas_size(chart);
         if options.formats.png
             && let Err(e) = render::png::check_canvas(w, h, options.scale)
         {

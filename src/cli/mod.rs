@@ -292,6 +292,17 @@ fn report(
     }
 }
 
+/// " (by convention: u = \"u\", v = \"v\")" for a chart that took conventional defaults, else "".
+fn defaults_note(loaded: &pipeline::Loaded, chart: &str) -> String {
+    match loaded.defaults.get(chart) {
+        Some(taken) if !taken.is_empty() => {
+            let keys: Vec<String> = taken.iter().map(|t| format!("{} = {}", t.key, t.value)).collect();
+            format!(" (by convention: {})", keys.join(", "))
+        }
+        _ => String::new(),
+    }
+}
+
 /// `dataink lint --rules`: every rule, one per line.
 /// `dataink data`: each source's schema and first rows after its transforms.
 fn data_preview(spec: &std::path::Path, only: Option<&str>, rows: usize, policy: PathPolicy) -> ExitCode {
@@ -397,7 +408,7 @@ pub fn run() -> ExitCode {
                         errln!("warning: {w}");
                     }
                     let files: Vec<String> = r.files.iter().map(|f| f.display().to_string()).collect();
-                    errln!("wrote {}", files.join(", "));
+                    errln!("wrote {}{}", files.join(", "), defaults_note(&loaded, &r.name));
                     errln!("lint {}", r.lint.summary_line());
                 }
             }

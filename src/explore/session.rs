@@ -124,7 +124,7 @@ impl Session {
                 index,
                 name: c.name.clone(),
                 data: c.data.clone(),
-                size: c.size.unwrap_or(crate::mark::DEFAULT_SIZE),
+                size: crate::mark::canvas_size(c),
                 output: None,
                 error: None,
                 geometry: Geometry::default(),

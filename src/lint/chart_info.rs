@@ -74,6 +74,7 @@ pub fn colour_encodings(chart: &Chart) -> Vec<ColourSpec> {
     let z = |c: &crate::spec::ColorChannel| vec![ColourSpec { key: "z", options: c.options() }];
     match &chart.kind {
         ChartKind::Scatter(o) => colour(&o.color),
+        ChartKind::Line(o) => colour(&o.color),
         ChartKind::Bar(o) => colour(&o.color),
         ChartKind::Splom(o) => colour(&o.color),
         ChartKind::Parallel(o) => colour(&o.color),

@@ -181,6 +181,7 @@ fn channel_mut(chart: &mut Chart) -> Option<(&mut ColorChannel, String)> {
     let data = chart.data.clone();
     let slot = match &mut chart.kind {
         ChartKind::Scatter(o) => &mut o.color,
+        ChartKind::Line(o) => &mut o.color,
         ChartKind::Bar(o) => &mut o.color,
         ChartKind::Splom(o) => &mut o.color,
         ChartKind::Parallel(o) => &mut o.color,

@@ -18,7 +18,7 @@ use crate::selection::Highlight;
 use crate::spec::{ChannelOptions, Chart, DaisyOptions};
 
 /// Canvas size when the spec gives none.
-const DEFAULT_SIZE: [f64; 2] = [800.0, 600.0];
+pub(super) const DEFAULT_SIZE: [f64; 2] = [800.0, 600.0];
 /// Share of each column's sector left empty between arcs.
 const ARC_GAP: f64 = 0.22;
 /// Most categories a text column's arc names all of (shortening labels rather than dropping some).

@@ -15,7 +15,7 @@ use crate::selection::Highlight;
 use crate::spec::{Chart, FacesOptions};
 
 /// Canvas size when the spec gives none.
-const DEFAULT_SIZE: [f64; 2] = [900.0, 620.0];
+pub(super) const DEFAULT_SIZE: [f64; 2] = [900.0, 620.0];
 /// Most columns one chart maps to features.
 pub const MAX_COLUMNS: usize = 15;
 /// Smallest face, in pixels, that still shows its features.

@@ -20,7 +20,7 @@ use crate::spec::{Chart, GraphLayout, GraphOptions, NodeTable};
 use crate::text::measure;
 
 /// Canvas size when the spec gives none.
-const DEFAULT_SIZE: [f64; 2] = [760.0, 620.0];
+pub(super) const DEFAULT_SIZE: [f64; 2] = [760.0, 620.0];
 /// Nodes labelled by default up to this many.
 const AUTO_LABEL_LIMIT: usize = 150;
 /// Colour of edges without a weight.

@@ -18,7 +18,7 @@ use crate::scene::{Color, Item, PathCmd, Point, Role, Shape, Stroke, Style};
 use crate::spec::{Chart, HypertreeOptions};
 
 /// Canvas size when the spec gives none.
-const DEFAULT_SIZE: [f64; 2] = [760.0, 680.0];
+pub(super) const DEFAULT_SIZE: [f64; 2] = [760.0, 680.0];
 /// Node radius at the centre, in pixels.
 const CENTRE_RADIUS: f64 = 6.0;
 /// Nodes whose local scale is below this are too small to see and are not drawn.

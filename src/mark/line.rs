@@ -8,7 +8,7 @@ use crate::guide::axis::title_with_unit;
 use crate::guide::layout::Domain;
 use crate::guide::legend::{Legend, Symbol};
 use crate::scene::{Color, Item, PathCmd, PerPoint, Point, PointBatch, Role, Shape, Stroke, Style};
-use crate::spec::{Chart, LineOptions};
+use crate::spec::{Chart, ColorType, LineOptions};
 
 /// One series: its name, colour, the rows it draws (sorted by x) and all rows that belong to it
 /// (drawn or dropped), so that only its own missing values break its line.
@@ -33,11 +33,39 @@ pub fn draw(chart: &Chart, options: &LineOptions, index: usize, table: &Table) -
             "name at least one column, e.g. y = \"value\"",
         ));
     }
-    if options.series.is_some() && y_channels.len() > 1 {
+    // The chart's `scheme` colours the categories unless the encoding names its own.
+    let color = options.color.as_ref().map(|c| {
+        let mut o = c.options();
+        o.scheme = o.scheme.or_else(|| options.scheme.clone());
+        o
+    });
+    let split_key = if color.is_some() { "color" } else { "series" };
+    if options.series.is_some() && color.is_some() {
         return Err(MarkError::at(
             index,
-            &["series"],
-            format!("chart \"{}\": `series` splits one `y` column, but {} are given", chart.name, y_channels.len()),
+            &["color"],
+            format!("chart \"{}\": `series` and `color` both split the rows into series", chart.name),
+            "keep one: `color = \"COLUMN\"` (with colour options as a table) or `series = \"COLUMN\"`",
+        ));
+    }
+    if color.as_ref().is_some_and(|c| c.r#type == Some(ColorType::Continuous)) {
+        return Err(MarkError::at(
+            index,
+            &["color", "type"],
+            format!("chart \"{}\": a line chart's `color` splits the rows into series by category", chart.name),
+            "remove `type = \"continuous\"`; to show a quantity along the line, use a scatter chart's `color`",
+        ));
+    }
+    let split_field = options.series.as_deref().or(color.as_ref().map(|c| c.field.as_str()));
+    if split_field.is_some() && y_channels.len() > 1 {
+        return Err(MarkError::at(
+            index,
+            &[split_key],
+            format!(
+                "chart \"{}\": `{split_key}` splits one `y` column, but {} are given",
+                chart.name,
+                y_channels.len()
+            ),
             "either list several y columns (wide data) or give one y column and `series` (long data)",
         ));
     }
@@ -60,8 +88,8 @@ pub fn draw(chart: &Chart, options: &LineOptions, index: usize, table: &Table) -
         }
         y_cols.push((channel, col));
     }
-    let series_col = match &options.series {
-        Some(field) => Some(encode::column(chart, index, "series", field, table)?),
+    let series_col = match split_field {
+        Some(field) => Some(encode::column(chart, index, split_key, field, table)?),
         None => None,
     };
 
@@ -75,6 +103,7 @@ pub fn draw(chart: &Chart, options: &LineOptions, index: usize, table: &Table) -
     let palette = encode::palette(index, &["scheme"], options.scheme.as_deref())?;
     let single_color = encode::fixed_color(index, options.mark_color.as_deref())?;
 
+    let split_categories = series_col.map(|sc| sc.categories().cloned().unwrap_or_else(|| numeric_categories(sc)));
     let mut series: Vec<Series> = Vec::new();
     for (channel, col) in &y_cols {
         let mut used = numeric.clone();
@@ -84,10 +113,9 @@ pub fn draw(chart: &Chart, options: &LineOptions, index: usize, table: &Table) -
         let (kept, warning) = encode::placeable_rows(&chart.name, table.rows, &used, &log);
         warnings.extend(warning);
         let title = channel.options().title.unwrap_or_else(|| channel.field().to_string());
-        match series_col {
-            Some(sc) => {
+        match &split_categories {
+            Some(cats) => {
                 // One pass over the rows buckets them by series (rows with no series are left out).
-                let cats = sc.categories().cloned().unwrap_or_else(|| numeric_categories(sc));
                 let bucket = |rows: &mut dyn Iterator<Item = u32>| {
                     let mut by_code: Vec<Vec<u32>> = vec![Vec::new(); cats.levels.len()];
                     for r in rows {
@@ -115,11 +143,21 @@ pub fn draw(chart: &Chart, options: &LineOptions, index: usize, table: &Table) -
         return Err(encode::no_rows(chart, index, table, warnings.first().map(String::as_str)));
     }
     let n_series = series.len();
+    // With `color`, each category's colour follows the encoding (its domain, range or scheme).
+    let by_category = match (&color, &split_categories) {
+        (Some(options), Some(cats)) => {
+            let drawn: Vec<u32> = series.iter().flat_map(|s| s.rows.iter().copied()).collect();
+            let (per_level, entries) = super::categorical::assign(chart, index, options, cats, &drawn)?;
+            let colours: Vec<(String, Color)> = cats.levels.iter().cloned().zip(per_level).collect();
+            Some((colours, entries))
+        }
+        _ => None,
+    };
     for (i, s) in series.iter_mut().enumerate() {
-        s.color = if n_series == 1 {
-            single_color
-        } else {
-            palette.get(i % palette.len().max(1)).copied().unwrap_or(single_color)
+        s.color = match &by_category {
+            Some((colours, _)) => colours.iter().find(|(l, _)| *l == s.name).map_or(single_color, |(_, c)| *c),
+            None if n_series == 1 => single_color,
+            None => palette.get(i % palette.len().max(1)).copied().unwrap_or(single_color),
         };
     }
     let x_numbers = x_col.numbers();
@@ -169,15 +207,17 @@ pub fn draw(chart: &Chart, options: &LineOptions, index: usize, table: &Table) -
     y_axis.inset = inset;
     let mut x_axis = x_axis;
     x_axis.inset = inset;
-    let legends = if n_series > 1 {
-        let title = options.series.clone().unwrap_or_default();
-        vec![Legend::Categorical {
-            title,
+    let legends = match (&color, by_category) {
+        (Some(options), Some((_, entries))) => {
+            let title = title_with_unit(options.title.as_deref().unwrap_or(&options.field), options.unit.as_deref());
+            encode::shown_legends(Legend::Categorical { title, entries, symbol: Symbol::Line }, options)
+        }
+        _ if n_series > 1 => vec![Legend::Categorical {
+            title: options.series.clone().unwrap_or_default(),
             entries: series.iter().map(|s| (s.name.clone(), s.color)).collect(),
             symbol: Symbol::Line,
-        }]
-    } else {
-        Vec::new()
+        }],
+        _ => Vec::new(),
     };
 
     let (frame, theme) = frame::cartesian(chart, index, x_axis, y_axis, legends)?;

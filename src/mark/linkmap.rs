@@ -18,10 +18,10 @@ use crate::spec::{Chart, GraphLayout, LinkMode, LinkmapOptions};
 use crate::text::measure;
 
 /// Canvas size when the spec gives none.
-const DEFAULT_SIZE: [f64; 2] = [760.0, 640.0];
+pub(super) const DEFAULT_SIZE: [f64; 2] = [760.0, 640.0];
 /// Canvas size of the matrix when the spec gives none: room for a square matrix with its labels
 /// beside the colour bar.
-const MATRIX_SIZE: [f64; 2] = [700.0, 640.0];
+pub(super) const MATRIX_SIZE: [f64; 2] = [700.0, 640.0];
 /// Default scheme: low values light, high values dark.
 const DEFAULT_SCHEME: &str = "viridis_r";
 /// Fill of matrix cells without a link.

@@ -147,7 +147,7 @@ pub fn draw_with_nodes(
 pub fn column_keys(kind: &str) -> &'static [&'static str] {
     match kind {
         "scatter" => &["x", "y", "color", "point_size"],
-        "line" => &["x", "y", "series"],
+        "line" => &["x", "y", "series", "color"],
         "bar" => &["x", "y", "color"],
         "interp1d" => &["x", "y", "slopes"],
         "contour" | "image" | "section" | "surface" | "scattered" => &["x", "y", "z"],
@@ -170,5 +170,27 @@ pub fn with_default_size(chart: &Chart, size: [f64; 2]) -> Chart {
     chart
 }
 
-/// Default canvas size when the spec gives none.
+/// Default canvas size when the spec gives none, for kinds without their own.
 pub const DEFAULT_SIZE: [f64; 2] = [640.0, 420.0];
+
+/// The canvas size a kind draws at when the spec gives none.
+pub fn default_size(kind: &ChartKind) -> [f64; 2] {
+    match kind {
+        ChartKind::Splom(_) => splom::DEFAULT_SIZE,
+        ChartKind::Parallel(_) => parallel::DEFAULT_SIZE,
+        ChartKind::Daisy(_) => daisy::DEFAULT_SIZE,
+        ChartKind::Faces(_) => faces::DEFAULT_SIZE,
+        ChartKind::Segments(_) => segments::DEFAULT_SIZE,
+        ChartKind::Treemap(_) => treemap::DEFAULT_SIZE,
+        ChartKind::Hypertree(_) => hypertree::DEFAULT_SIZE,
+        ChartKind::Graph(_) => graph::DEFAULT_SIZE,
+        ChartKind::Linkmap(o) if o.mode == Some(crate::spec::LinkMode::Matrix) => linkmap::MATRIX_SIZE,
+        ChartKind::Linkmap(_) => linkmap::DEFAULT_SIZE,
+        _ => DEFAULT_SIZE,
+    }
+}
+
+/// The canvas size a chart draws at: its `size`, else its kind's default.
+pub fn canvas_size(chart: &Chart) -> [f64; 2] {
+    chart.size.unwrap_or_else(|| default_size(&chart.kind))
+}

@@ -18,7 +18,7 @@ use crate::spec::{AxisOrder, ChannelOptions, Chart, ParallelOptions};
 use crate::text::measure;
 
 /// Canvas size when the spec gives none.
-const DEFAULT_SIZE: [f64; 2] = [820.0, 440.0];
+pub(super) const DEFAULT_SIZE: [f64; 2] = [820.0, 440.0];
 
 /// Default line opacity for `n` rows: lower as overplotting grows.
 pub fn default_opacity(n: usize) -> f64 {

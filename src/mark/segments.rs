@@ -24,7 +24,7 @@ use crate::spec::{Chart, SegmentScale, SegmentsOptions};
 use crate::text::measure;
 
 /// Canvas size when the spec gives none.
-const DEFAULT_SIZE: [f64; 2] = [760.0, 640.0];
+pub(super) const DEFAULT_SIZE: [f64; 2] = [760.0, 640.0];
 /// Largest disk diameter in pixels.
 const MAX_DIAMETER: u32 = 4096;
 /// Default colour of pixels whose rows are all missing.

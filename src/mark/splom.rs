@@ -23,7 +23,7 @@ use crate::selection::Highlight;
 use crate::spec::{ChannelOptions, Chart, Diagonal, MatrixLayout, ScaleKind, SplomMode, SplomOptions};
 
 /// Canvas size when the spec gives none.
-const DEFAULT_SIZE: [f64; 2] = [760.0, 720.0];
+pub(super) const DEFAULT_SIZE: [f64; 2] = [760.0, 720.0];
 /// Above this many rows, `mode = "auto"` counts rows in bins instead of drawing markers.
 const AUTO_DENSITY_ROWS: usize = 200_000;
 /// Side of a density bin in pixels.

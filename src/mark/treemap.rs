@@ -18,7 +18,7 @@ use crate::spec::{Chart, Tiling, TreemapColor, TreemapOptions};
 use crate::text::measure;
 
 /// Canvas size when the spec gives none.
-const DEFAULT_SIZE: [f64; 2] = [820.0, 560.0];
+pub(super) const DEFAULT_SIZE: [f64; 2] = [820.0, 560.0];
 /// Average area in px² a drawn cell should have at least when the depth is chosen automatically.
 const MIN_CELL_AREA: f64 = 120.0;
 /// Smallest font a label may shrink to before it is truncated or hidden.

@@ -6,6 +6,7 @@
 //! once. The parsed [`SpecDoc`] is kept so later stages can point at the spec too
 //! (see [`SpecDoc::span_of`] and [`chart_path`]).
 
+pub mod defaults;
 pub mod diagnostic;
 pub(crate) mod foreign;
 pub mod schema;
@@ -46,11 +47,48 @@ pub struct Checked {
 
 /// Parses and checks a spec, keeping whatever could be made of it.
 pub fn check(source: &SourceFile) -> Checked {
-    let doc = match SpecDoc::parse(&source.text) {
-        Ok(doc) => doc,
-        Err(d) => return Checked { spec: None, doc: None, diagnostics: vec![d] },
-    };
-    let mut diagnostics = validate::validate(&doc);
+    match SpecDoc::parse(&source.text) {
+        Ok(doc) => {
+            let diagnostics = validate::validate(&doc);
+            typed(doc, diagnostics)
+        }
+        Err(d) => Checked { spec: None, doc: None, diagnostics: vec![d] },
+    }
+}
+
+/// [`check`], except that chart keys with a conventional default column ([`defaults`]) may be
+/// missing. When one is (the flag), the spec is not typed yet: fill the defaults once the data is
+/// loaded ([`defaults::fill`]) and check it again with [`check_filled`].
+pub fn check_deferring(source: &SourceFile) -> (Checked, bool) {
+    match SpecDoc::parse(&source.text) {
+        Ok(doc) => {
+            let (diagnostics, deferred) = validate::validate_deferring(&doc);
+            if deferred {
+                let mut diagnostics = diagnostics;
+                sort_by_position(&mut diagnostics);
+                (Checked { spec: None, doc: Some(doc), diagnostics }, true)
+            } else {
+                (typed(doc, diagnostics), false)
+            }
+        }
+        Err(d) => (Checked { spec: None, doc: None, diagnostics: vec![d] }, false),
+    }
+}
+
+/// Checks a spec whose conventional defaults [`defaults::fill`] has written in, in full: keys
+/// still missing are errors with the fill's notes in their hints (except in charts whose data did
+/// not load, which stay untyped).
+pub fn check_filled(doc: SpecDoc, filled: &defaults::Filled) -> Checked {
+    let (mut diagnostics, pending) = validate::validate_noted(&doc, filled);
+    if pending {
+        sort_by_position(&mut diagnostics);
+        return Checked { spec: None, doc: Some(doc), diagnostics };
+    }
+    typed(doc, diagnostics)
+}
+
+/// The typed spec of a checked document, unless `diagnostics` hold an error.
+fn typed(doc: SpecDoc, mut diagnostics: Vec<Diagnostic>) -> Checked {
     sort_by_position(&mut diagnostics);
     if diagnostics.iter().any(Diagnostic::is_error) {
         return Checked { spec: None, doc: Some(doc), diagnostics };
@@ -600,6 +638,7 @@ point_size = "d"
                             }),
                         ]),
                         series: Some("label".to_owned()),
+                        color: None,
                         y_title: None,
                         markers: Some(true),
                         stroke_width: Some(1.5),
@@ -629,6 +668,7 @@ point_size = "d"
                             ..ChannelOptions::default()
                         })),
                         series: None,
+                        color: None,
                         y_title: None,
                         markers: None,
                         stroke_width: None,

@@ -136,6 +136,27 @@ impl SpannedValue {
         self.entry(key).map(|e| &e.value)
     }
 
+    /// The value for `key`, for changing it, if this is a table that has it.
+    pub(crate) fn get_mut(&mut self, key: &str) -> Option<&mut SpannedValue> {
+        match &mut self.kind {
+            ValueKind::Table(entries) => entries.iter_mut().find(|e| e.key == key).map(|e| &mut e.value),
+            _ => None,
+        }
+    }
+
+    /// The items, for changing them, if this is an array.
+    pub(crate) fn as_array_mut(&mut self) -> Option<&mut [SpannedValue]> {
+        match &mut self.kind {
+            ValueKind::Array(items) => Some(items),
+            _ => None,
+        }
+    }
+
+    /// A string value written at `span`.
+    pub(crate) fn string(text: &str, span: &Range<usize>) -> SpannedValue {
+        SpannedValue { span: span.clone(), kind: ValueKind::String(text.to_owned()) }
+    }
+
     /// The items if this is an array.
     pub fn as_array(&self) -> Option<&[SpannedValue]> {
         match &self.kind {
@@ -227,6 +248,11 @@ impl SpecDoc {
     /// The root table.
     pub fn root(&self) -> &SpannedValue {
         &self.root
+    }
+
+    /// The root table, for filling in defaults.
+    pub(crate) fn root_mut(&mut self) -> &mut SpannedValue {
+        &mut self.root
     }
 
     /// The value at `path`, e.g. `[Key("chart"), Index(2), Key("x")]` for `chart[2].x`.

@@ -363,6 +363,12 @@ pub struct LineOptions {
     /// Column whose values split the rows into series (long-form data).
     #[serde(default)]
     pub series: Option<String>,
+    /// Split the rows into series by a column's categories, one colour each, as `series` does
+    /// (how Vega-Lite and ggplot write it); a table adds the colour options (`scheme`, `domain`,
+    /// `range`, `title`, `legend`), and a category has the same colour as in the spec's other
+    /// charts colouring by that column. Give this or `series`, not both.
+    #[serde(default)]
+    pub color: Option<ColorChannel>,
     /// Title of the y axis when several y columns are drawn (their own titles name the series).
     #[serde(default)]
     pub y_title: Option<String>,

@@ -27,15 +27,43 @@ pub const MAX_CHARTS: usize = 10_000;
 /// number ranges) in file order, then the rules that need the whole spec (chart names and their
 /// uniqueness, references from charts to data sources, `path` xor `values`, domain order).
 pub fn validate(doc: &SpecDoc) -> Vec<Diagnostic> {
+    walk(doc, Conventional::Required).0
+}
+
+/// [`validate`], except that chart keys with a conventional default column
+/// ([`super::defaults`]) may be missing; the flag says whether any was.
+pub(crate) fn validate_deferring(doc: &SpecDoc) -> (Vec<Diagnostic>, bool) {
+    walk(doc, Conventional::Deferred)
+}
+
+/// [`validate`], with a note for the hint of each chart key still missing after the defaults
+/// were filled, by chart index and key. Charts in `pending` (whose data did not load) may still
+/// miss them; the flag says whether any did.
+pub(crate) fn validate_noted(doc: &SpecDoc, filled: &super::defaults::Filled) -> (Vec<Diagnostic>, bool) {
+    walk(doc, Conventional::Noted(filled.clone()))
+}
+
+fn walk(doc: &SpecDoc, conventional: Conventional) -> (Vec<Diagnostic>, bool) {
     if let Some(too_many) = too_many_charts(doc.root()) {
-        return vec![too_many];
+        return (vec![too_many], false);
     }
     let schema = schema_ref();
-    let mut walker = Walker::new(schema, doc.root());
+    let mut walker = Walker::new(schema, doc.root(), conventional);
     let mut path = Vec::new();
     walker.check(doc.root(), schema, &mut path, Field::default(), 0);
     walker.semantic(doc.root());
-    walker.diags
+    (walker.diags, walker.deferred)
+}
+
+/// How chart keys with a conventional default column are checked.
+enum Conventional {
+    /// Like every other key.
+    Required,
+    /// Allowed to be missing (the data, not yet loaded, may have the column).
+    Deferred,
+    /// Required, with the fill's notes in the hint when missing, except in its `pending` charts,
+    /// whose data did not load.
+    Noted(super::defaults::Filled),
 }
 
 /// The error of a spec with more than [`MAX_CHARTS`] charts, pointing at the first one over.
@@ -81,10 +109,13 @@ struct Walker<'s> {
     root_schema: &'s Value,
     chart_names: Vec<Option<String>>,
     diags: Vec<Diagnostic>,
+    conventional: Conventional,
+    /// Whether a conventional key was let through missing.
+    deferred: bool,
 }
 
 impl<'s> Walker<'s> {
-    fn new(root_schema: &'s Value, root: &SpannedValue) -> Self {
+    fn new(root_schema: &'s Value, root: &SpannedValue, conventional: Conventional) -> Self {
         let chart_names = root
             .get("chart")
             .and_then(SpannedValue::as_array)
@@ -92,7 +123,7 @@ impl<'s> Walker<'s> {
             .iter()
             .map(|c| c.get("name").and_then(SpannedValue::as_str).filter(|n| !n.is_empty()).map(str::to_owned))
             .collect();
-        Self { root_schema, chart_names, diags: Vec::new() }
+        Self { root_schema, chart_names, diags: Vec::new(), conventional, deferred: false }
     }
 
     // ----- schema helpers -------------------------------------------------------------------
@@ -606,12 +637,40 @@ impl<'s> Walker<'s> {
     fn check_required(&mut self, v: &SpannedValue, s: &'s Value, path: &[PathSeg], tag: Option<&str>) {
         let props = s.get("properties");
         let mut missing = Vec::new();
-        for key in s.get("required").and_then(Value::as_array).into_iter().flatten().filter_map(Value::as_str) {
-            if Some(key) != tag && v.entry(key).is_none() {
-                missing.push(Missing { key, prop: props.and_then(|p| p.get(key)), note: None });
+        // A chart's own table: its index and kind, for keys with a conventional default.
+        let chart = match path {
+            [PathSeg::Key(c), PathSeg::Index(i)] if c == "chart" => {
+                v.get("kind").and_then(SpannedValue::as_str).map(|kind| (*i, kind))
             }
+            _ => None,
+        };
+        for key in s.get("required").and_then(Value::as_array).into_iter().flatten().filter_map(Value::as_str) {
+            if Some(key) == tag || v.entry(key).is_some() {
+                continue;
+            }
+            let conventional = chart.filter(|(_, kind)| super::defaults::has_convention(kind, key));
+            let note = match (&self.conventional, conventional) {
+                (Conventional::Deferred, Some(_)) => {
+                    self.deferred = true;
+                    continue;
+                }
+                (Conventional::Noted(filled), Some((i, _))) if filled.pending.contains(&i) => {
+                    self.deferred = true;
+                    continue;
+                }
+                (Conventional::Noted(filled), Some((i, _))) => filled.notes.get(&(i, key.to_owned())).cloned(),
+                _ => None,
+            };
+            missing.push(Missing { key, prop: props.and_then(|p| p.get(key)), note });
         }
+        let noted = missing.iter().any(|m| m.note.is_some());
         self.report_missing(v, path, &missing);
+        // The columns to choose from, once, after the notes.
+        if let (true, Conventional::Noted(filled), Some((i, _))) = (noted, &self.conventional, chart)
+            && let (Some(line), Some(d)) = (filled.columns.get(&i), self.diags.last_mut())
+        {
+            d.hint = Some(format!("{}\n{line}", d.hint.take().unwrap_or_default()));
+        }
     }
 
     /// One diagnostic for all required keys a table lacks, at the table's header.

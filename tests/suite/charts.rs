@@ -264,17 +264,7 @@ fn grid_files_load_as_long_form_tables() {
     fx.draw().unwrap_or_else(|e| panic!("{e}"));
 
     // The same grid as a .npy file (version 1, little-endian f8, C order).
-    let mut header = "{'descr': '<f8', 'fortran_order': False, 'shape': (3, 2), }".to_string();
-    while !(10 + header.len() + 1).is_multiple_of(64) {
-        header.push(' ');
-    }
-    header.push('\n');
-    let mut npy = b"\x93NUMPY\x01\x00".to_vec();
-    npy.extend_from_slice(&(header.len() as u16).to_le_bytes());
-    npy.extend_from_slice(header.as_bytes());
-    for v in [0.0f64, 1.0, 2.0, 3.0, 4.0, 5.0] {
-        npy.extend_from_slice(&v.to_le_bytes());
-    }
+    let npy = crate::common::npy_f8(3, 2, &[0.0, 1.0, 2.0, 3.0, 4.0, 5.0]);
     let spec = spec.replace("path = \"m.csv\"\nformat = \"matrix\"", "path = \"m.npy\"");
     let fx = Fixture::new(&spec, &[("m.npy", &npy)]);
     let loaded = fx.load().unwrap_or_else(|e| panic!("{e}"));

@@ -185,3 +185,17 @@ y = { field = "v", scale = "log" }
     assert!(out.join("good.svg").is_file());
     assert!(!out.join("bad.svg").exists());
 }
+
+#[test]
+fn the_summary_line_names_the_defaults_a_chart_took() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    std::fs::write(dir.path().join("e.csv"), "source,target\na,b\nb,c\n").unwrap();
+    let spec = "[data.e]\npath = \"e.csv\"\n\n[[chart]]\nname = \"g\"\ndata = \"e\"\nkind = \"graph\"\n\n\
+                [[chart]]\nname = \"h\"\ndata = \"e\"\nkind = \"graph\"\nsource = \"target\"\ntarget = \"source\"\n";
+    std::fs::write(dir.path().join("spec.toml"), spec).unwrap();
+    let run = dataink().args(["render", "spec.toml", "--out", "out"]).current_dir(dir.path()).output().unwrap();
+    let stderr = String::from_utf8_lossy(&run.stderr);
+    assert!(run.status.success(), "{stderr}");
+    assert!(stderr.contains("out/g.png (by convention: source = \"source\", target = \"target\")\n"), "{stderr}");
+    assert!(stderr.contains("out/h.png\n"), "a chart naming its columns takes nothing: {stderr}");
+}

@@ -130,3 +130,19 @@ pub fn run_dataink(dir: &Path, args: &[&str], seconds: u64) -> Option<std::proce
     command.current_dir(dir).args(args);
     run_with_timeout(command, seconds)
 }
+
+/// A NumPy `.npy` file (version 1) of `rows × cols` little-endian f8 values in C order.
+pub fn npy_f8(rows: usize, cols: usize, values: &[f64]) -> Vec<u8> {
+    let mut header = format!("{{'descr': '<f8', 'fortran_order': False, 'shape': ({rows}, {cols}), }}");
+    while !(10 + header.len() + 1).is_multiple_of(64) {
+        header.push(' ');
+    }
+    header.push('\n');
+    let mut out = b"\x93NUMPY\x01\x00".to_vec();
+    out.extend_from_slice(&(header.len() as u16).to_le_bytes());
+    out.extend_from_slice(header.as_bytes());
+    for v in values {
+        out.extend_from_slice(&v.to_le_bytes());
+    }
+    out
+}

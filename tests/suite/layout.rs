@@ -124,3 +124,18 @@ fn colour_encodings_have_a_legend() {
         }
     }
 }
+
+#[test]
+fn every_kind_draws_at_the_size_the_canvas_check_assumes() {
+    let loaded = pipeline::load(&crate::common::root().join("examples/gallery.toml"), PathPolicy::InsideSpecFolder)
+        .unwrap_or_else(|f| panic!("{}", f.render()));
+    let mut kinds = std::collections::BTreeSet::new();
+    for (i, chart) in loaded.spec.chart.iter().enumerate() {
+        let unsized_chart = dataink::spec::Chart { size: None, ..chart.clone() };
+        let out = pipeline::draw_chart(&loaded, i, &unsized_chart).unwrap_or_else(|e| panic!("{e}"));
+        let [w, h] = dataink::mark::canvas_size(&unsized_chart);
+        assert_eq!([out.scene.width, out.scene.height], [w, h], "{}", chart.name);
+        kinds.insert(chart.kind.name());
+    }
+    assert!(kinds.len() >= 15, "the gallery covers most kinds: {kinds:?}");
+}

@@ -10,6 +10,7 @@ mod cli;
 mod colours;
 mod common;
 mod datasets;
+mod defaults;
 mod explore;
 mod flow;
 mod frame_fit;
