@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Whole-command timings against the peer, in one run. Needs hyperfine (apt-get install hyperfine)
-# and, for the peer, python3 with pandas and matplotlib (pip install pandas matplotlib).
+# and, for the peers, python3 with pandas, matplotlib and contourpy (pip install pandas matplotlib contourpy).
 # Usage: benches/compare.sh            (results also in target/bench/*.md)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -44,3 +44,10 @@ hyperfine --warmup 1 --runs 5 --export-markdown target/bench/flow_512.md \
   -n dataink 'target/release/dataink render benches/flow_512.toml --format png --out target/bench/out --quiet' \
   -n matplotlib-streamplot 'python3 benches/peer_matplotlib_streamplot.py benches/data/gyre_512.csv target/bench/out/peer_flow.png'
 python3 benches/peer_matplotlib_streamplot.py benches/data/gyre_512.csv target/bench/out/peer_flow.png
+
+[ -f benches/data/grid_2000.npy ] || python3 benches/make_grid_npy.py benches/data/grid_2000.npy
+
+echo "== contour: 10 levels (lines and bands) of a 2000x2000 .npy grid to PNG, whole process (load included)"
+hyperfine -N --warmup 2 --runs 10 --export-markdown target/bench/contour_npy.md \
+  -n dataink 'target/release/dataink render benches/contour_npy.toml --format png --out target/bench/out --quiet' \
+  -n np.load+contourpy 'python3 benches/peer_contourpy_npy.py benches/data/grid_2000.npy'

@@ -53,8 +53,11 @@ pub fn inner_path(path: &Path) -> PathBuf {
 pub fn read_bytes(path: &Path) -> Result<Vec<u8>, LoadError> {
     let file = super::regular_file::open(path).map_err(|e| LoadError::from_io(path, e))?;
     let Some(compression) = Compression::of(path) else {
-        let mut bytes = Vec::new();
-        std::io::BufReader::new(file).read_to_end(&mut bytes).map_err(|e| LoadError::from_io(path, e))?;
+        // Sized from the metadata up front: one allocation, no regrowing copies of a large file.
+        let size = file.metadata().map_or(0, |m| m.len()).min(MAX_DECOMPRESSED);
+        let mut bytes = Vec::with_capacity(usize::try_from(size).unwrap_or(0).saturating_add(1));
+        let mut file = file;
+        file.read_to_end(&mut bytes).map_err(|e| LoadError::from_io(path, e))?;
         return Ok(bytes);
     };
     let corrupt = |message: String| LoadError::Decompress { path: path.to_path_buf(), compression, message };

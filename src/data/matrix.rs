@@ -26,9 +26,9 @@ pub struct Matrix {
 }
 
 impl Matrix {
-    /// The matrix as a long-form table `x, y, value`, with coordinates from `extent`
+    /// The matrix as a long-form table `x, y, value` (its values moved, not copied), with coordinates from `extent`
     /// (`[x_first, x_last, y_first, y_last]`) or the indices.
-    pub fn to_table(&self, extent: Option<[f64; 4]>) -> Table {
+    pub fn to_table(self, extent: Option<[f64; 4]>) -> Table {
         let coord = |k: usize, n: usize, first: f64, last: f64| {
             if n <= 1 { first } else { first + (last - first) * k as f64 / (n - 1) as f64 }
         };
@@ -47,7 +47,7 @@ impl Matrix {
             columns: vec![
                 Column { name: "x".into(), values: ColumnValues::Number(xs) },
                 Column { name: "y".into(), values: ColumnValues::Number(ys) },
-                Column { name: "value".into(), values: ColumnValues::Number(self.values.clone()) },
+                Column { name: "value".into(), values: ColumnValues::Number(self.values) },
             ],
             rows: n,
         }
@@ -123,31 +123,9 @@ pub fn parse_npy(bytes: &[u8]) -> Result<Matrix, String> {
             cells * size
         ));
     }
-    let read = |chunk: &[u8]| -> Option<f64> {
-        let mut b = [0u8; 8];
-        let slot = b.get_mut(..size)?;
-        slot.copy_from_slice(chunk);
-        if !little {
-            slot.reverse();
-        }
-        Some(match (kind, size) {
-            ('f', 8) => f64::from_le_bytes(b),
-            ('f', 4) => f32::from_le_bytes([b[0], b[1], b[2], b[3]]) as f64,
-            ('i', 8) => i64::from_le_bytes(b) as f64,
-            ('i', 4) => i32::from_le_bytes([b[0], b[1], b[2], b[3]]) as f64,
-            ('i', 2) => i16::from_le_bytes([b[0], b[1]]) as f64,
-            ('i', 1) => b[0] as i8 as f64,
-            ('u', 8) => u64::from_le_bytes(b) as f64,
-            ('u', 4) => u32::from_le_bytes([b[0], b[1], b[2], b[3]]) as f64,
-            ('u', 2) => u16::from_le_bytes([b[0], b[1]]) as f64,
-            ('u', 1) => b[0] as f64,
-            _ => return None,
-        })
-    };
-    let mut values = Vec::with_capacity(cells);
-    for chunk in data.chunks_exact(size).take(cells) {
-        values.push(read(chunk).ok_or(format!("unsupported dtype {descr}; use float or integer arrays"))?);
-    }
+    let decode =
+        decoder(kind, size, little).ok_or_else(|| format!("unsupported dtype {descr}; use float or integer arrays"))?;
+    let mut values: Vec<f64> = data[..cells * size].chunks_exact(size).map(decode).collect();
     if fortran {
         // Column-major on disk: transpose to row-major.
         let mut t = vec![0.0; cells];
@@ -161,6 +139,38 @@ pub fn parse_npy(bytes: &[u8]) -> Result<Matrix, String> {
         values = t;
     }
     Ok(Matrix { rows, cols, values })
+}
+
+/// How one cell of a dtype (kind `f`, `i` or `u`, `size` bytes, little- or big-endian) becomes a
+/// number; chosen once per file so the loop over the cells does not branch on the dtype.
+fn decoder(kind: char, size: usize, little: bool) -> Option<fn(&[u8]) -> f64> {
+    fn bytes<const N: usize>(chunk: &[u8]) -> [u8; N] {
+        let mut b = [0u8; N];
+        b.copy_from_slice(&chunk[..N]);
+        b
+    }
+    macro_rules! pick {
+        ($t:ty, $n:literal) => {
+            if little {
+                |c: &[u8]| <$t>::from_le_bytes(bytes::<$n>(c)) as f64
+            } else {
+                |c: &[u8]| <$t>::from_be_bytes(bytes::<$n>(c)) as f64
+            }
+        };
+    }
+    Some(match (kind, size) {
+        ('f', 8) => pick!(f64, 8),
+        ('f', 4) => pick!(f32, 4),
+        ('i', 8) => pick!(i64, 8),
+        ('i', 4) => pick!(i32, 4),
+        ('i', 2) => pick!(i16, 2),
+        ('i', 1) => pick!(i8, 1),
+        ('u', 8) => pick!(u64, 8),
+        ('u', 4) => pick!(u32, 4),
+        ('u', 2) => pick!(u16, 2),
+        ('u', 1) => pick!(u8, 1),
+        _ => return None,
+    })
 }
 
 /// The text after `'key':` in a Python dict literal, up to the next top-level comma.
@@ -215,6 +225,48 @@ mod tests {
         }
     }
 
+    /// A version-1 .npy file of `descr` with the given raw cell bytes.
+    fn npy_raw(descr: &str, shape: &str, data: &[u8]) -> Vec<u8> {
+        let good = npy(shape, false, &[]);
+        let mut out = String::from_utf8_lossy(&good[10..]).replace("<f8", descr).into_bytes();
+        let mut bytes = good[..10].to_vec();
+        bytes.append(&mut out);
+        bytes.extend_from_slice(data);
+        bytes
+    }
+
+    #[test]
+    fn every_dtype_in_both_byte_orders_reads_its_values() {
+        let values = [-7.0f64, 0.0, 1.0, 100.0];
+        let unsigned = [0.0f64, 1.0, 7.0, 200.0];
+        macro_rules! check {
+            ($t:ty, $code:literal, $vals:expr) => {
+                for (order, big) in [("<", false), (">", true)] {
+                    let data: Vec<u8> = $vals
+                        .iter()
+                        .flat_map(|&v| {
+                            let v = v as $t;
+                            if big { v.to_be_bytes().to_vec() } else { v.to_le_bytes().to_vec() }
+                        })
+                        .collect();
+                    let descr = format!("{order}{}", $code);
+                    let m = parse_npy(&npy_raw(&descr, "(2, 2)", &data)).unwrap_or_else(|e| panic!("{descr}: {e}"));
+                    assert_eq!(m.values, $vals.to_vec(), "{descr}");
+                }
+            };
+        }
+        check!(f64, "f8", values);
+        check!(f32, "f4", values);
+        check!(i64, "i8", values);
+        check!(i32, "i4", values);
+        check!(i16, "i2", values);
+        check!(i8, "i1", values);
+        check!(u64, "u8", unsigned);
+        check!(u32, "u4", unsigned);
+        check!(u16, "u2", unsigned);
+        check!(u8, "u1", unsigned);
+    }
+
     #[test]
     fn c_and_fortran_order_read_the_same_matrix() {
         let c = parse_npy(&npy("(2, 3)", false, &[1.0, 2.0, 3.0, 4.0, 5.0, 6.0])).expect("C order");
@@ -237,7 +289,7 @@ mod tests {
     #[test]
     fn extent_maps_indices_to_coordinates() {
         let m = Matrix { rows: 2, cols: 3, values: vec![1.0, 2.0, 3.0, 4.0, 5.0, 6.0] };
-        let t = m.to_table(Some([10.0, 20.0, -1.0, 1.0]));
+        let t = m.clone().to_table(Some([10.0, 20.0, -1.0, 1.0]));
         assert_eq!(t.column("x").and_then(|c| c.numbers()), Some(&[10.0, 15.0, 20.0, 10.0, 15.0, 20.0][..]));
         assert_eq!(t.column("y").and_then(|c| c.numbers()), Some(&[-1.0, -1.0, -1.0, 1.0, 1.0, 1.0][..]));
         assert_eq!(t.column("value").and_then(|c| c.numbers()), Some(&m.values[..]));

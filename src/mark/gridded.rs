@@ -78,6 +78,16 @@ pub fn grid_from_rows(
     rows: &[u32],
 ) -> Result<Grid, MarkError> {
     let (xv, yv, zv) = (x_col.numbers().unwrap_or(&[]), y_col.numbers().unwrap_or(&[]), z_col.numbers().unwrap_or(&[]));
+    if rows.len() == xv.len()
+        && let Some((xs, ys)) = row_major_axes(xv, yv)
+    {
+        let nodes = xs.len() * ys.len();
+        if nodes <= MAX_NODES {
+            return Grid::new(xs, ys, zv[..nodes].to_vec()).map_err(|e| {
+                MarkError::at(index, &["x"], format!("chart \"{}\": {e}", chart.name), "check the grid coordinates")
+            });
+        }
+    }
     let distinct = |v: &[f64]| {
         let mut d: Vec<f64> = rows.iter().filter_map(|&r| v.get(r as usize).copied()).collect();
         d.sort_by(f64::total_cmp);
@@ -137,4 +147,74 @@ pub fn grid_from_rows(
     Grid::new(xs, ys, values).map_err(|e| {
         MarkError::at(index, &["x"], format!("chart \"{}\": {e}", chart.name), "check the grid coordinates")
     })
+}
+
+/// The axes of a table whose rows already are a grid in row-major order — x increasing fastest,
+/// then y increasing, every node once — as grid files (`.npy`, matrices) and most exporters
+/// write them; `None` for any other order, which [`grid_from_rows`] then sorts out. One pass
+/// over the rows, no sorting.
+fn row_major_axes(xv: &[f64], yv: &[f64]) -> Option<(Vec<f64>, Vec<f64>)> {
+    let y0 = *yv.first()?;
+    let nx = yv.iter().position(|&y| y != y0).unwrap_or(yv.len());
+    if nx < 2 || !yv.len().is_multiple_of(nx) || yv.len() != xv.len() {
+        return None;
+    }
+    let xs = &xv[..nx];
+    if !xs.windows(2).all(|w| w[0] < w[1]) {
+        return None;
+    }
+    let mut ys = Vec::with_capacity(yv.len() / nx);
+    for (xrow, yrow) in xv.chunks_exact(nx).zip(yv.chunks_exact(nx)) {
+        let y = yrow[0];
+        if ys.last().is_some_and(|&last| last >= y) || xrow != xs || yrow.iter().any(|&v| v != y) {
+            return None;
+        }
+        ys.push(y);
+    }
+    Some((xs.to_vec(), ys))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The grid of (x, y, z) rows through the general path (sorting) and through whatever path
+    /// `grid_from_rows` takes.
+    fn both(xv: &[f64], yv: &[f64], zv: &[f64]) -> (Option<(Vec<f64>, Vec<f64>)>, Grid) {
+        let chart: Chart = serde_json::from_value(serde_json::json!({
+            "name": "c", "data": "d", "kind": "contour", "x": "x", "y": "y", "z": "z"
+        }))
+        .unwrap();
+        let col =
+            |name: &str, v: &[f64]| Column { name: name.into(), values: crate::data::ColumnValues::Number(v.to_vec()) };
+        let rows: Vec<u32> = (0..xv.len() as u32).collect();
+        let grid = grid_from_rows(&chart, 0, &col("x", xv), &col("y", yv), &col("z", zv), &rows).unwrap();
+        (row_major_axes(xv, yv), grid)
+    }
+
+    #[test]
+    fn rows_already_in_grid_order_skip_the_sort_and_give_the_same_grid() {
+        let (xv, yv, zv) =
+            ([0.0, 1.0, 3.0, 0.0, 1.0, 3.0], [5.0, 5.0, 5.0, 7.0, 7.0, 7.0], [1.0, 2.0, 3.0, 4.0, 5.0, 6.0]);
+        let (fast, grid) = both(&xv, &yv, &zv);
+        assert_eq!(fast, Some((vec![0.0, 1.0, 3.0], vec![5.0, 7.0])));
+        // The same rows shuffled go through the sort: the same grid.
+        let order = [4, 0, 5, 2, 1, 3];
+        let pick = |v: &[f64]| order.iter().map(|&i| v[i]).collect::<Vec<f64>>();
+        let (slow, shuffled) = both(&pick(&xv), &pick(&yv), &pick(&zv));
+        assert_eq!(slow, None);
+        assert_eq!(grid, shuffled);
+    }
+
+    #[test]
+    fn other_orders_are_not_taken_for_a_row_major_grid() {
+        // y fastest (column-major), x decreasing, y decreasing, a ragged row, a repeated x.
+        assert_eq!(row_major_axes(&[0.0, 0.0, 1.0, 1.0], &[0.0, 1.0, 0.0, 1.0]), None);
+        assert_eq!(row_major_axes(&[1.0, 0.0, 1.0, 0.0], &[0.0, 0.0, 1.0, 1.0]), None);
+        assert_eq!(row_major_axes(&[0.0, 1.0, 0.0, 1.0], &[1.0, 1.0, 0.0, 0.0]), None);
+        assert_eq!(row_major_axes(&[0.0, 1.0, 0.0, 2.0], &[0.0, 0.0, 1.0, 1.0]), None);
+        assert_eq!(row_major_axes(&[0.0, 1.0, 0.0, 1.0], &[0.0, 0.0, 1.0, 2.0]), None);
+        assert_eq!(row_major_axes(&[0.0, 1.0, 1.0], &[0.0, 0.0, 0.0]), None);
+        assert_eq!(row_major_axes(&[0.0, 1.0, 0.0], &[0.0, 0.0, 1.0]), None);
+    }
 }
