@@ -56,7 +56,7 @@ pub fn draw(chart: &Chart, options: &LineOptions, index: usize, table: &Table) -
             "remove `type = \"continuous\"`; to show a quantity along the line, use a scatter chart's `color`",
         ));
     }
-    let split_field = options.series.as_deref().or(color.as_ref().map(|c| c.field.as_str()));
+    let split_field = options.split_field();
     if split_field.is_some() && y_channels.len() > 1 {
         return Err(MarkError::at(
             index,

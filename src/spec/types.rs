@@ -387,6 +387,13 @@ pub struct LineOptions {
     pub mark_color: Option<String>,
 }
 
+impl LineOptions {
+    /// The column splitting the rows into series: `series`, else the `color` encoding's field.
+    pub fn split_field(&self) -> Option<&str> {
+        self.series.as_deref().or(self.color.as_ref().map(ColorChannel::field))
+    }
+}
+
 /// Options of `kind = "bar"`.
 #[derive(Clone, Debug, Deserialize, Serialize, JsonSchema, PartialEq)]
 pub struct BarOptions {

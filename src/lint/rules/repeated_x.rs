@@ -67,16 +67,17 @@ fn repeats(s: &Subject<'_>, x: &str, series: Option<&str>) -> Option<Repeats> {
 fn check(s: &Subject<'_>) -> Vec<Issue> {
     let ChartKind::Line(o) = &s.chart.kind else { return Vec::new() };
     let x = o.x.field();
-    let Some(r) = repeats(s, x, o.series.as_deref()) else { return Vec::new() };
+    let split = o.split_field();
+    let Some(r) = repeats(s, x, split) else { return Vec::new() };
     let y = o.y.as_slice().first().map(|c| c.field().to_string()).unwrap_or_else(|| "y".into());
     let (group, value, n) = r.worst;
-    let within = match &o.series {
+    let within = match split {
         Some(series) => format!(" in series \"{}\" (`{series}`)", crate::spec::validate::shorten(&group)),
         None => String::new(),
     };
     let mut groupby = vec![format!("\"{x}\"")];
-    groupby.extend(o.series.iter().map(|s| format!("\"{s}\"")));
-    let split = if o.series.is_none() {
+    groupby.extend(split.iter().map(|s| format!("\"{s}\"")));
+    let split = if split.is_none() {
         " or, if the rows belong to different groups, draw one line per group with `series = \"COLUMN\"`"
     } else {
         ""
