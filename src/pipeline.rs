@@ -143,8 +143,11 @@ pub fn load(spec_path: &Path, policy: PathPolicy) -> Result<Loaded, Failed> {
         let key = if source_spec.path.is_some() { "path" } else { "values" };
         let at = doc.span_of(&[PathSeg::Key("data".into()), PathSeg::Key(name.clone()), PathSeg::Key(key.into())]);
         match timed(&format!("load data \"{name}\""), || {
-            let with_maybe = wanted.as_ref().map(|w| [w.as_slice(), &maybe].concat());
-            data::load_source_with_warnings(source_spec, &spec_dir, policy, with_maybe.as_deref())
+            // A file reader cannot tell which of the conventional columns exist before reading:
+            // asking for one that does not fails the read, and the file is read again whole. A
+            // source with charts taking defaults is read whole at once instead.
+            let columns = if maybe.is_empty() { wanted.as_deref() } else { None };
+            data::load_source_with_warnings(source_spec, &spec_dir, policy, columns)
         }) {
             Ok(loaded) => {
                 for warning in loaded.warnings {

@@ -43,7 +43,7 @@ pub fn draw(
     table: &Table,
     highlight: Option<&Highlight>,
 ) -> Result<ChartOutput, MarkError> {
-    let chart = &with_default_size(chart, DEFAULT_SIZE);
+    let chart = &with_default_size(chart);
     let columns = encode::columns(chart, index, "columns", &options.columns, table)?;
     let fields: Vec<(&str, &Column)> = columns.iter().map(|(o, c)| (o.field.as_str(), *c)).collect();
     let (rows, warnings) = encode::drawn_rows(chart, index, table, fields, options.color.as_ref())?;

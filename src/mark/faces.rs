@@ -37,7 +37,7 @@ pub fn draw(
     table: &Table,
     highlight: Option<&Highlight>,
 ) -> Result<ChartOutput, MarkError> {
-    let chart = &with_default_size(chart, DEFAULT_SIZE);
+    let chart = &with_default_size(chart);
     let (key, mapping) = feature_columns(chart, index, options)?;
     let mut numeric: Vec<(&str, &Column)> = Vec::new();
     for (_, field) in &mapping {

@@ -59,7 +59,7 @@ pub fn draw(
     table: &Table,
     nodes: Option<&Table>,
 ) -> Result<ChartOutput, MarkError> {
-    let chart = &with_default_size(chart, DEFAULT_SIZE);
+    let chart = &with_default_size(chart);
     let channels = (options.source.as_str(), options.target.as_str(), options.weight.as_deref());
     let layout = options.layout.unwrap_or(GraphLayout::Force);
     let keep_isolated = layout != GraphLayout::Given;

@@ -77,7 +77,7 @@ pub fn draw_with_view(
     table: &Table,
     view: &Mobius,
 ) -> Result<(ChartOutput, Geometry), MarkError> {
-    let chart = &with_default_size(chart, DEFAULT_SIZE);
+    let chart = &with_default_size(chart);
     let tree = tree_of(chart, index, &options.tree, table)?;
     let labels = labels_of(chart, index, &tree, options.label.as_deref(), table)?;
     let h = &tree.hierarchy;

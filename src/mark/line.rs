@@ -148,14 +148,15 @@ pub fn draw(chart: &Chart, options: &LineOptions, index: usize, table: &Table) -
         (Some(options), Some(cats)) => {
             let drawn: Vec<u32> = series.iter().flat_map(|s| s.rows.iter().copied()).collect();
             let (per_level, entries) = super::categorical::assign(chart, index, options, cats, &drawn)?;
-            let colours: Vec<(String, Color)> = cats.levels.iter().cloned().zip(per_level).collect();
+            let colours: std::collections::HashMap<String, Color> =
+                cats.levels.iter().cloned().zip(per_level).collect();
             Some((colours, entries))
         }
         _ => None,
     };
     for (i, s) in series.iter_mut().enumerate() {
         s.color = match &by_category {
-            Some((colours, _)) => colours.iter().find(|(l, _)| *l == s.name).map_or(single_color, |(_, c)| *c),
+            Some((colours, _)) => colours.get(&s.name).copied().unwrap_or(single_color),
             None if n_series == 1 => single_color,
             None => palette.get(i % palette.len().max(1)).copied().unwrap_or(single_color),
         };

@@ -36,7 +36,7 @@ pub fn draw(
     nodes: Option<&Table>,
 ) -> Result<ChartOutput, MarkError> {
     let mode = options.mode.unwrap_or(LinkMode::Links);
-    let chart = &with_default_size(chart, if mode == LinkMode::Matrix { MATRIX_SIZE } else { DEFAULT_SIZE });
+    let chart = &with_default_size(chart);
     let channels = (options.source.as_str(), options.target.as_str(), Some(options.weight.as_str()));
     let input = network_of(chart, index, channels, (options.nodes.as_ref(), false), table, nodes)?;
     match mode {

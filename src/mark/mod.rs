@@ -163,10 +163,11 @@ pub fn column_keys(kind: &str) -> &'static [&'static str] {
     }
 }
 
-/// The chart with `size` filled in by a kind's own default when the spec gives none.
-pub fn with_default_size(chart: &Chart, size: [f64; 2]) -> Chart {
+/// The chart with `size` filled in by its kind's default ([`default_size`]) when the spec gives
+/// none.
+pub fn with_default_size(chart: &Chart) -> Chart {
     let mut chart = chart.clone();
-    chart.size.get_or_insert(size);
+    chart.size = Some(canvas_size(&chart));
     chart
 }
 

@@ -49,7 +49,7 @@ pub fn draw_with_geometry(
     table: &Table,
     highlight: Option<&Highlight>,
 ) -> Result<(ChartOutput, Geometry), MarkError> {
-    let chart = &with_default_size(chart, DEFAULT_SIZE);
+    let chart = &with_default_size(chart);
     let mut columns = encode::columns(chart, index, "columns", &options.columns, table)?;
     let inverted = inverted_columns(chart, index, options, &columns)?;
     let fields: Vec<(&str, &Column)> = columns.iter().map(|(o, c)| (o.field.as_str(), *c)).collect();

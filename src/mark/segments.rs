@@ -38,7 +38,7 @@ pub fn draw(
     table: &Table,
     highlight: Option<&Highlight>,
 ) -> Result<ChartOutput, MarkError> {
-    let chart = &with_default_size(chart, DEFAULT_SIZE);
+    let chart = &with_default_size(chart);
     let columns = encode::columns(chart, index, "columns", &options.columns, table)?;
     for (_, col) in &columns {
         encode::require_numeric(chart, index, "columns", col, "a circle segment", "colour pixels by numeric columns")?;

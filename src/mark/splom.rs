@@ -48,7 +48,7 @@ pub fn draw_with_geometry(
     table: &Table,
     highlight: Option<&Highlight>,
 ) -> Result<(ChartOutput, Geometry), MarkError> {
-    let chart = &with_default_size(chart, DEFAULT_SIZE);
+    let chart = &with_default_size(chart);
     let columns = encode::columns(chart, index, "columns", &options.columns, table)?;
     for (_, col) in &columns {
         encode::require_numeric(

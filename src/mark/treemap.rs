@@ -26,7 +26,7 @@ const MIN_LABEL_SIZE: f64 = crate::guide::theme::MIN_TEXT_SIZE;
 
 /// Draw a treemap.
 pub fn draw(chart: &Chart, options: &TreemapOptions, index: usize, table: &Table) -> Result<ChartOutput, MarkError> {
-    let chart = &with_default_size(chart, DEFAULT_SIZE);
+    let chart = &with_default_size(chart);
     let tree = tree_of(chart, index, &options.tree, table)?;
     let labels = labels_of(chart, index, &tree, options.label.as_deref(), table)?;
     let mut warnings = Vec::new();
