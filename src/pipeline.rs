@@ -713,12 +713,8 @@ pub fn draw_and_lint(loaded: &Loaded, names: &[String]) -> Result<Vec<Linted>, V
 }
 
 /// The node table a network chart names, when it has one.
-fn node_table<'a>(loaded: &'a Loaded, chart: &spec::Chart) -> Option<&'a Table> {
-    match &chart.kind {
-        spec::ChartKind::Graph(spec::GraphOptions { nodes: Some(n), .. })
-        | spec::ChartKind::Linkmap(spec::LinkmapOptions { nodes: Some(n), .. }) => loaded.tables.get(&n.data),
-        _ => None,
-    }
+pub(crate) fn node_table<'a>(loaded: &'a Loaded, chart: &spec::Chart) -> Option<&'a Table> {
+    mark::technique(&chart.kind).node_data().and_then(|data| loaded.tables.get(data))
 }
 
 /// Charts selected by name, or a diagnostic naming the unknown ones.
@@ -746,7 +742,9 @@ pub fn draw_chart(loaded: &Loaded, index: usize, chart: &spec::Chart) -> Result<
         MarkError::at(index, &["data"], format!("chart \"{}\": data \"{}\" was not loaded", chart.name, chart.data), "")
     })?;
     let highlight = chart.highlight.as_ref().and_then(|name| loaded.highlights.get(name));
-    mark::draw_with_nodes(chart, index, table, highlight, node_table(loaded, chart))
+    mark::draw_in(
+        &mark::ChartContext::new(chart, index, table).with_highlight(highlight).with_nodes(node_table(loaded, chart)),
+    )
 }
 
 /// A mark error as a diagnostic pointing into the spec.

@@ -13,13 +13,13 @@ use super::hyper::{FOCUS_SECONDS, FocusView};
 use super::light;
 use super::view;
 use crate::data::Table;
-use crate::mark::ChartOutput;
-use crate::mark::geometry::{self, Geometry};
+use crate::mark::geometry::Geometry;
+use crate::mark::{ChartContext, ChartOutput};
 use crate::pipeline::Loaded;
 use crate::render::tiles::Tiles;
 use crate::scene::{Item, Point, Rect, Shape};
 use crate::selection::Highlight;
-use crate::spec::{Chart, ChartKind};
+use crate::spec::Chart;
 
 /// How near (canvas units) the pointer must be to a mark for hover to describe it.
 pub const HOVER_REACH: f64 = 8.0;
@@ -90,15 +90,7 @@ pub struct Session {
 
 /// Whether a chart kind draws a selection (`highlight`).
 pub fn draws_selection(chart: &Chart) -> bool {
-    matches!(
-        chart.kind,
-        ChartKind::Scatter(_)
-            | ChartKind::Splom(_)
-            | ChartKind::Parallel(_)
-            | ChartKind::Daisy(_)
-            | ChartKind::Faces(_)
-            | ChartKind::Segments(_)
-    )
+    crate::mark::technique(&chart.kind).info().draws_selection
 }
 
 impl Session {
@@ -435,10 +427,7 @@ impl Session {
             Some(Highlight { name: Session::selection_name(&v.data), selection, selected: mask })
         });
         let highlight = highlight.filter(|_| draws_selection(&chart));
-        let nodes = node_table(&self.loaded, &chart);
-        geometry::draw_with_geometry(&chart, v.index, table, highlight.as_ref(), nodes, &v.focus.transform)
-            .ok()
-            .map(|(o, _)| o)
+        crate::mark::draw_in(&view_context(&self.loaded, v, &chart, table).with_highlight(highlight.as_ref())).ok()
     }
 }
 
@@ -446,15 +435,6 @@ impl Session {
 fn span(b: &Brush, field: &str, scale: &crate::guide::scale::Scale, bounds: (f64, f64)) -> Option<(f64, f64)> {
     let r = b.ranges.get(field)?;
     crate::mark::highlight::pixel_span((r[0], r[1]), |v| scale.map(v), bounds)
-}
-
-/// The node table a network chart names.
-fn node_table<'a>(loaded: &'a Loaded, chart: &Chart) -> Option<&'a Table> {
-    match &chart.kind {
-        ChartKind::Graph(crate::spec::GraphOptions { nodes: Some(n), .. })
-        | ChartKind::Linkmap(crate::spec::LinkmapOptions { nodes: Some(n), .. }) => loaded.tables.get(&n.data),
-        _ => None,
-    }
 }
 
 /// Table rows lit in one mask and not the other (`None`: every row lit).
@@ -469,6 +449,13 @@ fn is_distribution(item: &Item) -> bool {
     item.role == crate::scene::Role::DataMark && !item.rows.is_empty() && matches!(item.shape, Shape::Path(_))
 }
 
+/// Chart view `v` bound to its table, node table and hyperbolic view.
+fn view_context<'a>(loaded: &'a Loaded, v: &'a ChartView, chart: &Chart, table: &'a Table) -> ChartContext<'a> {
+    ChartContext::new(chart, v.index, table)
+        .with_nodes(crate::pipeline::node_table(loaded, chart))
+        .with_view(Some(&v.focus.transform))
+}
+
 /// Draw chart view `v` for its view state and relight it for `mask`.
 fn draw_view(loaded: &Loaded, v: &mut ChartView, mask: Option<&[bool]>, scale: f64) {
     let Some(chart) = loaded.spec.chart.get(v.index) else { return };
@@ -478,9 +465,9 @@ fn draw_view(loaded: &Loaded, v: &mut ChartView, mask: Option<&[bool]>, scale: f
     };
     let chart = view::with_domains(chart, &v.domains);
     let base = draws_selection(&chart).then(|| light::all_lit(&chart.data, table.rows));
-    let nodes = node_table(loaded, &chart);
-    match geometry::draw_with_geometry(&chart, v.index, table, base.as_ref(), nodes, &v.focus.transform) {
-        Ok((output, geometry)) => {
+    match crate::mark::draw_in(&view_context(loaded, v, &chart, table).with_highlight(base.as_ref())) {
+        Ok(mut output) => {
+            let geometry = std::mem::take(&mut output.geometry);
             let selectable = base.is_some();
             let diagonal = geometry.diagonals.is_some();
             let tiles = Tiles::new(&output.scene, scale, |i| {

@@ -319,7 +319,13 @@ pub(crate) mod test_support {
 
     /// The chart's output with `scene`.
     pub fn output(scene: Scene) -> ChartOutput {
-        ChartOutput { scene, derived: Default::default(), warnings: Vec::new(), geojson: None }
+        ChartOutput {
+            scene,
+            derived: Default::default(),
+            warnings: Vec::new(),
+            geojson: None,
+            geometry: Default::default(),
+        }
     }
 
     /// Run `check` on `scene` under [`chart`] with an empty table.

@@ -7,6 +7,7 @@
 
 use super::derived::{Derived, DerivedColumn};
 use super::encode::{self, MISSING_LABEL};
+use super::registry::{AxisSpec, ChartContext, ColourSpec, KindInfo, Technique};
 use super::{ChartOutput, MarkError, frame};
 use crate::data::{Categories, Column, Table};
 use crate::guide::axis::title_with_unit;
@@ -69,7 +70,7 @@ pub fn draw(chart: &Chart, options: &BarOptions, index: usize, table: &Table) ->
         None => Keys { labels: vec![String::new()], of_row: vec![0; rows.len()] },
     };
     let (nx, ng) = (x_keys.labels.len(), groups.labels.len());
-    let [width, _] = chart.size.unwrap_or(super::DEFAULT_SIZE);
+    let [width, _] = chart.size.unwrap_or(super::FRAME_SIZE);
     let slots = nx.saturating_mul(ng);
     if slots as f64 > width {
         let what = if ng > 1 {
@@ -220,7 +221,7 @@ pub fn draw(chart: &Chart, options: &BarOptions, index: usize, table: &Table) ->
     }
     derived.push(&y_opts.field, DerivedColumn::Number(bars.iter().map(|b| b.sum).collect()));
     derived.push("rows", DerivedColumn::Number(bars.iter().map(|b| b.rows.len() as f64).collect()));
-    Ok(ChartOutput { scene, derived, warnings, geojson: None })
+    Ok(ChartOutput { scene, derived, warnings, geojson: None, geometry: Default::default() })
 }
 
 /// What the label of a clip mark starts with; the rest is its bar's label.
@@ -414,6 +415,36 @@ fn number_labels(values: &[f64], time: bool) -> Vec<String> {
     sorted.sort_unstable();
     let unique = sorted.windows(2).all(|w| w[0] != w[1]);
     if unique { short } else { values.iter().map(|v| v.to_string()).collect() }
+}
+
+/// `kind = "bar"`.
+pub static KIND: KindInfo = KindInfo::new("bar", &["x", "y", "color"]);
+
+impl Technique for BarOptions {
+    fn info(&self) -> &'static KindInfo {
+        &KIND
+    }
+
+    fn draw(&self, cx: &ChartContext<'_>) -> Result<ChartOutput, MarkError> {
+        draw(&cx.chart, self, cx.index, cx.table)
+    }
+
+    fn cartesian_axes(&self) -> Vec<AxisSpec> {
+        // Bars place every x value in a band, numbers included.
+        let mut axes = AxisSpec::pair(&self.x, &self.y);
+        if let Some(x) = axes.first_mut() {
+            x.options.scale = Some(crate::spec::ScaleKind::Band);
+        }
+        axes
+    }
+
+    fn colour_encodings(&self) -> Vec<ColourSpec> {
+        ColourSpec::color(&self.color)
+    }
+
+    fn color_channel_mut(&mut self) -> Option<(&mut crate::spec::ColorChannel, Option<String>)> {
+        self.color.as_mut().map(|c| (c, None))
+    }
 }
 
 #[cfg(test)]

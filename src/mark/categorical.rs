@@ -9,7 +9,7 @@ use crate::data::{Categories, Column, Table};
 use crate::guide::color;
 use crate::guide::format::format_value;
 use crate::scene::Color;
-use crate::spec::{CategoryValue, Chart, ChartKind, ColorChannel, ColorOptions, ColorType};
+use crate::spec::{CategoryValue, Chart, ColorChannel, ColorOptions, ColorType};
 
 use super::MarkError;
 use super::encode::{MISSING_COLOR, MISSING_LABEL, palette, used_levels};
@@ -178,24 +178,9 @@ fn parsed_range(chart: &Chart, index: usize, range: &[String], needed: usize) ->
 /// The colour channel of a chart and the data source it reads (the node table for a graph's
 /// `nodes.color`), for mutation.
 fn channel_mut(chart: &mut Chart) -> Option<(&mut ColorChannel, String)> {
-    let data = chart.data.clone();
-    let slot = match &mut chart.kind {
-        ChartKind::Scatter(o) => &mut o.color,
-        ChartKind::Line(o) => &mut o.color,
-        ChartKind::Bar(o) => &mut o.color,
-        ChartKind::Splom(o) => &mut o.color,
-        ChartKind::Parallel(o) => &mut o.color,
-        ChartKind::Daisy(o) => &mut o.color,
-        ChartKind::Faces(o) => &mut o.color,
-        ChartKind::Treemap(o) => &mut o.color,
-        ChartKind::Hypertree(o) => &mut o.color,
-        ChartKind::Graph(o) => {
-            let nodes = o.nodes.as_mut()?;
-            return nodes.color.as_mut().map(|c| (c, nodes.data.clone()));
-        }
-        _ => return None,
-    };
-    slot.as_mut().map(|c| (c, data))
+    let own = chart.data.clone();
+    let (channel, data) = super::registry::technique_mut(&mut chart.kind).color_channel_mut()?;
+    Some((channel, data.unwrap_or(own)))
 }
 
 /// The spec-wide category order of every column that some chart colours by categories: each

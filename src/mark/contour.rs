@@ -3,6 +3,7 @@
 
 use super::derived::{Derived, DerivedColumn};
 use super::gridded::{self, GridInput};
+use super::registry::{AxisSpec, ChartContext, ColourSpec, KindInfo, Technique};
 use super::{ChartOutput, MarkError, encode, frame};
 use crate::data::Table;
 use crate::enrich::contour::{self, Saddle};
@@ -11,6 +12,7 @@ use crate::guide::format::format_ticks;
 use crate::guide::layout::Domain;
 use crate::guide::legend::Legend;
 use crate::scene::{Anchor, Baseline, Color, Item, PathCmd, Point, Role, Shape, Style, Text};
+use crate::spec::defaults;
 use crate::spec::{Chart, ContourOptions, Levels, SaddleRule};
 use crate::text::measure;
 
@@ -162,7 +164,13 @@ pub fn draw(chart: &Chart, options: &ContourOptions, index: usize, table: &Table
     derived.push("line", DerivedColumn::Number(derived_line));
     derived.push(&x_opts.field, DerivedColumn::Number(derived_x));
     derived.push(&y_opts.field, DerivedColumn::Number(derived_y));
-    Ok(ChartOutput { scene, derived, warnings, geojson: Some(super::geojson::ContourFeatures { lines, bands }) })
+    Ok(ChartOutput {
+        scene,
+        derived,
+        warnings,
+        geojson: Some(super::geojson::ContourFeatures { lines, bands }),
+        geometry: Default::default(),
+    })
 }
 
 /// One colour per band, by the band's rank rather than its value, so that unevenly spaced
@@ -287,4 +295,25 @@ fn point_along(px: &[Point], distance: f64) -> Option<(Point, f64)> {
         walked += seg;
     }
     None
+}
+
+/// `kind = "contour"`.
+pub static KIND: KindInfo = KindInfo::new("contour", &["x", "y", "z"]).conventions(defaults::GRID).taking_aspect();
+
+impl Technique for ContourOptions {
+    fn info(&self) -> &'static KindInfo {
+        &KIND
+    }
+
+    fn draw(&self, cx: &ChartContext<'_>) -> Result<ChartOutput, MarkError> {
+        draw(&cx.chart, self, cx.index, cx.table)
+    }
+
+    fn cartesian_axes(&self) -> Vec<AxisSpec> {
+        AxisSpec::pair(&self.x, &self.y)
+    }
+
+    fn colour_encodings(&self) -> Vec<ColourSpec> {
+        ColourSpec::z(&self.z)
+    }
 }

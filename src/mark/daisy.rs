@@ -7,6 +7,7 @@ use std::f64::consts::TAU;
 use super::derived::{Derived, DerivedColumn};
 use super::encode::{self, Positioner};
 use super::frame::{self, polar, polylines};
+use super::registry::{ChartContext, ColourSpec, KindInfo, Technique};
 use super::{ChartOutput, MarkError, highlight, with_default_size};
 use crate::data::{Column, Table};
 use crate::guide::Theme;
@@ -101,7 +102,13 @@ pub fn draw(
         items.extend(wheel.brushes(h, &columns));
     }
     let derived = derived_vertices(&rows, &columns, &positioners, &wheel, highlight);
-    Ok(ChartOutput { scene: canvas.scene(chart, items, None), derived, warnings, geojson: None })
+    Ok(ChartOutput {
+        scene: canvas.scene(chart, items, None),
+        derived,
+        warnings,
+        geojson: None,
+        geometry: Default::default(),
+    })
 }
 
 /// The circle and the arc scales. Each scale maps a value to a length along its arc (0 at the
@@ -326,6 +333,27 @@ fn derived_vertices(
         d.push("selected", DerivedColumn::Selected(h.selected.clone()));
     }
     d
+}
+
+/// `kind = "daisy"`.
+pub static KIND: KindInfo = KindInfo::new("daisy", &["columns", "color"]).sized(DEFAULT_SIZE).drawing_selections();
+
+impl Technique for DaisyOptions {
+    fn info(&self) -> &'static KindInfo {
+        &KIND
+    }
+
+    fn draw(&self, cx: &ChartContext<'_>) -> Result<ChartOutput, MarkError> {
+        draw(&cx.chart, self, cx.index, cx.table, cx.highlight)
+    }
+
+    fn colour_encodings(&self) -> Vec<ColourSpec> {
+        ColourSpec::color(&self.color)
+    }
+
+    fn color_channel_mut(&mut self) -> Option<(&mut crate::spec::ColorChannel, Option<String>)> {
+        self.color.as_mut().map(|c| (c, None))
+    }
 }
 
 #[cfg(test)]

@@ -6,6 +6,7 @@ use super::derived::{Derived, DerivedColumn};
 use super::encode::{self, ColorEncoding};
 use super::face::{FacePaint, FaceParams, Feature, face_items};
 use super::frame;
+use super::registry::{ChartContext, ColourSpec, KindInfo, Technique};
 use super::{ChartOutput, MarkError, highlight, with_default_size};
 use crate::data::{Column, Table};
 use crate::guide::layout::LayoutError;
@@ -146,7 +147,13 @@ pub fn draw(
     if let Some(h) = highlight {
         derived.push("selected", DerivedColumn::Selected(h.selected.clone()));
     }
-    Ok(ChartOutput { scene: canvas.scene(chart, items, None), derived, warnings, geojson: None })
+    Ok(ChartOutput {
+        scene: canvas.scene(chart, items, None),
+        derived,
+        warnings,
+        geojson: None,
+        geometry: Default::default(),
+    })
 }
 
 /// The column driving each mapped feature, in feature order.
@@ -267,5 +274,27 @@ impl FaceGrid {
     fn center(&self, k: usize) -> (f64, f64) {
         let (r, c) = (k / self.per_row, k % self.per_row);
         (self.left + self.cell_w * (c as f64 + 0.5), self.top + self.cell_h * r as f64 + self.face / 2.0 + 2.0)
+    }
+}
+
+/// `kind = "faces"`.
+pub static KIND: KindInfo =
+    KindInfo::new("faces", &["columns", "features", "label", "color"]).sized(DEFAULT_SIZE).drawing_selections();
+
+impl Technique for FacesOptions {
+    fn info(&self) -> &'static KindInfo {
+        &KIND
+    }
+
+    fn draw(&self, cx: &ChartContext<'_>) -> Result<ChartOutput, MarkError> {
+        draw(&cx.chart, self, cx.index, cx.table, cx.highlight)
+    }
+
+    fn colour_encodings(&self) -> Vec<ColourSpec> {
+        ColourSpec::color(&self.color)
+    }
+
+    fn color_channel_mut(&mut self) -> Option<(&mut crate::spec::ColorChannel, Option<String>)> {
+        self.color.as_mut().map(|c| (c, None))
     }
 }

@@ -8,6 +8,7 @@ use std::sync::Arc;
 
 use super::derived::{Derived, DerivedColumn};
 use super::gridded::grid_from_rows;
+use super::registry::{AxisSpec, ChartContext, KindInfo, Technique};
 use super::{ChartOutput, MarkError, encode, frame};
 use crate::data::{Column, Table};
 use crate::enrich::flow::budget::{self, StepBudget};
@@ -24,6 +25,7 @@ use crate::guide::layout::{Domain, Frame};
 use crate::guide::legend::{Legend, Symbol};
 use crate::guide::ticks::extended;
 use crate::scene::{Anchor, Baseline, Color, Item, PathCmd, Point, Raster, Rect, Role, Shape, Stroke, Style, Text};
+use crate::spec::defaults;
 use crate::spec::{Chart, FlowLayer, FlowOptions, IntegratorKind, SeedKind};
 
 /// Largest raster side for the speed image and LIC, in pixels.
@@ -174,7 +176,7 @@ pub fn draw(chart: &Chart, options: &FlowOptions, index: usize, table: &Table) -
     let mut warnings = input.warnings;
     warnings.extend(budget.exhausted().then(|| budget_warning(&chart.name)));
     let scene = frame::scene(chart, frame, &theme, marks);
-    Ok(ChartOutput { scene, derived: derived.finish(), warnings, geojson: None })
+    Ok(ChartOutput { scene, derived: derived.finish(), warnings, geojson: None, geometry: Default::default() })
 }
 
 /// The warning of a chart whose streamlines or separatrices stopped at the per-chart budget.
@@ -797,5 +799,27 @@ impl Traces {
         d.push("eigen2_re", DerivedColumn::Number(c));
         d.push("eigen2_im", DerivedColumn::Number(e));
         d
+    }
+}
+
+/// `kind = "flow"`.
+pub static KIND: KindInfo =
+    KindInfo::new("flow", &["x", "y", "u", "v", "t"]).conventions(defaults::FLOW).taking_aspect();
+
+impl Technique for FlowOptions {
+    fn info(&self) -> &'static KindInfo {
+        &KIND
+    }
+
+    fn draw(&self, cx: &ChartContext<'_>) -> Result<ChartOutput, MarkError> {
+        draw(&cx.chart, self, cx.index, cx.table)
+    }
+
+    fn cartesian_axes(&self) -> Vec<AxisSpec> {
+        AxisSpec::pair(&self.x, &self.y)
+    }
+
+    fn scheme(&self) -> Option<&str> {
+        self.scheme.as_deref()
     }
 }

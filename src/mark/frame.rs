@@ -1,7 +1,7 @@
 //! The cartesian frame every x/y chart kind shares: canvas size and theme from the chart spec,
 //! the laid-out frame, and the final scene with the data marks clipped to the plot.
 
-use super::{DEFAULT_SIZE, MarkError};
+use super::{FRAME_SIZE, MarkError};
 use crate::guide::Theme;
 use crate::guide::layout::{self, Frame, FrameSpec, PositionAxis};
 use crate::guide::legend::truncate_to_width;
@@ -20,7 +20,7 @@ pub fn cartesian(
     y: PositionAxis,
     legends: Vec<Legend>,
 ) -> Result<(Frame, Theme), MarkError> {
-    let [width, height] = chart.size.unwrap_or(DEFAULT_SIZE);
+    let [width, height] = chart.size.unwrap_or(FRAME_SIZE);
     let theme = Theme::with_font_size(chart.font_size.unwrap_or(12.0));
     let frame = layout::cartesian(&FrameSpec {
         width,
@@ -39,7 +39,7 @@ pub fn cartesian(
 
 /// The chart's scene: background and grid, the marks clipped to the plot, then axes and legends.
 pub fn scene(chart: &Chart, frame: Frame, theme: &Theme, marks: Vec<Item>) -> Scene {
-    let [width, height] = chart.size.unwrap_or(DEFAULT_SIZE);
+    let [width, height] = chart.size.unwrap_or(FRAME_SIZE);
     let mut items = frame.under;
     items.push(Item::group(Role::DataMark, marks, Some(frame.plot)));
     items.extend(frame.over);
@@ -72,7 +72,7 @@ pub fn raster_note(chart: &Chart, items: &[Item]) -> Option<String> {
 /// The chart title (top left, `top` from the canvas edge) and caption (bottom left), for kinds
 /// that lay out their own panels instead of one cartesian frame. `caption` overrides the spec's.
 pub fn title_and_caption(chart: &Chart, theme: &Theme, top: f64, caption: Option<&str>) -> Vec<Item> {
-    let [width, height] = chart.size.unwrap_or(DEFAULT_SIZE);
+    let [width, height] = chart.size.unwrap_or(FRAME_SIZE);
     let m = theme.margin;
     let line = |role, at, content: &str, size, baseline, color| {
         Item::text(
@@ -167,7 +167,7 @@ pub struct PanelCanvas {
 impl PanelCanvas {
     /// Measure the canvas of `chart` with `legends` on the right.
     pub fn new(chart: &Chart, legends: Vec<Legend>) -> PanelCanvas {
-        let [width, height] = chart.size.unwrap_or(DEFAULT_SIZE);
+        let [width, height] = chart.size.unwrap_or(FRAME_SIZE);
         let theme = Theme::with_font_size(chart.font_size.unwrap_or(12.0));
         let title_h = chart.title.as_ref().map(|_| theme.title_size * 1.8).unwrap_or(0.0);
         let caption_h = chart.caption.as_ref().map(|_| theme.caption_size * 1.8).unwrap_or(0.0);

@@ -3,13 +3,8 @@
 //! hover, zoom). Filled by the kinds that the explorer brushes and navigates (`scatter`, `splom`,
 //! `parallel`, `hypertree`); empty for the others.
 
-use super::{ChartOutput, MarkError};
-use crate::data::Table;
 use crate::guide::scale::Scale;
-use crate::layout::hyperbolic::Mobius;
 use crate::scene::{Point, Rect};
-use crate::selection::Highlight;
-use crate::spec::{Chart, ChartKind};
 
 /// One positional scale of a plot and the column it places.
 #[derive(Clone, Debug, PartialEq)]
@@ -102,24 +97,5 @@ impl Geometry {
     /// Whether the chart exposes nothing to interact with.
     pub fn is_empty(&self) -> bool {
         self.plots.is_empty() && self.axes.is_empty() && self.disk.is_none()
-    }
-}
-
-/// Draw chart number `index` like [`super::draw_with_nodes`], also returning its interactive
-/// geometry. `view` moves a hyperbolic tree's view after its spec focus (ignored by other kinds).
-pub fn draw_with_geometry(
-    chart: &Chart,
-    index: usize,
-    table: &Table,
-    highlight: Option<&Highlight>,
-    nodes: Option<&Table>,
-    view: &Mobius,
-) -> Result<(ChartOutput, Geometry), MarkError> {
-    match &chart.kind {
-        ChartKind::Scatter(options) => super::scatter::draw_with_geometry(chart, options, index, table, highlight),
-        ChartKind::Splom(options) => super::splom::draw_with_geometry(chart, options, index, table, highlight),
-        ChartKind::Parallel(options) => super::parallel::draw_with_geometry(chart, options, index, table, highlight),
-        ChartKind::Hypertree(options) => super::hypertree::draw_with_view(chart, options, index, table, view),
-        _ => super::draw_with_nodes(chart, index, table, highlight, nodes).map(|o| (o, Geometry::default())),
     }
 }

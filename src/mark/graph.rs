@@ -8,6 +8,7 @@
 use super::derived::{Derived, DerivedColumn};
 use super::frame::Fit;
 use super::network_input::{NetworkInput, Placement, network_of, node_column, place};
+use super::registry::{ChartContext, KindInfo, Technique};
 use super::scatter::{area_radius, size_legend};
 use super::{ChartOutput, MarkError, encode, frame, with_default_size};
 use crate::data::Table;
@@ -16,6 +17,7 @@ use crate::guide::axis::title_with_unit;
 use crate::guide::layout::LayoutError;
 use crate::guide::legend::{Legend, Symbol};
 use crate::scene::{Anchor, Baseline, Color, Item, PathCmd, Point, Rect, Role, Shape, Stroke, Style, Text};
+use crate::spec::defaults;
 use crate::spec::{Chart, GraphLayout, GraphOptions, NodeTable};
 use crate::text::measure;
 
@@ -183,7 +185,7 @@ pub fn draw_network(chart: &Chart, index: usize, input: NetworkInput, look: &Loo
             .push(format!("chart \"{}\": {hidden} node {labels_word} {verb} left out to avoid overlaps", chart.name));
     }
     let scene = canvas.scene(chart, items, note.as_deref());
-    Ok(ChartOutput { scene, derived, warnings, geojson: None })
+    Ok(ChartOutput { scene, derived, warnings, geojson: None, geometry: Default::default() })
 }
 
 /// The default caption: layout, counts and components.
@@ -451,4 +453,33 @@ fn derived(input: &NetworkInput, placement: &Placement, centers: &[Point], fit: 
     d.push("weight", DerivedColumn::Number(weight));
     d.push("path", DerivedColumn::Text(path));
     d
+}
+
+/// `kind = "graph"`.
+pub static KIND: KindInfo = KindInfo::new("graph", &["source", "target", "weight"])
+    .conventions(defaults::NETWORK)
+    .sized(DEFAULT_SIZE)
+    .taking_aspect();
+
+impl Technique for GraphOptions {
+    fn info(&self) -> &'static KindInfo {
+        &KIND
+    }
+
+    fn draw(&self, cx: &ChartContext<'_>) -> Result<ChartOutput, MarkError> {
+        draw(&cx.chart, self, cx.index, cx.table, cx.nodes)
+    }
+
+    fn scheme(&self) -> Option<&str> {
+        self.scheme.as_deref()
+    }
+
+    fn color_channel_mut(&mut self) -> Option<(&mut crate::spec::ColorChannel, Option<String>)> {
+        let nodes = self.nodes.as_mut()?;
+        nodes.color.as_mut().map(|c| (c, Some(nodes.data.clone())))
+    }
+
+    fn node_data(&self) -> Option<&str> {
+        self.nodes.as_ref().map(|n| n.data.as_str())
+    }
 }

@@ -4,6 +4,7 @@
 
 use super::derived::{Derived, DerivedColumn};
 use super::image::{image_extent, raster_for};
+use super::registry::{ChartContext, ColourSpec, KindInfo, Technique};
 use super::{ChartOutput, MarkError, encode, frame};
 use crate::data::Table;
 use crate::enrich::hyperslice::{NdGrid, slice_matrix};
@@ -12,6 +13,7 @@ use crate::guide::format::format_value;
 use crate::guide::legend::Legend;
 use crate::guide::scale::{LinearScale, Scale};
 use crate::scene::{Color, Item, PathCmd, Point, Rect, Role, Shape, Stroke, Style};
+use crate::spec::defaults;
 use crate::spec::{Chart, HypersliceOptions, Resample};
 
 /// Draw a hyperslice matrix.
@@ -178,5 +180,22 @@ pub fn draw(chart: &Chart, options: &HypersliceOptions, index: usize, table: &Ta
         derived.push(name, DerivedColumn::Source(name.clone()));
     }
     derived.push(&z_opts.field, DerivedColumn::Source(z_opts.field.clone()));
-    Ok(ChartOutput { scene, derived, warnings, geojson: None })
+    Ok(ChartOutput { scene, derived, warnings, geojson: None, geometry: Default::default() })
+}
+
+/// `kind = "hyperslice"`.
+pub static KIND: KindInfo = KindInfo::new("hyperslice", &["axes", "z"]).conventions(defaults::FIELD);
+
+impl Technique for HypersliceOptions {
+    fn info(&self) -> &'static KindInfo {
+        &KIND
+    }
+
+    fn draw(&self, cx: &ChartContext<'_>) -> Result<ChartOutput, MarkError> {
+        draw(&cx.chart, self, cx.index, cx.table)
+    }
+
+    fn colour_encodings(&self) -> Vec<ColourSpec> {
+        ColourSpec::z(&self.z)
+    }
 }

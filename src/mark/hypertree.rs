@@ -8,6 +8,7 @@
 use super::derived::DerivedColumn;
 use super::geometry::{Disk, DiskNode, Geometry};
 use super::graph::place_labels;
+use super::registry::{ChartContext, ColourSpec, KindInfo, Technique};
 use super::tree_input::{Branches, branch_legend, branch_palette, labels_of, node_rows, tree_of};
 use super::{ChartOutput, MarkError, encode, frame, with_default_size};
 use crate::data::Table;
@@ -15,6 +16,7 @@ use crate::guide::layout::LayoutError;
 use crate::guide::legend::Symbol;
 use crate::layout::hyperbolic::{HyperbolicLayout, HyperbolicOptions, Mobius, geodesic, scale_at, view_from};
 use crate::scene::{Color, Item, PathCmd, Point, Role, Shape, Stroke, Style};
+use crate::spec::defaults;
 use crate::spec::{Chart, HypertreeOptions};
 
 /// Canvas size when the spec gives none.
@@ -62,21 +64,16 @@ fn find_focus(
     }
 }
 
-/// Draw a hyperbolic tree.
-pub fn draw(chart: &Chart, options: &HypertreeOptions, index: usize, table: &Table) -> Result<ChartOutput, MarkError> {
-    draw_with_view(chart, options, index, table, &Mobius::identity()).map(|(output, _)| output)
-}
-
-/// [`draw`] with the view moved by `view` after centring the spec's focus (the explorer's drag
+/// Draw a hyperbolic tree, its view moved by `view` after centring the spec's focus (the explorer's drag
 /// and click-to-focus), also returning the disk and every node's position in it. With a moved
 /// view the ring and the caption name the node nearest the centre.
-pub fn draw_with_view(
+pub fn draw(
     chart: &Chart,
     options: &HypertreeOptions,
     index: usize,
     table: &Table,
     view: &Mobius,
-) -> Result<(ChartOutput, Geometry), MarkError> {
+) -> Result<ChartOutput, MarkError> {
     let chart = &with_default_size(chart);
     let tree = tree_of(chart, index, &options.tree, table)?;
     let labels = labels_of(chart, index, &tree, options.label.as_deref(), table)?;
@@ -195,7 +192,7 @@ pub fn draw_with_view(
         })
         .collect();
     let geometry = Geometry { disk: Some(Disk { center, radius, nodes }), ..Geometry::default() };
-    Ok((ChartOutput { scene, derived: d, warnings: Vec::new(), geojson: None }, geometry))
+    Ok(ChartOutput { scene, derived: d, warnings: Vec::new(), geojson: None, geometry })
 }
 
 /// The node nearest the disk's centre.
@@ -204,4 +201,30 @@ fn nearest_centre(positions: &[[f64; 2]]) -> Option<usize> {
     (0..positions.len())
         .filter(|&n| norm(&positions[n]).is_finite())
         .min_by(|&a, &b| norm(&positions[a]).total_cmp(&norm(&positions[b])))
+}
+
+/// `kind = "hypertree"`.
+pub static KIND: KindInfo =
+    KindInfo::new("hypertree", &["tree", "label", "color"]).conventions(defaults::TREE).sized(DEFAULT_SIZE);
+
+impl Technique for HypertreeOptions {
+    fn info(&self) -> &'static KindInfo {
+        &KIND
+    }
+
+    fn draw(&self, cx: &ChartContext<'_>) -> Result<ChartOutput, MarkError> {
+        draw(&cx.chart, self, cx.index, cx.table, cx.view.unwrap_or(&Mobius::identity()))
+    }
+
+    fn colour_encodings(&self) -> Vec<ColourSpec> {
+        ColourSpec::color(&self.color)
+    }
+
+    fn scheme(&self) -> Option<&str> {
+        self.scheme.as_deref()
+    }
+
+    fn color_channel_mut(&mut self) -> Option<(&mut crate::spec::ColorChannel, Option<String>)> {
+        self.color.as_mut().map(|c| (c, None))
+    }
 }

@@ -5,6 +5,7 @@ use std::sync::Arc;
 
 use super::derived::Derived;
 use super::gridded::{self, GridInput};
+use super::registry::{AxisSpec, ChartContext, ColourSpec, KindInfo, Technique};
 use super::{ChartOutput, MarkError, encode, frame};
 use crate::data::Table;
 use crate::enrich::grid::Grid;
@@ -14,6 +15,7 @@ use crate::guide::layout::Domain;
 use crate::guide::legend::Legend;
 use crate::guide::scale::Scale;
 use crate::scene::{Color, Item, Raster, Rect, Role, Shape, Style};
+use crate::spec::defaults;
 use crate::spec::{Chart, ImageOptions, Resample};
 
 /// Default colour of missing cells.
@@ -72,7 +74,7 @@ pub fn draw(chart: &Chart, options: &ImageOptions, index: usize, table: &Table) 
     let scene = frame::scene(chart, frame, &theme, marks);
 
     let derived = Derived::of_rows(rows, &[&x_opts.field, &y_opts.field, &z_opts.field]);
-    Ok(ChartOutput { scene, derived, warnings, geojson: None })
+    Ok(ChartOutput { scene, derived, warnings, geojson: None, geometry: Default::default() })
 }
 
 /// The data extent an image covers: node to node for bilinear; for nearest, half a cell beyond
@@ -142,6 +144,27 @@ fn raster(grid: &Grid, xs: &[f64], ys: &[f64], resample: Resample, color: impl F
         }
     }
     rgba
+}
+
+/// `kind = "image"`.
+pub static KIND: KindInfo = KindInfo::new("image", &["x", "y", "z"]).conventions(defaults::GRID).taking_aspect();
+
+impl Technique for ImageOptions {
+    fn info(&self) -> &'static KindInfo {
+        &KIND
+    }
+
+    fn draw(&self, cx: &ChartContext<'_>) -> Result<ChartOutput, MarkError> {
+        draw(&cx.chart, self, cx.index, cx.table)
+    }
+
+    fn cartesian_axes(&self) -> Vec<AxisSpec> {
+        AxisSpec::pair(&self.x, &self.y)
+    }
+
+    fn colour_encodings(&self) -> Vec<ColourSpec> {
+        ColourSpec::z(&self.z)
+    }
 }
 
 #[cfg(test)]

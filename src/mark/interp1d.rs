@@ -2,6 +2,7 @@
 //! them, overlaid with a legend so the reader sees what each method makes up between samples.
 
 use super::derived::{Derived, DerivedColumn};
+use super::registry::{AxisSpec, ChartContext, KindInfo, Technique};
 use super::{ChartOutput, MarkError, encode, frame};
 use crate::data::Table;
 use crate::enrich::interp1d::{Interp1dError, Interpolant, Method, Slopes};
@@ -189,7 +190,7 @@ pub fn draw(chart: &Chart, options: &Interp1dOptions, index: usize, table: &Tabl
     );
     derived.push(&x_opts.field, DerivedColumn::Number(sampled.iter().flatten().map(|p| p.0).collect()));
     derived.push(&y_opts.field, DerivedColumn::Number(sampled.iter().flatten().map(|p| p.1).collect()));
-    Ok(ChartOutput { scene, derived, warnings, geojson: None })
+    Ok(ChartOutput { scene, derived, warnings, geojson: None, geometry: Default::default() })
 }
 
 /// Whether the scale maps data to pixels by an affine function (so Bézier curves map exactly).
@@ -252,6 +253,27 @@ fn hermite_beziers(curve: &Interpolant, to_px: &impl Fn(f64, f64) -> Point) -> V
         ));
     }
     cmds
+}
+
+/// `kind = "interp1d"`.
+pub static KIND: KindInfo = KindInfo::new("interp1d", &["x", "y", "slopes"]).taking_aspect();
+
+impl Technique for Interp1dOptions {
+    fn info(&self) -> &'static KindInfo {
+        &KIND
+    }
+
+    fn draw(&self, cx: &ChartContext<'_>) -> Result<ChartOutput, MarkError> {
+        draw(&cx.chart, self, cx.index, cx.table)
+    }
+
+    fn cartesian_axes(&self) -> Vec<AxisSpec> {
+        AxisSpec::pair(&self.x, &self.y)
+    }
+
+    fn scheme(&self) -> Option<&str> {
+        self.scheme.as_deref()
+    }
 }
 
 #[cfg(test)]

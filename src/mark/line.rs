@@ -2,6 +2,7 @@
 
 use super::derived::{Derived, DerivedColumn};
 use super::encode;
+use super::registry::{AxisSpec, ChartContext, ColourSpec, KindInfo, Technique};
 use super::{ChartOutput, MarkError, frame};
 use crate::data::{Categories, Column, Table};
 use crate::guide::axis::title_with_unit;
@@ -277,7 +278,7 @@ pub fn draw(chart: &Chart, options: &LineOptions, index: usize, table: &Table) -
     derived.push("row", DerivedColumn::RowIndex);
     derived.push(&x_opts.field, DerivedColumn::Source(x_opts.field.clone()));
     derived.push("y", DerivedColumn::Number(derived_y));
-    Ok(ChartOutput { scene, derived, warnings, geojson: None })
+    Ok(ChartOutput { scene, derived, warnings, geojson: None, geometry: Default::default() })
 }
 
 /// Numbers as categories (a numeric `series` column).
@@ -328,6 +329,36 @@ fn dropped_between(kept: &[u32], all: &[u32], x: Option<&[f64]>, y: Option<&[f64
         }
     }
     out
+}
+
+/// `kind = "line"`.
+pub static KIND: KindInfo = KindInfo::new("line", &["x", "y", "series", "color"]).taking_aspect();
+
+impl Technique for LineOptions {
+    fn info(&self) -> &'static KindInfo {
+        &KIND
+    }
+
+    fn draw(&self, cx: &ChartContext<'_>) -> Result<ChartOutput, MarkError> {
+        draw(&cx.chart, self, cx.index, cx.table)
+    }
+
+    fn cartesian_axes(&self) -> Vec<AxisSpec> {
+        // The y axis is the first y column's.
+        self.y.as_slice().first().map_or_else(Vec::new, |y| AxisSpec::pair(&self.x, y))
+    }
+
+    fn colour_encodings(&self) -> Vec<ColourSpec> {
+        ColourSpec::color(&self.color)
+    }
+
+    fn scheme(&self) -> Option<&str> {
+        self.scheme.as_deref()
+    }
+
+    fn color_channel_mut(&mut self) -> Option<(&mut crate::spec::ColorChannel, Option<String>)> {
+        self.color.as_mut().map(|c| (c, None))
+    }
 }
 
 #[cfg(test)]

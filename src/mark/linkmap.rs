@@ -7,6 +7,7 @@
 use super::derived::{Derived, DerivedColumn};
 use super::graph::{Look, draw_network};
 use super::network_input::{NetworkInput, network_of};
+use super::registry::{ChartContext, KindInfo, Technique};
 use super::{ChartOutput, MarkError, encode, frame, with_default_size};
 use crate::data::Table;
 use crate::guide::axis::title_with_unit;
@@ -14,6 +15,7 @@ use crate::guide::layout::LayoutError;
 use crate::guide::legend::Legend;
 use crate::layout::matrix_order::cluster_order;
 use crate::scene::{Anchor, Baseline, Color, Item, Point, Rect, Role, Shape, Style, Text};
+use crate::spec::defaults;
 use crate::spec::{Chart, GraphLayout, LinkMode, LinkmapOptions};
 use crate::text::measure;
 
@@ -159,5 +161,33 @@ fn draw_matrix(
     d.push("row", DerivedColumn::Number(cells.keys().map(|&(r, _)| r as f64).collect()));
     d.push("column", DerivedColumn::Number(cells.keys().map(|&(_, c)| c as f64).collect()));
     let scene = canvas.scene(chart, items, None);
-    Ok(ChartOutput { scene, derived: d, warnings: input.warnings, geojson: None })
+    Ok(ChartOutput { scene, derived: d, warnings: input.warnings, geojson: None, geometry: Default::default() })
+}
+
+/// `kind = "linkmap"`.
+pub static KIND: KindInfo = KindInfo::new("linkmap", &["source", "target", "weight"])
+    .conventions(defaults::NETWORK)
+    .sized(DEFAULT_SIZE)
+    .taking_aspect();
+
+impl Technique for LinkmapOptions {
+    fn info(&self) -> &'static KindInfo {
+        &KIND
+    }
+
+    fn draw(&self, cx: &ChartContext<'_>) -> Result<ChartOutput, MarkError> {
+        draw(&cx.chart, self, cx.index, cx.table, cx.nodes)
+    }
+
+    fn scheme(&self) -> Option<&str> {
+        self.scheme.as_deref()
+    }
+
+    fn node_data(&self) -> Option<&str> {
+        self.nodes.as_ref().map(|n| n.data.as_str())
+    }
+
+    fn default_size(&self) -> [f64; 2] {
+        if self.mode == Some(crate::spec::LinkMode::Matrix) { MATRIX_SIZE } else { DEFAULT_SIZE }
+    }
 }

@@ -26,6 +26,7 @@ pub mod line;
 pub mod linkmap;
 pub mod network_input;
 pub mod parallel;
+pub mod registry;
 pub mod scatter;
 pub mod scattered;
 pub mod section;
@@ -38,6 +39,7 @@ pub mod treemap;
 use std::fmt;
 
 pub use derived::{Derived, DerivedColumn};
+pub use registry::{ChartContext, FRAME_SIZE, KindInfo, Technique, technique};
 
 use crate::data::Table;
 use crate::guide::layout::LayoutError;
@@ -57,6 +59,9 @@ pub struct ChartOutput {
     /// Derived geometry as a GeoJSON FeatureCollection in data coordinates (`--format geojson`),
     /// for kinds whose output is geometry (contour lines and bands).
     pub geojson: Option<geojson::ContourFeatures>,
+    /// Where the plots, axes or disk are and their scales, for the explorer (empty for kinds
+    /// that expose nothing to brush or navigate).
+    pub geometry: geometry::Geometry,
 }
 
 /// Why a chart could not be drawn. Each error carries the spec path it is about.
@@ -107,60 +112,18 @@ pub fn draw(
     table: &Table,
     highlight: Option<&Highlight>,
 ) -> Result<ChartOutput, MarkError> {
-    draw_with_nodes(chart, index, table, highlight, None)
+    draw_in(&ChartContext::new(chart, index, table).with_highlight(highlight))
 }
 
-/// [`draw`] for charts that also read a node table (`graph`, `linkmap` with `nodes`).
-pub fn draw_with_nodes(
-    chart: &Chart,
-    index: usize,
-    table: &Table,
-    highlight: Option<&Highlight>,
-    nodes: Option<&Table>,
-) -> Result<ChartOutput, MarkError> {
-    match &chart.kind {
-        ChartKind::Scatter(options) => scatter::draw(chart, options, index, table, highlight),
-        ChartKind::Line(options) => line::draw(chart, options, index, table),
-        ChartKind::Bar(options) => bar::draw(chart, options, index, table),
-        ChartKind::Interp1d(options) => interp1d::draw(chart, options, index, table),
-        ChartKind::Contour(options) => contour::draw(chart, options, index, table),
-        ChartKind::Image(options) => image::draw(chart, options, index, table),
-        ChartKind::Section(options) => section::draw(chart, options, index, table),
-        ChartKind::Surface(options) => surface::draw(chart, options, index, table),
-        ChartKind::Scattered(options) => scattered::draw(chart, options, index, table),
-        ChartKind::Hyperslice(options) => hyperslice::draw(chart, options, index, table),
-        ChartKind::Splom(options) => splom::draw(chart, options, index, table, highlight),
-        ChartKind::Parallel(options) => parallel::draw(chart, options, index, table, highlight),
-        ChartKind::Daisy(options) => daisy::draw(chart, options, index, table, highlight),
-        ChartKind::Faces(options) => faces::draw(chart, options, index, table, highlight),
-        ChartKind::Segments(options) => segments::draw(chart, options, index, table, highlight),
-        ChartKind::Treemap(options) => treemap::draw(chart, options, index, table),
-        ChartKind::Graph(options) => graph::draw(chart, options, index, table, nodes),
-        ChartKind::Linkmap(options) => linkmap::draw(chart, options, index, table, nodes),
-        ChartKind::Hypertree(options) => hypertree::draw(chart, options, index, table),
-        ChartKind::Flow(options) => flow::draw(chart, options, index, table),
-    }
+/// Draw a chart bound to its data.
+pub fn draw_in(cx: &ChartContext<'_>) -> Result<ChartOutput, MarkError> {
+    technique(&cx.chart.kind).draw(cx)
 }
 
 /// The spec keys of a chart kind whose values name columns (a string, a table with `field`, or
 /// a list of those). Used to check column names even when the rest of the spec has errors.
 pub fn column_keys(kind: &str) -> &'static [&'static str] {
-    match kind {
-        "scatter" => &["x", "y", "color", "point_size"],
-        "line" => &["x", "y", "series", "color"],
-        "bar" => &["x", "y", "color"],
-        "interp1d" => &["x", "y", "slopes"],
-        "contour" | "image" | "section" | "surface" | "scattered" => &["x", "y", "z"],
-        "hyperslice" => &["axes", "z"],
-        "splom" | "parallel" | "daisy" => &["columns", "color"],
-        "faces" => &["columns", "features", "label", "color"],
-        "segments" => &["columns", "order_by"],
-        "treemap" => &["tree", "value", "label", "color"],
-        "hypertree" => &["tree", "label", "color"],
-        "graph" | "linkmap" => &["source", "target", "weight"],
-        "flow" => &["x", "y", "u", "v", "t"],
-        _ => &[],
-    }
+    registry::kind_info(kind).map_or(&[], |k| k.column_keys)
 }
 
 /// The chart with `size` filled in by its kind's default ([`default_size`]) when the spec gives
@@ -171,24 +134,9 @@ pub fn with_default_size(chart: &Chart) -> Chart {
     chart
 }
 
-/// Default canvas size when the spec gives none, for kinds without their own.
-pub const DEFAULT_SIZE: [f64; 2] = [640.0, 420.0];
-
 /// The canvas size a kind draws at when the spec gives none.
 pub fn default_size(kind: &ChartKind) -> [f64; 2] {
-    match kind {
-        ChartKind::Splom(_) => splom::DEFAULT_SIZE,
-        ChartKind::Parallel(_) => parallel::DEFAULT_SIZE,
-        ChartKind::Daisy(_) => daisy::DEFAULT_SIZE,
-        ChartKind::Faces(_) => faces::DEFAULT_SIZE,
-        ChartKind::Segments(_) => segments::DEFAULT_SIZE,
-        ChartKind::Treemap(_) => treemap::DEFAULT_SIZE,
-        ChartKind::Hypertree(_) => hypertree::DEFAULT_SIZE,
-        ChartKind::Graph(_) => graph::DEFAULT_SIZE,
-        ChartKind::Linkmap(o) if o.mode == Some(crate::spec::LinkMode::Matrix) => linkmap::MATRIX_SIZE,
-        ChartKind::Linkmap(_) => linkmap::DEFAULT_SIZE,
-        _ => DEFAULT_SIZE,
-    }
+    technique(kind).default_size()
 }
 
 /// The canvas size a chart draws at: its `size`, else its kind's default.

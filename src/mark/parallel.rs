@@ -5,6 +5,7 @@ use super::derived::{Derived, DerivedColumn};
 use super::encode::{self, Positioner};
 use super::frame::{self, polylines};
 use super::geometry::{Geometry, ParallelAxis};
+use super::registry::{ChartContext, ColourSpec, KindInfo, Technique};
 use super::{ChartOutput, MarkError, highlight, with_default_size};
 use crate::data::{Column, Table};
 use crate::guide::Theme;
@@ -31,6 +32,7 @@ pub fn default_opacity(n: usize) -> f64 {
 }
 
 /// Draw parallel coordinates.
+/// Also returns the interactive geometry (for brushing and zooming).
 pub fn draw(
     chart: &Chart,
     options: &ParallelOptions,
@@ -38,17 +40,6 @@ pub fn draw(
     table: &Table,
     highlight: Option<&Highlight>,
 ) -> Result<ChartOutput, MarkError> {
-    draw_with_geometry(chart, options, index, table, highlight).map(|(output, _)| output)
-}
-
-/// [`draw`], also returning every axis with its scale, in drawn order (for brushing).
-pub fn draw_with_geometry(
-    chart: &Chart,
-    options: &ParallelOptions,
-    index: usize,
-    table: &Table,
-    highlight: Option<&Highlight>,
-) -> Result<(ChartOutput, Geometry), MarkError> {
     let chart = &with_default_size(chart);
     let mut columns = encode::columns(chart, index, "columns", &options.columns, table)?;
     let inverted = inverted_columns(chart, index, options, &columns)?;
@@ -112,7 +103,7 @@ pub fn draw_with_geometry(
         })
         .collect();
     let geometry = Geometry { axes, ..Geometry::default() };
-    Ok((ChartOutput { scene: canvas.scene(chart, items, None), derived, warnings, geojson: None }, geometry))
+    Ok(ChartOutput { scene: canvas.scene(chart, items, None), derived, warnings, geojson: None, geometry })
 }
 
 /// The columns named in `invert`, each checked against `columns`.
@@ -347,6 +338,27 @@ fn derived_vertices(
         d.push("selected", DerivedColumn::Selected(h.selected.clone()));
     }
     d
+}
+
+/// `kind = "parallel"`.
+pub static KIND: KindInfo = KindInfo::new("parallel", &["columns", "color"]).sized(DEFAULT_SIZE).drawing_selections();
+
+impl Technique for ParallelOptions {
+    fn info(&self) -> &'static KindInfo {
+        &KIND
+    }
+
+    fn draw(&self, cx: &ChartContext<'_>) -> Result<ChartOutput, MarkError> {
+        draw(&cx.chart, self, cx.index, cx.table, cx.highlight)
+    }
+
+    fn colour_encodings(&self) -> Vec<ColourSpec> {
+        ColourSpec::color(&self.color)
+    }
+
+    fn color_channel_mut(&mut self) -> Option<(&mut crate::spec::ColorChannel, Option<String>)> {
+        self.color.as_mut().map(|c| (c, None))
+    }
 }
 
 #[cfg(test)]

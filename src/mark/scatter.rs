@@ -3,6 +3,7 @@
 use super::derived::{Derived, DerivedColumn};
 use super::encode::{self};
 use super::geometry::{Geometry, Plot, PlotScale};
+use super::registry::{AxisSpec, ChartContext, ColourSpec, KindInfo, Technique};
 use super::{ChartOutput, MarkError, frame, highlight};
 use crate::data::Table;
 use crate::guide::format::format_value;
@@ -33,6 +34,7 @@ pub fn default_opacity(n: usize) -> f64 {
 }
 
 /// Draw a scatter chart.
+/// Also returns the interactive geometry (for brushing and zooming).
 pub fn draw(
     chart: &Chart,
     options: &ScatterOptions,
@@ -40,17 +42,6 @@ pub fn draw(
     table: &Table,
     highlight: Option<&Highlight>,
 ) -> Result<ChartOutput, MarkError> {
-    draw_with_geometry(chart, options, index, table, highlight).map(|(output, _)| output)
-}
-
-/// [`draw`], also returning the plot area and its scales (for brushing and zooming).
-pub fn draw_with_geometry(
-    chart: &Chart,
-    options: &ScatterOptions,
-    index: usize,
-    table: &Table,
-    highlight: Option<&Highlight>,
-) -> Result<(ChartOutput, Geometry), MarkError> {
     let x_opts = options.x.options();
     let y_opts = options.y.options();
     let x_col = encode::column(chart, index, "x", &x_opts.field, table)?;
@@ -196,7 +187,7 @@ pub fn draw_with_geometry(
         derived.push("selected", DerivedColumn::Selected(h.selected.clone()));
     }
     let geometry = Geometry { plots: vec![plot], ..Geometry::default() };
-    Ok((ChartOutput { scene, derived, warnings, geojson: None }, geometry))
+    Ok(ChartOutput { scene, derived, warnings, geojson: None, geometry })
 }
 
 /// Radius whose area is proportional to `value` (the largest value gets `max_radius`).
@@ -248,6 +239,32 @@ pub fn size_legend_mapped(
         title: crate::guide::axis::title_with_unit(title, unit),
         entries,
         color: Color::rgb(0x55, 0x55, 0x55),
+    }
+}
+
+/// `kind = "scatter"`.
+pub static KIND: KindInfo =
+    KindInfo::new("scatter", &["x", "y", "color", "point_size"]).drawing_selections().taking_aspect();
+
+impl Technique for ScatterOptions {
+    fn info(&self) -> &'static KindInfo {
+        &KIND
+    }
+
+    fn draw(&self, cx: &ChartContext<'_>) -> Result<ChartOutput, MarkError> {
+        draw(&cx.chart, self, cx.index, cx.table, cx.highlight)
+    }
+
+    fn cartesian_axes(&self) -> Vec<AxisSpec> {
+        AxisSpec::pair(&self.x, &self.y)
+    }
+
+    fn colour_encodings(&self) -> Vec<ColourSpec> {
+        ColourSpec::color(&self.color)
+    }
+
+    fn color_channel_mut(&mut self) -> Option<(&mut crate::spec::ColorChannel, Option<String>)> {
+        self.color.as_mut().map(|c| (c, None))
     }
 }
 

@@ -6,6 +6,7 @@ use std::sync::Arc;
 
 use super::contour::level_labels;
 use super::derived::Derived;
+use super::registry::{AxisSpec, ChartContext, ColourSpec, KindInfo, Technique};
 use super::{ChartOutput, MarkError, encode, frame};
 use crate::data::Table;
 use crate::enrich::contour::{clean_levels, nice_levels};
@@ -14,6 +15,7 @@ use crate::guide::axis::title_with_unit;
 use crate::guide::legend::Legend;
 use crate::guide::scale::Scale;
 use crate::scene::{Color, Item, PathCmd, PerPoint, Point, PointBatch, Raster, Rect, Role, Shape, Stroke, Style};
+use crate::spec::defaults;
 use crate::spec::{Chart, Levels, ScatteredOptions};
 
 /// Marker radius of the points.
@@ -194,7 +196,7 @@ pub fn draw(chart: &Chart, options: &ScatteredOptions, index: usize, table: &Tab
     }
     let scene = frame::scene(chart, frame, &theme, marks);
     let derived = Derived::of_rows(rows, &[&x_opts.field, &y_opts.field, &z_opts.field]);
-    Ok(ChartOutput { scene, derived, warnings, geojson: None })
+    Ok(ChartOutput { scene, derived, warnings, geojson: None, geometry: Default::default() })
 }
 
 /// The plot area in data coordinates `(xmin, ymin, xmax, ymax)`.
@@ -249,4 +251,25 @@ fn fill_raster(tin: &Triangulation, plot: Rect, x: &Scale, y: &Scale, color_of: 
         }
     }
     Raster { dest: plot, width: w as u32, height: h as u32, rgba: Arc::new(rgba), smooth: false }
+}
+
+/// `kind = "scattered"`.
+pub static KIND: KindInfo = KindInfo::new("scattered", &["x", "y", "z"]).conventions(defaults::GRID).taking_aspect();
+
+impl Technique for ScatteredOptions {
+    fn info(&self) -> &'static KindInfo {
+        &KIND
+    }
+
+    fn draw(&self, cx: &ChartContext<'_>) -> Result<ChartOutput, MarkError> {
+        draw(&cx.chart, self, cx.index, cx.table)
+    }
+
+    fn cartesian_axes(&self) -> Vec<AxisSpec> {
+        AxisSpec::pair(&self.x, &self.y)
+    }
+
+    fn colour_encodings(&self) -> Vec<ColourSpec> {
+        ColourSpec::z(&self.z)
+    }
 }

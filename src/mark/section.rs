@@ -4,7 +4,8 @@
 
 use super::derived::{Derived, DerivedColumn};
 use super::gridded::{self, GridInput};
-use super::{ChartOutput, DEFAULT_SIZE, MarkError, encode, frame};
+use super::registry::{ChartContext, KindInfo, Technique};
+use super::{ChartOutput, FRAME_SIZE, MarkError, encode, frame};
 use crate::data::Table;
 use crate::guide::Theme;
 use crate::guide::axis::title_with_unit;
@@ -12,6 +13,7 @@ use crate::guide::format::format_value;
 use crate::guide::layout::{self, Domain, FrameSpec, PositionAxis};
 use crate::guide::legend::{Legend, Symbol};
 use crate::scene::{Color, Item, PathCmd, Point, Rect, Role, Scene, Shape, Style};
+use crate::spec::defaults;
 use crate::spec::{Chart, ScaleKind, SectionLayout, SectionOptions};
 
 /// One cross-section: where it is cut and its (position, z) samples at the grid's nodes.
@@ -138,7 +140,7 @@ pub fn draw(chart: &Chart, options: &SectionOptions, index: usize, table: &Table
         .push(&pos_opts.field, DerivedColumn::Number(cuts.iter().flat_map(|c| c.points.iter().map(|p| p.0)).collect()));
     derived
         .push(&z_opts.field, DerivedColumn::Number(cuts.iter().flat_map(|c| c.points.iter().map(|p| p.1)).collect()));
-    Ok(ChartOutput { scene, derived, warnings, geojson: None })
+    Ok(ChartOutput { scene, derived, warnings, geojson: None, geometry: Default::default() })
 }
 
 /// A section's polyline, broken where the field is missing.
@@ -177,7 +179,7 @@ fn multiples(
     stroke_width: f64,
     label: &dyn Fn(&Cut) -> String,
 ) -> Result<Scene, MarkError> {
-    let [width, height] = chart.size.unwrap_or(DEFAULT_SIZE);
+    let [width, height] = chart.size.unwrap_or(FRAME_SIZE);
     let theme = Theme::with_font_size(chart.font_size.unwrap_or(12.0));
     let m = theme.margin;
     let title_h = if chart.title.is_some() { theme.title_size * 1.6 } else { 0.0 };
@@ -224,4 +226,21 @@ fn multiples(
     }
     items.extend(frame::title_and_caption(chart, &theme, m / 2.0, None));
     Ok(Scene { width, height, background: theme.background, title: chart.title.clone(), items })
+}
+
+/// `kind = "section"`.
+pub static KIND: KindInfo = KindInfo::new("section", &["x", "y", "z"]).conventions(defaults::GRID);
+
+impl Technique for SectionOptions {
+    fn info(&self) -> &'static KindInfo {
+        &KIND
+    }
+
+    fn draw(&self, cx: &ChartContext<'_>) -> Result<ChartOutput, MarkError> {
+        draw(&cx.chart, self, cx.index, cx.table)
+    }
+
+    fn scheme(&self) -> Option<&str> {
+        self.scheme.as_deref()
+    }
 }

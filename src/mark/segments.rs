@@ -10,6 +10,7 @@ use rayon::prelude::*;
 use super::derived::{Derived, DerivedColumn};
 use super::encode;
 use super::frame;
+use super::registry::{ChartContext, KindInfo, Technique};
 use super::{ChartOutput, MarkError, highlight, with_default_size};
 use crate::data::{Column, Table};
 use crate::enrich::segments::{SegmentLayout, mid_angle, paint};
@@ -180,7 +181,13 @@ pub fn draw(
     if let Some(h) = highlight {
         derived.push("selected", DerivedColumn::Selected(h.selected.clone()));
     }
-    Ok(ChartOutput { scene: canvas.scene(chart, items, None), derived, warnings, geojson: None })
+    Ok(ChartOutput {
+        scene: canvas.scene(chart, items, None),
+        derived,
+        warnings,
+        geojson: None,
+        geometry: Default::default(),
+    })
 }
 
 /// Table rows in drawing order: sorted by `order_by` (stable; missing values last), or as
@@ -324,5 +331,23 @@ impl Disk {
             ));
         }
         items
+    }
+}
+
+/// `kind = "segments"`.
+pub static KIND: KindInfo =
+    KindInfo::new("segments", &["columns", "order_by"]).sized(DEFAULT_SIZE).drawing_selections();
+
+impl Technique for SegmentsOptions {
+    fn info(&self) -> &'static KindInfo {
+        &KIND
+    }
+
+    fn draw(&self, cx: &ChartContext<'_>) -> Result<ChartOutput, MarkError> {
+        draw(&cx.chart, self, cx.index, cx.table, cx.highlight)
+    }
+
+    fn scheme(&self) -> Option<&str> {
+        self.scheme.as_deref()
     }
 }

@@ -7,6 +7,7 @@ use rayon::prelude::*;
 use super::derived::{Derived, DerivedColumn};
 use super::encode::{self, ColorEncoding};
 use super::geometry::{Geometry, Plot, PlotScale};
+use super::registry::{ChartContext, ColourSpec, KindInfo, Technique};
 use super::{ChartOutput, MarkError, frame, highlight, scatter, with_default_size};
 use crate::data::{Column, Table};
 use crate::enrich::distribution::{bin_counts, freedman_diaconis_bins, kde, silverman_bandwidth};
@@ -30,6 +31,7 @@ const AUTO_DENSITY_ROWS: usize = 200_000;
 const DENSITY_BIN_PX: f64 = 3.0;
 
 /// Draw a scatter-plot matrix.
+/// Also returns the interactive geometry (for brushing and zooming).
 pub fn draw(
     chart: &Chart,
     options: &SplomOptions,
@@ -37,17 +39,6 @@ pub fn draw(
     table: &Table,
     highlight: Option<&Highlight>,
 ) -> Result<ChartOutput, MarkError> {
-    draw_with_geometry(chart, options, index, table, highlight).map(|(output, _)| output)
-}
-
-/// [`draw`], also returning every drawn off-diagonal cell with its scales (for brushing).
-pub fn draw_with_geometry(
-    chart: &Chart,
-    options: &SplomOptions,
-    index: usize,
-    table: &Table,
-    highlight: Option<&Highlight>,
-) -> Result<(ChartOutput, Geometry), MarkError> {
     let chart = &with_default_size(chart);
     let columns = encode::columns(chart, index, "columns", &options.columns, table)?;
     for (_, col) in &columns {
@@ -220,7 +211,7 @@ pub fn draw_with_geometry(
     if let Some(h) = highlight {
         derived.push("selected", DerivedColumn::Selected(h.selected.clone()));
     }
-    Ok((ChartOutput { scene: canvas.scene(chart, items, None), derived, warnings, geojson: None }, geometry))
+    Ok(ChartOutput { scene: canvas.scene(chart, items, None), derived, warnings, geojson: None, geometry })
 }
 
 /// What it takes to draw a splom's diagonal cells again for another selection (the explorer
@@ -655,4 +646,25 @@ fn density_counts(
         }
     }
     DensityCounts { cell, nx, ny, all, selected }
+}
+
+/// `kind = "splom"`.
+pub static KIND: KindInfo = KindInfo::new("splom", &["columns", "color"]).sized(DEFAULT_SIZE).drawing_selections();
+
+impl Technique for SplomOptions {
+    fn info(&self) -> &'static KindInfo {
+        &KIND
+    }
+
+    fn draw(&self, cx: &ChartContext<'_>) -> Result<ChartOutput, MarkError> {
+        draw(&cx.chart, self, cx.index, cx.table, cx.highlight)
+    }
+
+    fn colour_encodings(&self) -> Vec<ColourSpec> {
+        ColourSpec::color(&self.color)
+    }
+
+    fn color_channel_mut(&mut self) -> Option<(&mut crate::spec::ColorChannel, Option<String>)> {
+        self.color.as_mut().map(|c| (c, None))
+    }
 }

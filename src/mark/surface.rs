@@ -3,6 +3,7 @@
 
 use super::derived::Derived;
 use super::gridded::{self, GridInput};
+use super::registry::{ChartContext, ColourSpec, KindInfo, Technique};
 use super::{ChartOutput, MarkError, encode, frame};
 use crate::data::Table;
 use crate::enrich::surface::{self, AxisLine, Light, SurfaceProjection, View};
@@ -12,6 +13,7 @@ use crate::guide::format::format_ticks;
 use crate::guide::legend::Legend;
 use crate::guide::ticks::extended;
 use crate::scene::{Anchor, Baseline, Color, Item, PathCmd, Point, Rect, Role, Shape, Stroke, Style, Text};
+use crate::spec::defaults;
 use crate::spec::{Chart, SurfaceOptions};
 use crate::text::measure;
 
@@ -106,7 +108,7 @@ pub fn draw(chart: &Chart, options: &SurfaceOptions, index: usize, table: &Table
     let scene = canvas.scene(chart, items, None);
 
     let derived = Derived::of_rows(rows, &[&x_opts.field, &y_opts.field, &z_opts.field]);
-    Ok(ChartOutput { scene, derived, warnings, geojson: None })
+    Ok(ChartOutput { scene, derived, warnings, geojson: None, geometry: Default::default() })
 }
 
 /// The scene labels of the projected axes' items, in the order x, y, z.
@@ -204,4 +206,21 @@ fn axis_items(
         },
     ));
     items
+}
+
+/// `kind = "surface"`.
+pub static KIND: KindInfo = KindInfo::new("surface", &["x", "y", "z"]).conventions(defaults::GRID);
+
+impl Technique for SurfaceOptions {
+    fn info(&self) -> &'static KindInfo {
+        &KIND
+    }
+
+    fn draw(&self, cx: &ChartContext<'_>) -> Result<ChartOutput, MarkError> {
+        draw(&cx.chart, self, cx.index, cx.table)
+    }
+
+    fn colour_encodings(&self) -> Vec<ColourSpec> {
+        ColourSpec::z(&self.z)
+    }
 }

@@ -3,6 +3,7 @@
 //! each inner node and labels that shrink, truncate or hide to fit their rectangle.
 
 use super::derived::{Derived, DerivedColumn};
+use super::registry::{ChartContext, ColourSpec, KindInfo, Technique};
 use super::tree_input::{Branches, branch_legend, branch_palette, labels_of, node_rows, tree_of};
 use super::{ChartOutput, MarkError, encode, frame, with_default_size};
 use crate::data::Table;
@@ -14,6 +15,7 @@ use crate::guide::layout::LayoutError;
 use crate::guide::legend::{Legend, Symbol, truncate_to_width};
 use crate::layout::treemap::{self as tiling, Rect as Cell, TreemapOptions as TilingOptions};
 use crate::scene::{Anchor, Baseline, Color, Item, Point, Rect, Role, Shape, Style, Text};
+use crate::spec::defaults;
 use crate::spec::{Chart, Tiling, TreemapColor, TreemapOptions};
 use crate::text::measure;
 
@@ -127,7 +129,7 @@ pub fn draw(chart: &Chart, options: &TreemapOptions, index: usize, table: &Table
 
     let derived = derived(&tree, &labels, &map, &depths, limit);
     let scene = canvas.scene(chart, items, None);
-    Ok(ChartOutput { scene, derived, warnings, geojson: None })
+    Ok(ChartOutput { scene, derived, warnings, geojson: None, geometry: Default::default() })
 }
 
 /// The deepest level to draw so that at most `max_cells` cells are drawn: the leaves above that
@@ -354,4 +356,30 @@ fn derived(tree: &Tree, labels: &[String], map: &tiling::Treemap, depths: &[u32]
     d.push("x1", edge(|c| c.x1));
     d.push("y1", edge(|c| c.y1));
     d
+}
+
+/// `kind = "treemap"`.
+pub static KIND: KindInfo =
+    KindInfo::new("treemap", &["tree", "value", "label", "color"]).conventions(defaults::TREE).sized(DEFAULT_SIZE);
+
+impl Technique for TreemapOptions {
+    fn info(&self) -> &'static KindInfo {
+        &KIND
+    }
+
+    fn draw(&self, cx: &ChartContext<'_>) -> Result<ChartOutput, MarkError> {
+        draw(&cx.chart, self, cx.index, cx.table)
+    }
+
+    fn colour_encodings(&self) -> Vec<ColourSpec> {
+        ColourSpec::color(&self.color)
+    }
+
+    fn scheme(&self) -> Option<&str> {
+        self.scheme.as_deref()
+    }
+
+    fn color_channel_mut(&mut self) -> Option<(&mut crate::spec::ColorChannel, Option<String>)> {
+        self.color.as_mut().map(|c| (c, None))
+    }
 }

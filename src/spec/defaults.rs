@@ -14,18 +14,21 @@ use super::source::{SpannedValue, SpecDoc, TableEntry, ValueKind};
 
 /// What a conventional default fills in.
 #[derive(Clone, Copy, Debug)]
-enum Shape {
+pub enum Shape {
     /// A column name: the first of these the data has.
     Column(&'static [&'static str]),
     /// A tree's table: `{ id = "id", parent = "parent" }`, else `{ path = "path" }`.
     Tree,
 }
 
-/// One key of a kind with a conventional default.
+/// One key of a kind with a conventional default (listed in the kind's
+/// [`crate::mark::registry::KindInfo`]).
 #[derive(Clone, Copy, Debug)]
-struct Convention {
-    key: &'static str,
-    shape: Shape,
+pub struct Convention {
+    /// The chart key.
+    pub key: &'static str,
+    /// What it takes.
+    pub shape: Shape,
 }
 
 const fn column(key: &'static str, names: &'static [&'static str]) -> Convention {
@@ -33,28 +36,21 @@ const fn column(key: &'static str, names: &'static [&'static str]) -> Convention
 }
 
 /// Kinds drawing a field on a grid (or on scattered points): what `.npy` and matrix sources hold.
-const GRID: &[Convention] = &[column("x", &["x"]), column("y", &["y"]), column("z", &["value", "z"])];
+pub const GRID: &[Convention] = &[column("x", &["x"]), column("y", &["y"]), column("z", &["value", "z"])];
 /// Kinds drawing a field over more than two axes, which are always named.
-const FIELD: &[Convention] = &[column("z", &["value", "z"])];
+pub const FIELD: &[Convention] = &[column("z", &["value", "z"])];
 /// Vector fields.
-const FLOW: &[Convention] =
+pub const FLOW: &[Convention] =
     &[column("x", &["x"]), column("y", &["y"]), column("u", &["u"]), column("v", &["v"]), column("t", &["t"])];
 /// Hierarchies.
-const TREE: &[Convention] = &[Convention { key: "tree", shape: Shape::Tree }, column("label", &["name", "label"])];
+pub const TREE: &[Convention] = &[Convention { key: "tree", shape: Shape::Tree }, column("label", &["name", "label"])];
 /// Networks given as an edge table.
-const NETWORK: &[Convention] =
+pub const NETWORK: &[Convention] =
     &[column("source", &["source"]), column("target", &["target"]), column("weight", &["weight", "value"])];
 
 /// The keys of `kind` that default to conventional columns.
 fn conventions(kind: &str) -> &'static [Convention] {
-    match kind {
-        "contour" | "image" | "section" | "scattered" | "surface" => GRID,
-        "hyperslice" => FIELD,
-        "flow" => FLOW,
-        "treemap" | "hypertree" => TREE,
-        "graph" | "linkmap" => NETWORK,
-        _ => &[],
-    }
+    crate::mark::registry::kind_info(kind).map_or(&[], |k| k.conventions)
 }
 
 /// Whether `key` of a `kind` chart may be left out for a conventional column.

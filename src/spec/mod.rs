@@ -223,10 +223,10 @@ y = "petal_width"
         assert_eq!(
             diags[1].hint.as_deref(),
             Some(
-                "canvas size `[width, height]` in CSS pixels, each at most 16384 (default `[640, 420]`); for example `size = [800, 600]`"
+                "canvas size `[width, height]` in CSS pixels, each at most 16384 (default: the kind's own, `[640, 420]` for one x/y frame); for example `size = [800, 600]`"
             )
         );
-        let kinds: Vec<String> = ChartKind::NAMES.iter().map(|k| format!("`{k}`")).collect();
+        let kinds: Vec<String> = crate::mark::registry::names().map(|k| format!("`{k}`")).collect();
         assert_eq!(diags[2].hint.as_deref(), Some(format!("expected one of: {}", kinds.join(", ")).as_str()));
 
         let rendered = render_all(&source(THREE_MISTAKES), &diags);
@@ -243,7 +243,7 @@ error: `size` must be an array of 2 numbers, found a string
    |
 13 | size = "big"
    |        ^^^^^
-   = hint: canvas size `[width, height]` in CSS pixels, each at most 16384 (default `[640, 420]`); for example `size = [800, 600]`
+   = hint: canvas size `[width, height]` in CSS pixels, each at most 16384 (default: the kind's own, `[640, 420]` for one x/y frame); for example `size = [800, 600]`
 
 error: unknown chart kind `scater`; did you mean `scatter`?
   --> spec.toml:18:8

@@ -224,8 +224,9 @@ mod tests {
         let chart = def(&schema, "Chart");
         assert!(chart.get("properties").is_none(), "common keys are merged into the branches");
         let branches = chart["oneOf"].as_array().cloned().unwrap_or_default();
-        assert_eq!(branches.len(), crate::spec::ChartKind::NAMES.len());
-        for (branch, kind) in branches.iter().zip(crate::spec::ChartKind::NAMES) {
+        let names: Vec<&str> = crate::mark::registry::names().collect();
+        assert_eq!(branches.len(), names.len());
+        for (branch, kind) in branches.iter().zip(&names) {
             assert_eq!(branch["additionalProperties"], false);
             assert_eq!(branch["type"], "object");
             assert_eq!(branch["properties"]["kind"]["const"], *kind);
@@ -281,7 +282,7 @@ mod tests {
         walk(&schema, &mut count);
         // Spec, DataSource, Selection, LintConfig, ChannelOptions, ColorOptions, SizeOptions,
         // FaceFeatures, TreeSource, NodeTable, TransformStep and one branch per kind.
-        assert_eq!(count, 11 + crate::spec::ChartKind::NAMES.len());
+        assert_eq!(count, 11 + crate::mark::registry::KINDS.len());
         // Maps stay open: any data source name, any column in inline rows.
         assert_eq!(schema["properties"]["data"]["additionalProperties"]["$ref"], "#/$defs/DataSource");
         assert_eq!(def(&schema, "DataSource")["properties"]["values"]["items"]["additionalProperties"], true);
@@ -296,7 +297,7 @@ mod tests {
         let scatter = &def(&schema, "Chart")["oneOf"][0];
         assert_eq!(
             scatter["properties"]["size"]["description"],
-            "Canvas size `[width, height]` in CSS pixels, each at most 16384 (default `[640, 420]`)."
+            "Canvas size `[width, height]` in CSS pixels, each at most 16384 (default: the kind's own, `[640, 420]` for one x/y frame)."
         );
         assert_eq!(scatter["properties"]["size"]["type"], "array");
         assert_eq!(

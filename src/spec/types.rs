@@ -180,7 +180,7 @@ pub struct Chart {
     /// Caption drawn below the chart (source, notes).
     #[serde(default)]
     pub caption: Option<String>,
-    /// Canvas size `[width, height]` in CSS pixels, each at most 16384 (default `[640, 420]`).
+    /// Canvas size `[width, height]` in CSS pixels, each at most 16384 (default: the kind's own, `[640, 420]` for one x/y frame).
     #[serde(default)]
     #[schemars(inner(range(max = 16384)), transform = positive_items, example = example_size())]
     pub size: Option<[f64; 2]>,
@@ -270,54 +270,9 @@ pub enum ChartKind {
 }
 
 impl ChartKind {
-    /// Every kind's name as written in the spec, in declaration order.
-    pub const NAMES: &'static [&'static str] = &[
-        "scatter",
-        "line",
-        "bar",
-        "interp1d",
-        "contour",
-        "image",
-        "section",
-        "scattered",
-        "surface",
-        "hyperslice",
-        "splom",
-        "parallel",
-        "daisy",
-        "faces",
-        "segments",
-        "treemap",
-        "hypertree",
-        "graph",
-        "linkmap",
-        "flow",
-    ];
-
-    /// The kind's name as written in the spec.
+    /// The kind's name as written in the spec (from its entry in the technique registry).
     pub fn name(&self) -> &'static str {
-        match self {
-            ChartKind::Scatter(_) => "scatter",
-            ChartKind::Line(_) => "line",
-            ChartKind::Bar(_) => "bar",
-            ChartKind::Interp1d(_) => "interp1d",
-            ChartKind::Contour(_) => "contour",
-            ChartKind::Image(_) => "image",
-            ChartKind::Section(_) => "section",
-            ChartKind::Scattered(_) => "scattered",
-            ChartKind::Surface(_) => "surface",
-            ChartKind::Hyperslice(_) => "hyperslice",
-            ChartKind::Splom(_) => "splom",
-            ChartKind::Parallel(_) => "parallel",
-            ChartKind::Daisy(_) => "daisy",
-            ChartKind::Faces(_) => "faces",
-            ChartKind::Segments(_) => "segments",
-            ChartKind::Treemap(_) => "treemap",
-            ChartKind::Hypertree(_) => "hypertree",
-            ChartKind::Graph(_) => "graph",
-            ChartKind::Linkmap(_) => "linkmap",
-            ChartKind::Flow(_) => "flow",
-        }
+        crate::mark::technique(self).info().name
     }
 }
 

@@ -1131,12 +1131,15 @@ impl<'s> Walker<'s> {
         let equal = entry.value.as_str() == Some("equal");
         if let Some(kind) = chart.get("kind").and_then(SpannedValue::as_str)
             && equal
-            && !ASPECT_KINDS.contains(&kind)
+            && crate::mark::registry::kind_info(kind).is_some_and(|k| !k.applies_aspect)
         {
             self.diags.push(
                 Diagnostic::error(format!("`aspect = \"equal\"` is not applied by `{kind}` charts"))
                     .at(entry.key_span.clone())
-                    .with_hint(format!("charts with one x/y plot: {}", ASPECT_KINDS.join(", "))),
+                    .with_hint(format!(
+                        "charts with one x/y plot: {}",
+                        crate::mark::registry::names_where(|k| k.applies_aspect).join(", ")
+                    )),
             );
         }
     }
@@ -1151,12 +1154,15 @@ impl<'s> Walker<'s> {
         let Some(wanted) = highlight.as_str() else { return };
         let key_span = chart.entry("highlight").map_or(highlight.span.clone(), |e| e.key_span.clone());
         if let Some(kind) = chart.get("kind").and_then(SpannedValue::as_str)
-            && !HIGHLIGHT_KINDS.contains(&kind)
+            && crate::mark::registry::kind_info(kind).is_some_and(|k| !k.draws_selection)
         {
             self.diags.push(
-                Diagnostic::error(format!("`highlight` is not drawn by `{kind}` charts"))
-                    .at(key_span)
-                    .with_hint(format!("charts that draw selections: {}", HIGHLIGHT_KINDS.join(", "))),
+                Diagnostic::error(format!("`highlight` is not drawn by `{kind}` charts")).at(key_span).with_hint(
+                    format!(
+                        "charts that draw selections: {}",
+                        crate::mark::registry::names_where(|k| k.draws_selection).join(", ")
+                    ),
+                ),
             );
             return;
         }
@@ -1214,14 +1220,6 @@ enum Reference {
     /// A `[selection.NAME]` table.
     Selection,
 }
-
-/// Chart kinds that draw a `highlight` selection.
-pub const HIGHLIGHT_KINDS: &[&str] = &["scatter", "splom", "parallel", "daisy", "faces", "segments"];
-
-/// The chart kinds that apply `aspect = "equal"`: the ones drawn in one x/y frame, and the
-/// network kinds, whose given node positions always keep one scale for x and y.
-pub const ASPECT_KINDS: &[&str] =
-    &["scatter", "line", "interp1d", "contour", "image", "scattered", "flow", "graph", "linkmap"];
 
 fn alternatives(s: &Value) -> Option<&[Value]> {
     s.get("oneOf").or_else(|| s.get("anyOf")).and_then(Value::as_array).map(Vec::as_slice)

@@ -1,0 +1,321 @@
+//! The technique registry: every chart kind is one type implementing [`Technique`] (its options
+//! type from the spec), with its static facts in a [`KindInfo`], and listed once in [`registry!`]'s
+//! invocation below, as `lint::rules::ALL` lists rules.
+//!
+//! Everything that used to match on the kind — the spec's kind names, the keys naming columns,
+//! conventional default columns, default canvas sizes, which kinds draw selections or take
+//! `aspect`, what lint reads of the encodings, the node table of network kinds, the explorer's
+//! interactive geometry — is read from here.
+
+use super::{ChartOutput, MarkError};
+use crate::data::Table;
+use crate::guide::layout::LayoutError;
+use crate::layout::hyperbolic::Mobius;
+use crate::selection::Highlight;
+use crate::spec::defaults::Convention;
+use crate::spec::{Channel, ChannelOptions, Chart, ChartKind, ColorChannel, ColorOptions, ScaleKind};
+
+/// What is known of a kind before its options are read: enough for the spec checks, the
+/// conventional defaults and the column reads that run on the raw spec.
+#[derive(Debug)]
+pub struct KindInfo {
+    /// The name as written in the spec (`kind = "scatter"`).
+    pub name: &'static str,
+    /// The spec keys whose values name columns (a string, a table with `field`, a list of
+    /// those, or a table of names such as `tree` and `features`).
+    pub column_keys: &'static [&'static str],
+    /// The keys that default to a column of a conventional name when left out.
+    pub conventions: &'static [Convention],
+    /// The canvas size when the spec gives none (see [`Technique::default_size`] for kinds
+    /// whose default depends on their options).
+    pub default_size: [f64; 2],
+    /// Whether the kind draws a selection (`highlight`) and takes part in brushing.
+    pub draws_selection: bool,
+    /// Whether the kind applies `aspect = "equal"` (one x/y frame, or given node positions).
+    pub applies_aspect: bool,
+}
+
+impl KindInfo {
+    /// A kind named `name` whose `column_keys` name columns, drawn at [`FRAME_SIZE`], with no
+    /// conventional defaults, drawing no selections and leaving `aspect` alone.
+    pub const fn new(name: &'static str, column_keys: &'static [&'static str]) -> KindInfo {
+        KindInfo {
+            name,
+            column_keys,
+            conventions: &[],
+            default_size: FRAME_SIZE,
+            draws_selection: false,
+            applies_aspect: false,
+        }
+    }
+
+    /// With keys that default to conventional columns.
+    pub const fn conventions(mut self, conventions: &'static [Convention]) -> KindInfo {
+        self.conventions = conventions;
+        self
+    }
+
+    /// Drawn at `size` when the spec gives none.
+    pub const fn sized(mut self, size: [f64; 2]) -> KindInfo {
+        self.default_size = size;
+        self
+    }
+
+    /// Drawing `highlight` selections and taking part in brushing.
+    pub const fn drawing_selections(mut self) -> KindInfo {
+        self.draws_selection = true;
+        self
+    }
+
+    /// Applying `aspect = "equal"`.
+    pub const fn taking_aspect(mut self) -> KindInfo {
+        self.applies_aspect = true;
+        self
+    }
+}
+
+/// The canvas size of the kinds drawn in one cartesian frame.
+pub const FRAME_SIZE: [f64; 2] = [640.0, 420.0];
+
+/// A cartesian axis of a chart, as its spec declares it.
+#[derive(Clone, Debug)]
+pub struct AxisSpec {
+    /// The axis's name in the scene (`"x axis"` or `"y axis"`), matching its items' labels.
+    pub name: &'static str,
+    /// The spec key of the channel, relative to the chart (a line chart's several y columns
+    /// share the key `"y"`).
+    pub key: &'static str,
+    /// The channel's options (defaults for a bare column name).
+    pub options: ChannelOptions,
+}
+
+impl AxisSpec {
+    /// The scale kind the spec asks for, if it names one.
+    pub fn scale(&self) -> Option<ScaleKind> {
+        self.options.scale
+    }
+
+    /// The x and y axes of one frame.
+    pub fn pair(x: &Channel, y: &Channel) -> Vec<AxisSpec> {
+        vec![
+            AxisSpec { name: "x axis", key: "x", options: x.options() },
+            AxisSpec { name: "y axis", key: "y", options: y.options() },
+        ]
+    }
+}
+
+/// A colour encoding of a chart: the spec key and its options.
+#[derive(Clone, Debug)]
+pub struct ColourSpec {
+    /// The spec key, relative to the chart (`"color"`, `"z"`).
+    pub key: &'static str,
+    /// The encoding's options (defaults for a bare column name).
+    pub options: ColorOptions,
+}
+
+impl ColourSpec {
+    /// The encoding of a chart's optional `color` key.
+    pub fn color(channel: &Option<ColorChannel>) -> Vec<ColourSpec> {
+        channel.iter().map(|c| ColourSpec { key: "color", options: c.options() }).collect()
+    }
+
+    /// The encoding of a field `z` coloured by a map.
+    pub fn z(channel: &ColorChannel) -> Vec<ColourSpec> {
+        vec![ColourSpec { key: "z", options: channel.options() }]
+    }
+}
+
+/// One chart bound for drawing: its spec (with `size` filled in), its place in the spec, the
+/// data it reads and the view it is drawn in. Errors and warnings name the chart through it.
+#[derive(Clone, Debug)]
+pub struct ChartContext<'a> {
+    /// The chart's spec, with `size` filled in by its kind's default.
+    pub chart: Chart,
+    /// Its index among the spec's charts (the `chart[i]` of error paths).
+    pub index: usize,
+    /// The table of its `data`.
+    pub table: &'a Table,
+    /// The rows of its `highlight` selection, evaluated, for kinds that draw selections.
+    pub highlight: Option<&'a Highlight>,
+    /// The node table of a network chart's `nodes`, when it names one.
+    pub nodes: Option<&'a Table>,
+    /// A view moved after the spec's own (the explorer's hyperbolic drag), if any.
+    pub view: Option<&'a Mobius>,
+}
+
+impl<'a> ChartContext<'a> {
+    /// Bind chart number `index` to its table; `size` is filled in from the kind's default.
+    pub fn new(chart: &Chart, index: usize, table: &'a Table) -> ChartContext<'a> {
+        ChartContext { chart: super::with_default_size(chart), index, table, highlight: None, nodes: None, view: None }
+    }
+
+    /// The same chart drawing the rows of `highlight` in full colour.
+    pub fn with_highlight(mut self, highlight: Option<&'a Highlight>) -> ChartContext<'a> {
+        self.highlight = highlight;
+        self
+    }
+
+    /// The same chart reading its node table from `nodes`.
+    pub fn with_nodes(mut self, nodes: Option<&'a Table>) -> ChartContext<'a> {
+        self.nodes = nodes;
+        self
+    }
+
+    /// The same chart with its view moved by `view`.
+    pub fn with_view(mut self, view: Option<&'a Mobius>) -> ChartContext<'a> {
+        self.view = view;
+        self
+    }
+
+    /// An error about this chart, pointing at `keys` (or the whole chart when empty), its message
+    /// prefixed with the chart's name.
+    pub fn error(&self, keys: &[&str], message: impl std::fmt::Display, hint: impl Into<String>) -> MarkError {
+        MarkError::at(self.index, keys, format!("chart \"{}\": {message}", self.chart.name), hint)
+    }
+
+    /// A layout error of this chart.
+    pub fn layout_error(&self, error: LayoutError) -> MarkError {
+        MarkError::layout(self.index, &self.chart.name, error)
+    }
+}
+
+/// One chart kind. Implemented by the kind's options type; everything that differs between
+/// kinds is asked of this trait or of its [`KindInfo`].
+pub trait Technique: Sync {
+    /// The kind's static facts.
+    fn info(&self) -> &'static KindInfo;
+
+    /// Draw the chart: its scene, derived geometry, warnings, and the interactive geometry the
+    /// explorer brushes and navigates (empty for kinds that expose none).
+    fn draw(&self, cx: &ChartContext<'_>) -> Result<ChartOutput, MarkError>;
+
+    /// The canvas size when the spec gives none.
+    fn default_size(&self) -> [f64; 2] {
+        self.info().default_size
+    }
+
+    /// The x and y axes of a kind drawn on one cartesian frame; empty for other kinds.
+    fn cartesian_axes(&self) -> Vec<AxisSpec> {
+        Vec::new()
+    }
+
+    /// The colour encodings the spec declares by column (`color = ...`, or a field `z` coloured
+    /// by a map). Kinds that colour by a fixed rule report their `scheme` instead.
+    fn colour_encodings(&self) -> Vec<ColourSpec> {
+        Vec::new()
+    }
+
+    /// The chart-level `scheme`, for kinds with one outside a colour encoding.
+    fn scheme(&self) -> Option<&str> {
+        None
+    }
+
+    /// The categorical colour channel whose categories are shared across the spec, and the data
+    /// source it reads when that is not the chart's own (a graph's `nodes.color`).
+    fn color_channel_mut(&mut self) -> Option<(&mut ColorChannel, Option<String>)> {
+        None
+    }
+
+    /// The data source of the node table the chart reads beside its own, if any.
+    fn node_data(&self) -> Option<&str> {
+        None
+    }
+}
+
+/// Lists every kind once: its `ChartKind` variant and its module. Generates [`KINDS`],
+/// [`technique`] and [`technique_mut`].
+macro_rules! registry {
+    ($($variant:ident => $module:ident),* $(,)?) => {
+        /// Every kind's facts, in the order of the spec's `ChartKind` variants.
+        pub static KINDS: &[&KindInfo] = &[$(&super::$module::KIND),*];
+
+        /// The technique drawing a chart of `kind`.
+        pub fn technique(kind: &ChartKind) -> &dyn Technique {
+            match kind {
+                $(ChartKind::$variant(options) => options,)*
+            }
+        }
+
+        /// [`technique`], for changing the chart's options.
+        pub fn technique_mut(kind: &mut ChartKind) -> &mut dyn Technique {
+            match kind {
+                $(ChartKind::$variant(options) => options,)*
+            }
+        }
+    };
+}
+
+registry! {
+    Scatter => scatter,
+    Line => line,
+    Bar => bar,
+    Interp1d => interp1d,
+    Contour => contour,
+    Image => image,
+    Section => section,
+    Scattered => scattered,
+    Surface => surface,
+    Hyperslice => hyperslice,
+    Splom => splom,
+    Parallel => parallel,
+    Daisy => daisy,
+    Faces => faces,
+    Segments => segments,
+    Treemap => treemap,
+    Hypertree => hypertree,
+    Graph => graph,
+    Linkmap => linkmap,
+    Flow => flow,
+}
+
+/// The facts of the kind named `name` in a spec, if there is one.
+pub fn kind_info(name: &str) -> Option<&'static KindInfo> {
+    KINDS.iter().copied().find(|k| k.name == name)
+}
+
+/// Every kind's name as written in the spec.
+pub fn names() -> impl Iterator<Item = &'static str> {
+    KINDS.iter().map(|k| k.name)
+}
+
+/// The names of the kinds with a property, e.g. `names_where(|k| k.draws_selection)`.
+pub fn names_where(keep: impl Fn(&KindInfo) -> bool) -> Vec<&'static str> {
+    KINDS.iter().filter(|k| keep(k)).map(|k| k.name).collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_kind_is_listed_once_under_the_name_serde_reads() {
+        let schema = crate::spec::spec_schema();
+        let branches = schema["$defs"]["Chart"]["oneOf"].as_array().cloned().unwrap_or_default();
+        let schema_names: Vec<String> =
+            branches.iter().filter_map(|b| b["properties"]["kind"]["const"].as_str().map(str::to_owned)).collect();
+        let names: Vec<&str> = names().collect();
+        assert_eq!(names.len(), branches.len());
+        assert_eq!(schema_names, names);
+        let mut sorted = names.clone();
+        sorted.sort_unstable();
+        sorted.dedup();
+        assert_eq!(sorted.len(), names.len(), "a name is listed twice");
+    }
+
+    #[test]
+    fn kinds_are_found_by_name() {
+        for info in KINDS {
+            assert!(kind_info(info.name).is_some_and(|k| std::ptr::eq(k, *info)));
+        }
+        assert!(kind_info("pie").is_none());
+    }
+
+    #[test]
+    fn selection_and_aspect_kinds_are_the_documented_ones() {
+        assert_eq!(names_where(|k| k.draws_selection), ["scatter", "splom", "parallel", "daisy", "faces", "segments"]);
+        assert_eq!(
+            names_where(|k| k.applies_aspect),
+            ["scatter", "line", "interp1d", "contour", "image", "scattered", "graph", "linkmap", "flow"]
+        );
+    }
+}
