@@ -1,40 +1,25 @@
-//! Marks: one module per chart kind, each turning a table and a chart spec into a [`Scene`].
+//! Marks: one module per chart kind, each turning a table and a chart spec into a [`Scene`],
+//! grouped in family folders (`cartesian`, `grid`, `multivariate`, `hierarchy`, `network`,
+//! `vector`, and `volume` for what comes next) and listed once in [`registry`].
 //!
-//! Shared pieces — reading channels from the table, the non-finite policy, colour and size
-//! encodings — live in [`encode`] so that kinds only describe their own geometry.
+//! Pieces two kinds share — reading channels from the table, the non-finite policy, colour and
+//! size encodings, frames, rasters, labels — live in [`shared`] (re-exported here by name), so
+//! that kinds only describe their own geometry. No kind imports another kind.
 
-pub mod bar;
-pub mod categorical;
-pub mod contour;
-pub mod daisy;
-pub mod derived;
-pub mod encode;
-pub mod face;
-pub mod faces;
-pub mod flow;
-pub mod frame;
-pub mod geojson;
-pub mod geometry;
-pub mod graph;
-pub mod gridded;
-pub mod highlight;
-pub mod hyperslice;
-pub mod hypertree;
-pub mod image;
-pub mod interp1d;
-pub mod line;
-pub mod linkmap;
-pub mod network_input;
-pub mod parallel;
+pub mod cartesian;
+pub mod grid;
+pub mod hierarchy;
+pub mod multivariate;
+pub mod network;
 pub mod registry;
-pub mod scatter;
-pub mod scattered;
-pub mod section;
-pub mod segments;
-pub mod splom;
-pub mod surface;
-pub mod tree_input;
-pub mod treemap;
+pub mod shared;
+pub mod vector;
+pub mod volume;
+
+pub use shared::{
+    categorical, derived, encode, frame, geojson, geometry, gridded, highlight, level_labels, network_input, node_link,
+    overplot, raster, size, tree_input,
+};
 
 use std::fmt;
 

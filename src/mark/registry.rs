@@ -225,9 +225,9 @@ pub trait Technique: Sync {
 /// Lists every kind once: its `ChartKind` variant and its module. Generates [`KINDS`],
 /// [`technique`] and [`technique_mut`].
 macro_rules! registry {
-    ($($variant:ident => $module:ident),* $(,)?) => {
+    ($($variant:ident => $($module:ident)::+),* $(,)?) => {
         /// Every kind's facts, in the order of the spec's `ChartKind` variants.
-        pub static KINDS: &[&KindInfo] = &[$(&super::$module::KIND),*];
+        pub static KINDS: &[&KindInfo] = &[$(&super::$($module)::+::KIND),*];
 
         /// The technique drawing a chart of `kind`.
         pub fn technique(kind: &ChartKind) -> &dyn Technique {
@@ -246,26 +246,26 @@ macro_rules! registry {
 }
 
 registry! {
-    Scatter => scatter,
-    Line => line,
-    Bar => bar,
-    Interp1d => interp1d,
-    Contour => contour,
-    Image => image,
-    Section => section,
-    Scattered => scattered,
-    Surface => surface,
-    Hyperslice => hyperslice,
-    Splom => splom,
-    Parallel => parallel,
-    Daisy => daisy,
-    Faces => faces,
-    Segments => segments,
-    Treemap => treemap,
-    Hypertree => hypertree,
-    Graph => graph,
-    Linkmap => linkmap,
-    Flow => flow,
+    Scatter => cartesian::scatter,
+    Line => cartesian::line,
+    Bar => cartesian::bar,
+    Interp1d => cartesian::interp1d,
+    Contour => grid::contour,
+    Image => grid::image,
+    Section => grid::section,
+    Scattered => grid::scattered,
+    Surface => grid::surface,
+    Hyperslice => grid::hyperslice,
+    Splom => multivariate::splom,
+    Parallel => multivariate::parallel,
+    Daisy => multivariate::daisy,
+    Faces => multivariate::faces,
+    Segments => multivariate::segments,
+    Treemap => hierarchy::treemap,
+    Hypertree => hierarchy::hypertree,
+    Graph => network::graph,
+    Linkmap => network::linkmap,
+    Flow => vector::flow,
 }
 
 /// The facts of the kind named `name` in a spec, if there is one.

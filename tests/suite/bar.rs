@@ -264,7 +264,7 @@ fn clip_marked(out: &ChartOutput) -> Vec<String> {
     let mut found = Vec::new();
     out.scene.walk(|item: &Item| {
         if let (Role::DataMark, Shape::Path(_), Some(label)) = (&item.role, &item.shape, &item.label)
-            && let Some(bar) = label.strip_prefix(dataink::mark::bar::CLIPPED_PREFIX)
+            && let Some(bar) = label.strip_prefix(dataink::mark::cartesian::bar::CLIPPED_PREFIX)
         {
             found.push(bar.to_string());
         }

@@ -2,6 +2,7 @@
 //! command-line tool. Keeping them in one binary links the heavy dependency set once, not once
 //! per file.
 
+mod architecture;
 mod bad_input;
 mod bar;
 mod big_scatter;

@@ -5,7 +5,7 @@
 //! [`KEY_TITLE`](crate::mark::faces::KEY_TITLE)); `key = false` leaves it out.
 
 use crate::lint::{Category, Issue, Rule, Severity, Subject};
-use crate::mark::faces::KEY_TITLE;
+use crate::mark::multivariate::faces::KEY_TITLE;
 use crate::scene::{Role, Shape};
 use crate::spec::ChartKind;
 

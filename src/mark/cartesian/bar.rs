@@ -1,0 +1,468 @@
+//! `bar`: vertical bars, one per category of `x`, grouped side by side by a categorical `color`.
+//!
+//! Rows with the same x category (and colour group) are summed into one bar. Bars encode length,
+//! so they start at zero unless the spec leaves zero out of the value axis (`zero = false`, or a
+//! fixed `domain` that excludes it); then they are drawn honestly from the end of the axis nearest
+//! zero, and lint rule DI001 reports the exaggeration. Negative sums hang below zero.
+
+use crate::data::{Categories, Column, Table};
+use crate::guide::axis::title_with_unit;
+use crate::guide::format::format_value;
+use crate::guide::layout::{Domain, PositionAxis};
+use crate::guide::legend::Symbol;
+use crate::guide::scale::{BandScale, Scale};
+use crate::guide::time::format_timestamp;
+use crate::mark::derived::{Derived, DerivedColumn};
+use crate::mark::encode::{self, MISSING_LABEL};
+use crate::mark::registry::{AxisSpec, ChartContext, ColourSpec, KindInfo, Technique};
+use crate::mark::{ChartOutput, MarkError, frame};
+use crate::scene::{Color, Item, PathCmd, Point, Rect, Role, Shape, Style};
+use crate::spec::{BarOptions, Chart, ColorChannel, ColorOptions, ColorType, ScaleKind};
+
+/// Gap between the bars of one group, as a fraction of a bar's step.
+const GROUP_PADDING: f64 = 0.1;
+/// Bars narrower than this many pixels get a warning: they are hard to see and compare.
+const NARROW_BAR: f64 = 2.0;
+
+/// The distinct values of a column over some rows, as labelled categories, and the category of
+/// each of those rows.
+struct Keys {
+    /// Category labels in display order (unique).
+    labels: Vec<String>,
+    /// Category index of each row, in the order of the rows given.
+    of_row: Vec<usize>,
+}
+
+/// One drawn bar: its category and group, the sum of its rows' values and those rows.
+struct Bar {
+    x: usize,
+    group: usize,
+    sum: f64,
+    rows: Vec<u32>,
+}
+
+/// Draw a bar chart.
+pub fn draw(chart: &Chart, options: &BarOptions, index: usize, table: &Table) -> Result<ChartOutput, MarkError> {
+    let x_opts = options.x.options();
+    let y_opts = options.y.options();
+    let x_col = encode::column(chart, index, "x", &x_opts.field, table)?;
+    let y_col = encode::column(chart, index, "y", &y_opts.field, table)?;
+    if table.rows == 0 {
+        return Err(encode::no_rows(chart, index, table, None));
+    }
+    check_scales(chart, index, options, y_col)?;
+    let color = grouping_channel(chart, index, options.color.as_ref(), table)?;
+    let color_col = match &color {
+        Some(c) => Some(encode::column(chart, index, "color", c.field(), table)?),
+        None => None,
+    };
+
+    let mut numeric: Vec<(&str, &Column)> = vec![(y_opts.field.as_str(), y_col)];
+    if x_col.numbers().is_some() {
+        numeric.push((x_opts.field.as_str(), x_col));
+    }
+    let (rows, warnings) = encode::drawn_rows(chart, index, table, numeric, color.as_ref())?;
+    let mut warnings = warnings;
+
+    let x_keys = keys(x_col, &rows);
+    let groups = match color_col {
+        Some(col) => keys(col, &rows),
+        None => Keys { labels: vec![String::new()], of_row: vec![0; rows.len()] },
+    };
+    let (nx, ng) = (x_keys.labels.len(), groups.labels.len());
+    let [width, _] = chart.size.unwrap_or(crate::mark::FRAME_SIZE);
+    let slots = nx.saturating_mul(ng);
+    if slots as f64 > width {
+        let what = if ng > 1 {
+            format!("{nx} categories × {ng} colour groups = {slots} bars")
+        } else {
+            format!("{nx} categories")
+        };
+        return Err(MarkError::at(
+            index,
+            &["x"],
+            format!(
+                "chart \"{}\": {what} do not fit a {width} px wide chart (each bar would be narrower than a pixel)",
+                chart.name
+            ),
+            "bar charts suit tens of categories: filter or aggregate the data into fewer categories, or make `size` wider",
+        ));
+    }
+
+    // Sum the rows of each (category, group) slot.
+    let values = y_col.numbers().unwrap_or(&[]);
+    let mut slot_rows: Vec<Vec<u32>> = vec![Vec::new(); slots];
+    for (k, &r) in rows.iter().enumerate() {
+        let (xi, gi) = (x_keys.of_row.get(k).copied().unwrap_or(0), groups.of_row.get(k).copied().unwrap_or(0));
+        if let Some(slot) = slot_rows.get_mut(xi * ng + gi) {
+            slot.push(r);
+        }
+    }
+    let bars: Vec<Bar> = slot_rows
+        .into_iter()
+        .enumerate()
+        .filter(|(_, rows)| !rows.is_empty())
+        .map(|(slot, rows)| {
+            let sum = rows.iter().filter_map(|&r| values.get(r as usize)).sum();
+            Bar { x: slot / ng, group: slot % ng, sum, rows }
+        })
+        .collect();
+
+    let summed = bars.iter().any(|b| b.rows.len() > 1);
+    let y_axis = value_axis(&y_opts, &bars, summed);
+    let x_axis = PositionAxis {
+        title: title_with_unit(x_opts.title.as_deref().unwrap_or(&x_opts.field), x_opts.unit.as_deref()),
+        kind: ScaleKind::Band,
+        domain: Domain::Categories(x_keys.labels.clone()),
+        nice: false,
+        ticks: None,
+        grid: x_opts.grid.unwrap_or(false),
+        inset: 0.0,
+    };
+    let (colors, legend) = encode::color_encoding(
+        chart,
+        index,
+        color.as_ref(),
+        options.mark_color.as_deref(),
+        table,
+        &rows,
+        Symbol::Square,
+    )?;
+    let (frame, theme) = frame::cartesian(chart, index, x_axis, y_axis, legend.into_iter().collect())?;
+    let Scale::Band(band) = &frame.x else {
+        return Err(MarkError::at(index, &["x"], format!("chart \"{}\": x is not a band scale", chart.name), ""));
+    };
+
+    // The baseline: zero, or the end of the value axis nearest zero when zero is left out.
+    let (d0, d1) = frame.y.domain();
+    let base = 0.0f64.clamp(d0.min(d1), d0.max(d1));
+    let base_px = frame.y.map(base);
+    let slot_of = |b: &Bar| -> (f64, f64) {
+        let start = band.start(b.x);
+        if ng == 1 {
+            return (start, band.bandwidth());
+        }
+        match BandScale::new(groups.labels.clone(), (start, start + band.bandwidth()), GROUP_PADDING, 0.0) {
+            Ok(inner) => (inner.start(b.group), inner.bandwidth()),
+            Err(_) => (start, band.bandwidth() / ng as f64),
+        }
+    };
+    let (lo, hi) = (d0.min(d1), d0.max(d1));
+    let mut marks = Vec::with_capacity(bars.len() + 1);
+    let mut narrowest = f64::INFINITY;
+    let mut clipped = 0usize;
+    for b in &bars {
+        let (x, w) = slot_of(b);
+        narrowest = narrowest.min(w);
+        // A sum beyond the domain is drawn up to the domain's end and marked as cut there.
+        let end = b.sum.max(lo).min(hi);
+        let top = frame.y.map(end);
+        let (y0, y1) = (base_px.min(top), base_px.max(top));
+        // A zero sum has no bar; a bar at a baseline other than zero stays, even with no length,
+        // so that the scene (and lint rule DI001) still sees it.
+        if b.sum == 0.0 || (y1 - y0).is_nan() {
+            continue;
+        }
+        let label = match groups.labels.get(b.group).filter(|_| ng > 1) {
+            Some(g) => format!("{}, {g}", x_keys.labels.get(b.x).map_or("", String::as_str)),
+            None => x_keys.labels.get(b.x).cloned().unwrap_or_default(),
+        };
+        let fill = b.rows.first().map_or(encode::DEFAULT_MARK_COLOR, |&r| colors.color_of(r));
+        let plot_rows = (frame.plot.y, frame.plot.bottom());
+        let cut = (end != b.sum).then(|| clip_mark(x, w, top, base_px, plot_rows, (fill, theme.background)));
+        marks.push(
+            Item::new(Role::DataMark, Shape::Rect(Rect::new(x, y0, w, y1 - y0)), Style::fill(fill))
+                .with_rows(b.rows.clone())
+                .labelled(label.clone()),
+        );
+        if let Some(mark) = cut {
+            clipped += 1;
+            marks.push(mark.with_rows(b.rows.clone()).labelled(format!("{CLIPPED_PREFIX}{label}")));
+        }
+    }
+    if clipped > 0 {
+        let (min, max) = encode::finite_extent(bars.iter().map(|b| b.sum)).unwrap_or((lo, hi));
+        warnings.push(format!(
+            "chart \"{}\": {clipped} of {} bars reach past the y domain [{lo}, {hi}] and are cut at its end \
+             (marked with a break); widen `domain` to cover [{min}, {max}], or remove it",
+            chart.name,
+            bars.len()
+        ));
+    }
+    if bars.iter().any(|b| b.sum < 0.0) && base == 0.0 {
+        // Bars on both sides of zero: a zero line separates them.
+        let y = base_px.round() + 0.5;
+        marks.push(
+            Item::new(
+                Role::Axis,
+                Shape::Path(vec![
+                    PathCmd::MoveTo(Point::new(frame.plot.x, y)),
+                    PathCmd::LineTo(Point::new(frame.plot.right(), y)),
+                ]),
+                Style::stroke(theme.axis, 1.0),
+            )
+            .labelled("baseline"),
+        );
+    }
+    if narrowest < NARROW_BAR {
+        warnings.push(format!(
+            "chart \"{}\": bars are {narrowest:.1} px wide, too narrow to see or compare; \
+             aggregate into fewer categories or make `size` wider",
+            chart.name
+        ));
+    }
+    let scene = frame::scene(chart, frame, &theme, marks);
+
+    let mut derived = Derived::default();
+    let label_of = |labels: &[String], i: usize| labels.get(i).cloned().unwrap_or_default();
+    derived.push(&x_opts.field, DerivedColumn::Text(bars.iter().map(|b| label_of(&x_keys.labels, b.x)).collect()));
+    if let Some(c) = &color {
+        derived.push(c.field(), DerivedColumn::Text(bars.iter().map(|b| label_of(&groups.labels, b.group)).collect()));
+    }
+    derived.push(&y_opts.field, DerivedColumn::Number(bars.iter().map(|b| b.sum).collect()));
+    derived.push("rows", DerivedColumn::Number(bars.iter().map(|b| b.rows.len() as f64).collect()));
+    Ok(ChartOutput { scene, derived, warnings, geojson: None, geometry: Default::default() })
+}
+
+/// What the label of a clip mark starts with; the rest is its bar's label.
+pub const CLIPPED_PREFIX: &str = "clipped: ";
+/// Distance of a clip mark from the cut end of a bar, in pixels.
+const CLIP_INSET: f64 = 7.0;
+/// Height of a clip mark's teeth, in pixels.
+const CLIP_TOOTH: f64 = 3.0;
+
+/// The mark of a bar cut at the end of the value axis: a zig-zag across the bar near the cut
+/// end (`end_px`; the bar runs from there towards `base_px`), in the background colour so that
+/// the bar looks broken; a bar too short to hold it gets the zig-zag in its own colour beside
+/// the cut, inside the plot (`plot`: its top and bottom pixel rows).
+fn clip_mark(x: f64, width: f64, end_px: f64, base_px: f64, plot: (f64, f64), colors: (Color, Color)) -> Item {
+    let (fill, background) = colors;
+    let towards_base = if base_px >= end_px { 1.0 } else { -1.0 };
+    let room = (base_px - end_px).abs();
+    let (y, color) = if room >= 2.0 * CLIP_INSET {
+        (end_px + towards_base * CLIP_INSET, background)
+    } else {
+        let (top, bottom) = (plot.0 + CLIP_TOOTH, plot.1 - CLIP_TOOTH);
+        ((end_px - towards_base * CLIP_TOOTH).max(top).min(bottom), fill)
+    };
+    let teeth = ((width / (2.0 * CLIP_TOOTH)).round() as usize).max(2);
+    let step = width / teeth as f64;
+    let cmds = (0..=teeth)
+        .map(|k| {
+            let side = if k % 2 == 0 { -0.5 } else { 0.5 };
+            let p = Point::new(x + step * k as f64, y + side * CLIP_TOOTH);
+            if k == 0 { PathCmd::MoveTo(p) } else { PathCmd::LineTo(p) }
+        })
+        .collect();
+    Item::new(Role::DataMark, Shape::Path(cmds), Style::stroke(color, 2.0))
+}
+
+/// Errors for scales a bar chart cannot draw honestly: a non-band x, a y that is text, time,
+/// logarithmic or a band.
+fn check_scales(chart: &Chart, index: usize, options: &BarOptions, y_col: &Column) -> Result<(), MarkError> {
+    let x_opts = options.x.options();
+    if let Some(kind) = x_opts.scale.filter(|k| *k != ScaleKind::Band) {
+        return Err(MarkError::at(
+            index,
+            &["x", "scale"],
+            format!(
+                "chart \"{}\": bars place every x value in its own band, so x cannot have a {} scale",
+                chart.name,
+                encode::scale_name(kind)
+            ),
+            "remove `scale` from x (or set `scale = \"band\"`); for a numeric x axis use a line or scatter chart",
+        ));
+    }
+    encode::require_numeric(
+        chart,
+        index,
+        "y",
+        y_col,
+        "a bar's length",
+        "use a numeric column for y, and put categories on x or in `color`",
+    )?;
+    if y_col.is_time() {
+        return Err(MarkError::at(
+            index,
+            &["y"],
+            format!(
+                "chart \"{}\": y column `{}` holds dates or times, which cannot be summed into bars",
+                chart.name, y_col.name
+            ),
+            "use a numeric column for y; put dates on x, where each becomes a category",
+        ));
+    }
+    match options.y.options().scale {
+        None | Some(ScaleKind::Linear) => Ok(()),
+        Some(kind) => Err(MarkError::at(
+            index,
+            &["y", "scale"],
+            format!(
+                "chart \"{}\": a bar's length is measured from zero, which a {} scale does not have",
+                chart.name,
+                encode::scale_name(kind)
+            ),
+            "remove `scale` from y (bars need a linear scale); for values spanning decades use a scatter or line chart on a log scale",
+        )),
+    }
+}
+
+/// The colour channel read as categories: a numeric column without `type` is grouped by its
+/// distinct values; `type = "continuous"` is an error, since groups need categories.
+fn grouping_channel(
+    chart: &Chart,
+    index: usize,
+    channel: Option<&ColorChannel>,
+    table: &Table,
+) -> Result<Option<ColorChannel>, MarkError> {
+    let Some(channel) = channel else { return Ok(None) };
+    let options = channel.options();
+    if options.r#type == Some(ColorType::Continuous) {
+        return Err(MarkError::at(
+            index,
+            &["color", "type"],
+            format!(
+                "chart \"{}\": bars are grouped by colour, which needs categories, not a continuous scale",
+                chart.name
+            ),
+            "remove `type = \"continuous\"`: a numeric column is then grouped by its distinct values",
+        ));
+    }
+    encode::column(chart, index, "color", &options.field, table)?;
+    Ok(Some(ColorChannel::Detailed(ColorOptions { r#type: Some(ColorType::Categorical), ..options })))
+}
+
+/// The value axis over the bars' sums: zero included unless `zero = false`; a fixed `domain`
+/// wins. Its title says "Sum of" when some bar adds up several rows and the spec names no title.
+fn value_axis(y_opts: &crate::spec::ChannelOptions, bars: &[Bar], summed: bool) -> PositionAxis {
+    let (mut lo, mut hi) = encode::finite_extent(bars.iter().map(|b| b.sum)).unwrap_or((0.0, 0.0));
+    if y_opts.zero != Some(false) {
+        lo = lo.min(0.0);
+        hi = hi.max(0.0);
+    }
+    if let Some([a, b]) = y_opts.domain {
+        (lo, hi) = (a, b);
+    }
+    let title = match &y_opts.title {
+        Some(t) => t.clone(),
+        None if summed => format!("Sum of {}", y_opts.field),
+        None => y_opts.field.clone(),
+    };
+    PositionAxis {
+        title: title_with_unit(&title, y_opts.unit.as_deref()),
+        kind: ScaleKind::Linear,
+        domain: Domain::Continuous(lo, hi),
+        nice: y_opts.nice.unwrap_or(true) && y_opts.domain.is_none(),
+        ticks: y_opts.ticks,
+        grid: y_opts.grid.unwrap_or(true),
+        inset: 0.0,
+    }
+}
+
+/// The categories of `column` over `rows`: text in the table's order of levels (missing text is
+/// its own category, last), numbers and times ascending.
+fn keys(column: &Column, rows: &[u32]) -> Keys {
+    if let Some(cats) = column.categories() {
+        return text_keys(cats, rows);
+    }
+    let values = column.numbers().unwrap_or(&[]);
+    let mut distinct: Vec<f64> = rows.iter().filter_map(|&r| values.get(r as usize).copied()).collect();
+    distinct.sort_by(f64::total_cmp);
+    // `==` merges -0 and 0, which are one category.
+    distinct.dedup_by(|a, b| a == b);
+    let of_row = rows
+        .iter()
+        .map(|&r| {
+            let v = values.get(r as usize).copied().unwrap_or(f64::NAN);
+            distinct.partition_point(|d| *d < v).min(distinct.len().saturating_sub(1))
+        })
+        .collect();
+    Keys { labels: number_labels(&distinct, column.is_time()), of_row }
+}
+
+/// Categories of a text column over `rows`.
+fn text_keys(cats: &Categories, rows: &[u32]) -> Keys {
+    let labels = encode::used_levels(cats, rows);
+    let index: std::collections::HashMap<&str, usize> =
+        labels.iter().enumerate().map(|(i, l)| (l.as_str(), i)).collect();
+    let position: Vec<Option<usize>> = cats.levels.iter().map(|l| index.get(l.as_str()).copied()).collect();
+    let missing = labels.iter().position(|l| l == MISSING_LABEL).unwrap_or(0);
+    let of_row = rows
+        .iter()
+        .map(|&r| match cats.codes.get(r as usize) {
+            Some(&c) if c != Categories::MISSING => position.get(c as usize).copied().flatten().unwrap_or(missing),
+            _ => missing,
+        })
+        .collect();
+    Keys { labels, of_row }
+}
+
+/// Labels of distinct sorted numbers: short forms (`1.5k`), or dates for time columns; the full
+/// round-trip form where short forms of two values would coincide.
+fn number_labels(values: &[f64], time: bool) -> Vec<String> {
+    let short: Vec<String> = values
+        .iter()
+        .map(|&v| {
+            if time {
+                let t = format_timestamp(v);
+                t.strip_suffix(" 00:00:00").map(str::to_string).unwrap_or(t)
+            } else {
+                format_value(v)
+            }
+        })
+        .collect();
+    let mut sorted = short.clone();
+    sorted.sort_unstable();
+    let unique = sorted.windows(2).all(|w| w[0] != w[1]);
+    if unique { short } else { values.iter().map(|v| v.to_string()).collect() }
+}
+
+/// `kind = "bar"`.
+pub static KIND: KindInfo = KindInfo::new("bar", &["x", "y", "color"]);
+
+impl Technique for BarOptions {
+    fn info(&self) -> &'static KindInfo {
+        &KIND
+    }
+
+    fn draw(&self, cx: &ChartContext<'_>) -> Result<ChartOutput, MarkError> {
+        draw(&cx.chart, self, cx.index, cx.table)
+    }
+
+    fn cartesian_axes(&self) -> Vec<AxisSpec> {
+        // Bars place every x value in a band, numbers included.
+        let mut axes = AxisSpec::pair(&self.x, &self.y);
+        if let Some(x) = axes.first_mut() {
+            x.options.scale = Some(crate::spec::ScaleKind::Band);
+        }
+        axes
+    }
+
+    fn colour_encodings(&self) -> Vec<ColourSpec> {
+        ColourSpec::color(&self.color)
+    }
+
+    fn color_channel_mut(&mut self) -> Option<(&mut crate::spec::ColorChannel, Option<String>)> {
+        self.color.as_mut().map(|c| (c, None))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn number_keys_are_sorted_and_merge_signed_zero() {
+        let col =
+            Column { name: "n".into(), values: crate::data::ColumnValues::Number(vec![3.0, -0.0, 1.0, 0.0, 3.0]) };
+        let k = keys(&col, &[0, 1, 2, 3, 4]);
+        assert_eq!(k.labels, vec!["0", "1", "3"]);
+        assert_eq!(k.of_row, vec![2, 0, 1, 0, 2]);
+    }
+
+    #[test]
+    fn colliding_short_labels_fall_back_to_full_numbers() {
+        let labels = number_labels(&[1.000001, 1.000002], false);
+        assert_eq!(labels, vec!["1.000001", "1.000002"]);
+    }
+}

@@ -1,0 +1,197 @@
+//! `scatter`: points at (x, y), coloured and sized by columns, drawn as one compact point batch.
+
+use crate::data::Table;
+use crate::guide::legend::{Legend, Symbol};
+use crate::mark::derived::{Derived, DerivedColumn};
+use crate::mark::encode::{self};
+use crate::mark::geometry::{Geometry, Plot, PlotScale};
+use crate::mark::overplot::{point_opacity, point_radius};
+use crate::mark::registry::{AxisSpec, ChartContext, ColourSpec, KindInfo, Technique};
+use crate::mark::size::{mapped_radius, size_legend_mapped};
+use crate::mark::{ChartOutput, MarkError, frame, highlight};
+use crate::scene::{Color, Item, PerPoint, PointBatch, Role, Shape, Stroke, Style};
+use crate::selection::Highlight;
+use crate::spec::{Chart, ScatterOptions};
+
+/// Draw a scatter chart.
+/// Also returns the interactive geometry (for brushing and zooming).
+pub fn draw(
+    chart: &Chart,
+    options: &ScatterOptions,
+    index: usize,
+    table: &Table,
+    highlight: Option<&Highlight>,
+) -> Result<ChartOutput, MarkError> {
+    let x_opts = options.x.options();
+    let y_opts = options.y.options();
+    let x_col = encode::column(chart, index, "x", &x_opts.field, table)?;
+    let y_col = encode::column(chart, index, "y", &y_opts.field, table)?;
+    let size_opts = options.point_size.as_ref().map(|s| s.options());
+    let size_col = match &size_opts {
+        Some(o) => Some(encode::column(chart, index, "point_size", &o.field, table)?),
+        None => None,
+    };
+    if let (Some(col), Some(o)) = (size_col, &size_opts)
+        && col.numbers().is_none()
+    {
+        return Err(MarkError::at(
+            index,
+            &["point_size"],
+            format!(
+                "chart \"{}\": `point_size` column `{}` holds text; marker area needs numbers",
+                chart.name, o.field
+            ),
+            "size by a numeric column, or colour by this one instead",
+        ));
+    }
+    let color_numeric = options.color.as_ref().and_then(|c| table.column(c.field())).filter(|c| c.numbers().is_some());
+
+    let mut numeric: Vec<(&str, &crate::data::Column)> = Vec::new();
+    for (field, col) in [(x_opts.field.as_str(), x_col), (y_opts.field.as_str(), y_col)] {
+        if col.numbers().is_some() {
+            numeric.push((field, col));
+        }
+    }
+    if let (Some(col), Some(o)) = (size_col, &size_opts) {
+        numeric.push((&o.field, col));
+    }
+    if let (Some(col), Some(c)) = (color_numeric, &options.color) {
+        numeric.push((c.field(), col));
+    }
+    let log = encode::log_fields(&[&x_opts, &y_opts]);
+    let (mut rows, warning) = encode::placeable_rows(&chart.name, table.rows, &numeric, &log);
+    let mut warnings: Vec<String> = warning.into_iter().collect();
+
+    // Marker area is proportional to the value, so negative sizes have no honest mark.
+    let mut max_size = 0.0f64;
+    if let Some(values) = size_col.and_then(|c| c.numbers()) {
+        let before = rows.len();
+        rows.retain(|&r| values.get(r as usize).is_some_and(|v| *v >= 0.0));
+        if rows.len() < before {
+            warnings.push(format!(
+                "chart \"{}\": dropped {} rows with negative `point_size` values (marker area cannot be negative)",
+                chart.name,
+                before - rows.len()
+            ));
+        }
+        max_size = rows.iter().filter_map(|&r| values.get(r as usize)).fold(0.0, |a, &b| a.max(b));
+    }
+    if rows.is_empty() {
+        return Err(encode::no_rows(chart, index, table, warnings.first().map(String::as_str)));
+    }
+
+    let n = rows.len();
+    let opacity = options.opacity.unwrap_or_else(|| point_opacity(n));
+    let (colors, color_legend) = encode::color_encoding(
+        chart,
+        index,
+        options.color.as_ref(),
+        options.mark_color.as_deref(),
+        table,
+        &rows,
+        Symbol::Circle,
+    )?;
+    let max_radius = size_opts.as_ref().and_then(|o| o.max_radius).unwrap_or(12.0);
+    let mapping = size_opts.as_ref().and_then(|o| o.mapping).unwrap_or_default();
+    let mut legends: Vec<Legend> = color_legend.into_iter().collect();
+    if let Some(h) = highlight {
+        legends.push(highlight::legend(h, &rows, Symbol::Circle));
+    }
+    if let (Some(o), true) = (&size_opts, max_size > 0.0) {
+        let title = o.title.clone().unwrap_or(o.field.clone());
+        legends.push(size_legend_mapped(&title, o.unit.as_deref(), max_size, max_radius, mapping));
+    }
+
+    let base_radius = options.radius.unwrap_or_else(|| point_radius(n));
+    let largest_radius = if size_col.is_some() && max_size > 0.0 { max_radius } else { base_radius };
+    let mut x_axis = encode::position_axis(chart, index, "x", &x_opts, x_col, &rows)?;
+    let mut y_axis = encode::position_axis(chart, index, "y", &y_opts, y_col, &rows)?;
+    x_axis.inset = largest_radius + 1.0;
+    y_axis.inset = largest_radius + 1.0;
+    let (frame, theme) = frame::cartesian(chart, index, x_axis, y_axis, legends)?;
+
+    let x_pos = encode::Positioner::new(&frame.x, x_col);
+    let y_pos = encode::Positioner::new(&frame.y, y_col);
+    // Large markers get a thin outline so overlapping ones stay distinguishable.
+    let stroke = (size_col.is_some() || (n <= 2_000 && base_radius >= 3.0))
+        .then(|| Stroke::solid(Color::WHITE.with_opacity(0.8), 0.6));
+    let sizes = size_col.and_then(|c| c.numbers()).filter(|_| max_size > 0.0);
+    let batch = |rows: &[u32], context: bool| {
+        let centers = encode::centers(&x_pos, &y_pos, rows);
+        let fill = highlight::point_fill(&colors, rows, context, opacity);
+        let radius = match sizes {
+            Some(values) => PerPoint::Each(
+                rows.iter()
+                    .map(|&r| {
+                        mapped_radius(values.get(r as usize).copied().unwrap_or(0.0), max_size, max_radius, mapping)
+                    })
+                    .collect(),
+            ),
+            None => PerPoint::Uniform(base_radius),
+        };
+        let label = if context { format!("{} (not selected)", chart.name) } else { chart.name.clone() };
+        vec![
+            Item::new(
+                Role::DataMark,
+                Shape::Points(PointBatch { centers, radius, fill, stroke: stroke.clone() }),
+                Style::default(),
+            )
+            .with_rows(rows.to_vec())
+            .labelled(label),
+        ]
+    };
+    let mut marks: Vec<Item> = highlight
+        .and_then(|h| highlight::brush(h, frame.plot, (&x_opts.field, &frame.x), Some((&y_opts.field, &frame.y))))
+        .into_iter()
+        .collect();
+    marks.extend(highlight::layers(&rows, highlight, batch));
+    warnings.extend(frame::raster_note(chart, &marks));
+    let plot = Plot {
+        rect: frame.plot,
+        x: PlotScale { field: x_opts.field.clone(), scale: frame.x.clone() },
+        y: PlotScale { field: y_opts.field.clone(), scale: frame.y.clone() },
+    };
+    let scene = frame::scene(chart, frame, &theme, marks);
+
+    let mut derived = Derived::over(rows);
+    derived.push("row", DerivedColumn::RowIndex);
+    derived.push(&x_opts.field, DerivedColumn::Source(x_opts.field.clone()));
+    derived.push(&y_opts.field, DerivedColumn::Source(y_opts.field.clone()));
+    if let Some(c) = &options.color {
+        derived.push(c.field(), DerivedColumn::Source(c.field().to_string()));
+    }
+    if let Some(o) = &size_opts {
+        derived.push(&o.field, DerivedColumn::Source(o.field.clone()));
+    }
+    if let Some(h) = highlight {
+        derived.push("selected", DerivedColumn::Selected(h.selected.clone()));
+    }
+    let geometry = Geometry { plots: vec![plot], ..Geometry::default() };
+    Ok(ChartOutput { scene, derived, warnings, geojson: None, geometry })
+}
+
+/// `kind = "scatter"`.
+pub static KIND: KindInfo =
+    KindInfo::new("scatter", &["x", "y", "color", "point_size"]).drawing_selections().taking_aspect();
+
+impl Technique for ScatterOptions {
+    fn info(&self) -> &'static KindInfo {
+        &KIND
+    }
+
+    fn draw(&self, cx: &ChartContext<'_>) -> Result<ChartOutput, MarkError> {
+        draw(&cx.chart, self, cx.index, cx.table, cx.highlight)
+    }
+
+    fn cartesian_axes(&self) -> Vec<AxisSpec> {
+        AxisSpec::pair(&self.x, &self.y)
+    }
+
+    fn colour_encodings(&self) -> Vec<ColourSpec> {
+        ColourSpec::color(&self.color)
+    }
+
+    fn color_channel_mut(&mut self) -> Option<(&mut crate::spec::ColorChannel, Option<String>)> {
+        self.color.as_mut().map(|c| (c, None))
+    }
+}

@@ -1,0 +1,4 @@
+//! Kinds drawing trees: treemap, hypertree.
+
+pub mod hypertree;
+pub mod treemap;

@@ -1,0 +1,4 @@
+//! Kinds drawing networks: graph, linkmap.
+
+pub mod graph;
+pub mod linkmap;

@@ -1,0 +1,112 @@
+//! What a drawn chart exposes for interaction: where its plots and axes are and the scales that
+//! map data onto them, so that a pointer position can be turned back into data values (brushing,
+//! hover, zoom). Filled by the kinds that the explorer brushes and navigates (`scatter`, `splom`,
+//! `parallel`, `hypertree`); empty for the others.
+
+use crate::guide::scale::Scale;
+use crate::scene::{Point, Rect};
+
+/// One positional scale of a plot and the column it places.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PlotScale {
+    /// The column.
+    pub field: String,
+    /// Data to canvas units.
+    pub scale: Scale,
+}
+
+/// A cartesian plot area: a scatter chart's plot, or one off-diagonal cell of a splom.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Plot {
+    /// The plot area in canvas units.
+    pub rect: Rect,
+    /// Horizontal scale.
+    pub x: PlotScale,
+    /// Vertical scale (upwards).
+    pub y: PlotScale,
+}
+
+/// One vertical axis of parallel coordinates.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ParallelAxis {
+    /// The column.
+    pub field: String,
+    /// Horizontal position of the axis line.
+    pub x: f64,
+    /// Top of the axis.
+    pub top: f64,
+    /// Bottom of the axis.
+    pub bottom: f64,
+    /// Data to vertical canvas position.
+    pub scale: Scale,
+}
+
+/// One node of a hyperbolic tree as drawn.
+#[derive(Clone, Debug, PartialEq)]
+pub struct DiskNode {
+    /// Position in the unit (Poincaré) disk after the view's transform.
+    pub position: [f64; 2],
+    /// Drawn radius in canvas units (0 when too small to draw).
+    pub radius: f64,
+    /// The node's label.
+    pub label: String,
+    /// The table row it came from, if any.
+    pub row: Option<u32>,
+}
+
+/// A hyperbolic tree's disk on the canvas.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Disk {
+    /// Centre of the disk in canvas units.
+    pub center: Point,
+    /// Radius of the disk in canvas units.
+    pub radius: f64,
+    /// Every node, in node order.
+    pub nodes: Vec<DiskNode>,
+}
+
+impl Disk {
+    /// Canvas position of a disk point.
+    pub fn to_canvas(&self, z: [f64; 2]) -> Point {
+        Point::new(self.center.x + self.radius * z[0], self.center.y - self.radius * z[1])
+    }
+
+    /// Disk point under a canvas position (may lie outside the unit disk).
+    pub fn to_disk(&self, p: Point) -> [f64; 2] {
+        if self.radius <= 0.0 {
+            return [0.0, 0.0];
+        }
+        [(p.x - self.center.x) / self.radius, (self.center.y - p.y) / self.radius]
+    }
+}
+
+/// Cells of a drawn chart that are drawn again, whole, for another selection (a splom's
+/// diagonal distributions), with the same code that drew them.
+pub trait RedrawnCells: Send + Sync + std::fmt::Debug {
+    /// The cell containing `p`, by index into the cells drawn.
+    fn cell_at(&self, p: Point) -> Option<usize>;
+
+    /// The data marks of every cell (in the order of [`RedrawnCells::cell_at`]) with the rows of
+    /// `selected` (one flag per table row) lit.
+    fn marks(&self, table: &crate::data::Table, name: &str, selected: &[bool]) -> Vec<Vec<crate::scene::Item>>;
+}
+
+/// The interactive geometry of one drawn chart.
+#[derive(Clone, Debug, Default)]
+pub struct Geometry {
+    /// Cartesian plot areas (scatter: one; splom: one per drawn off-diagonal cell).
+    pub plots: Vec<Plot>,
+    /// Parallel-coordinate axes, left to right.
+    pub axes: Vec<ParallelAxis>,
+    /// A hyperbolic tree's disk.
+    pub disk: Option<Disk>,
+    /// A splom's diagonal cells (histograms or densities), to draw again for a selection.
+    pub diagonals: Option<std::sync::Arc<dyn RedrawnCells>>,
+}
+
+impl Geometry {
+    /// Whether the chart exposes nothing to interact with.
+    pub fn is_empty(&self) -> bool {
+        self.plots.is_empty() && self.axes.is_empty() && self.disk.is_none()
+    }
+}

@@ -1,0 +1,20 @@
+//! Pieces the kinds share: channels and the non-finite policy (`encode`), the cartesian frame,
+//! selections drawn (`highlight`), derived output, categorical colours, gridded input, trees and
+//! networks read from tables, marker sizes, rasters, contour labels and node-link drawing.
+//! Nothing here imports a kind.
+
+pub mod categorical;
+pub mod derived;
+pub mod encode;
+pub mod frame;
+pub mod geojson;
+pub mod geometry;
+pub mod gridded;
+pub mod highlight;
+pub mod level_labels;
+pub mod network_input;
+pub mod node_link;
+pub mod overplot;
+pub mod raster;
+pub mod size;
+pub mod tree_input;

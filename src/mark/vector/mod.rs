@@ -1,0 +1,3 @@
+//! Kinds drawing vector fields: flow.
+
+pub mod flow;
