@@ -13,6 +13,7 @@ pub fn table_to_frame(table: &Table) -> PolarsResult<DataFrame> {
         let name = PlSmallStr::from(column.name.as_str());
         let series = match &column.values {
             ColumnValues::Number(values) => Series::new(name, values.as_slice()),
+            ColumnValues::Axis(axis) => Series::new(name, axis.values()),
             ColumnValues::Time(values) => {
                 let ms: Vec<Option<i64>> = values.iter().map(|v| v.is_finite().then_some(*v as i64)).collect();
                 Series::new(name, ms).cast(&DataType::Datetime(TimeUnit::Milliseconds, None))?

@@ -5,10 +5,11 @@
 //! Column `j` of the matrix lies at x index `j` and row `i` at y index `i` (y grows with the row
 //! index); `extent = [x_first, x_last, y_first, y_last]` maps the indices linearly to coordinates.
 
+use std::io::Read;
 use std::path::Path;
 
 use super::load::LoadError;
-use super::table::{Column, ColumnValues, Table};
+use super::table::{Column, ColumnValues, GridAxis, Table};
 use crate::spec::DataFormat;
 
 /// Largest matrix accepted (cells), checked before allocating.
@@ -26,7 +27,8 @@ pub struct Matrix {
 }
 
 impl Matrix {
-    /// The matrix as a long-form table `x, y, value` (its values moved, not copied), with coordinates from `extent`
+    /// The matrix as a long-form table `x, y, value` (its values moved, not copied; `x` and `y` as
+    /// [`GridAxis`] columns, spread over the rows only if read row by row), with coordinates from `extent`
     /// (`[x_first, x_last, y_first, y_last]`) or the indices.
     pub fn to_table(self, extent: Option<[f64; 4]>) -> Table {
         let coord = |k: usize, n: usize, first: f64, last: f64| {
@@ -35,18 +37,12 @@ impl Matrix {
         let [x0, x1, y0, y1] =
             extent.unwrap_or([0.0, self.cols.saturating_sub(1) as f64, 0.0, self.rows.saturating_sub(1) as f64]);
         let n = self.rows * self.cols;
-        let (mut xs, mut ys) = (Vec::with_capacity(n), Vec::with_capacity(n));
-        for i in 0..self.rows {
-            let y = coord(i, self.rows, y0, y1);
-            for j in 0..self.cols {
-                xs.push(coord(j, self.cols, x0, x1));
-                ys.push(y);
-            }
-        }
+        let xs = (0..self.cols).map(|j| coord(j, self.cols, x0, x1)).collect();
+        let ys = (0..self.rows).map(|i| coord(i, self.rows, y0, y1)).collect();
         Table {
             columns: vec![
-                Column { name: "x".into(), values: ColumnValues::Number(xs) },
-                Column { name: "y".into(), values: ColumnValues::Number(ys) },
+                Column { name: "x".into(), values: ColumnValues::Axis(GridAxis::new(xs, 1, n)) },
+                Column { name: "y".into(), values: ColumnValues::Axis(GridAxis::new(ys, self.cols, n)) },
                 Column { name: "value".into(), values: ColumnValues::Number(self.values) },
             ],
             rows: n,
@@ -59,86 +55,159 @@ fn npy_error(path: &Path, message: impl Into<String>) -> LoadError {
 }
 
 /// Read a 2-D `.npy` array of integers or floats (any byte order, C or Fortran order; the file
-/// may be gzip- or zstd-compressed).
+/// may be gzip- or zstd-compressed). An uncompressed file is decoded as it is read, a few
+/// megabytes at a time, into the one vector of values: no copy of the whole file is held.
 pub fn read_npy(path: &Path) -> Result<Matrix, LoadError> {
-    let bytes = super::compressed::read_bytes(path)?;
-    parse_npy(&bytes).map_err(|m| npy_error(path, m))
+    if super::compressed::Compression::of(path).is_some() {
+        let bytes = super::compressed::read_bytes(path)?;
+        return parse_npy(&bytes).map_err(|m| npy_error(path, m));
+    }
+    let mut file = super::regular_file::open(path).map_err(|e| LoadError::from_io(path, e))?;
+    let file_len = file.metadata().map_err(|e| LoadError::from_io(path, e))?.len();
+    let mut head = vec![0u8; HEADER_PREFIX.min(usize::try_from(file_len).unwrap_or(HEADER_PREFIX))];
+    file.read_exact(&mut head).map_err(|e| LoadError::from_io(path, e))?;
+    let header = Header::parse(&head).map_err(|m| npy_error(path, m))?;
+    let wanted = header.data_bytes();
+    let available = file_len.saturating_sub(header.data_start as u64);
+    if available < wanted as u64 {
+        return Err(npy_error(path, header.short_data(available)));
+    }
+    // The cells read with the header, then the rest of the file, in chunks of whole cells.
+    let mut cells = head.get(header.data_start..).unwrap_or(&[]).chain(file).take(wanted as u64);
+    let mut values = Vec::with_capacity(header.cells);
+    let mut chunk = vec![0u8; (READ_CHUNK / header.size).max(1) * header.size];
+    let mut left = wanted;
+    while left > 0 {
+        let take = chunk.len().min(left);
+        cells.read_exact(&mut chunk[..take]).map_err(|e| LoadError::from_io(path, e))?;
+        header.decode_into(&chunk[..take], &mut values);
+        left -= take;
+    }
+    Ok(header.finish(values))
+}
+
+/// Bytes read for the header before its length is known (the cells after it are kept).
+const HEADER_PREFIX: usize = 64 * 1024;
+/// Bytes of cells decoded at a time.
+const READ_CHUNK: usize = 4 * 1024 * 1024;
+
+/// What a `.npy` header says: the shape, the dtype's decoder and where the cells start.
+struct Header {
+    rows: usize,
+    cols: usize,
+    cells: usize,
+    size: usize,
+    fortran: bool,
+    descr: String,
+    data_start: usize,
+    decode: fn(&[u8]) -> f64,
+}
+
+impl Header {
+    /// Parse the magic bytes, version and header dict at the start of `bytes`.
+    fn parse(bytes: &[u8]) -> Result<Header, String> {
+        if bytes.get(..6) != Some(b"\x93NUMPY") {
+            return Err("not a NumPy .npy file (bad magic bytes)".into());
+        }
+        let major = *bytes.get(6).ok_or("truncated header")?;
+        let (len, start) = match major {
+            1 => (
+                u16::from_le_bytes([*bytes.get(8).ok_or("truncated header")?, *bytes.get(9).ok_or("truncated header")?])
+                    as usize,
+                10,
+            ),
+            2 | 3 => {
+                let b = bytes.get(8..12).ok_or("truncated header")?;
+                (u32::from_le_bytes([b[0], b[1], b[2], b[3]]) as usize, 12)
+            }
+            v => return Err(format!("unsupported .npy version {v}")),
+        };
+        let header = std::str::from_utf8(bytes.get(start..start + len).ok_or("truncated header")?)
+            .map_err(|_| "header is not text".to_string())?;
+        let descr = dict_value(header, "descr").ok_or("header has no 'descr'")?;
+        let descr = descr.trim_matches(|c| c == '\'' || c == '"');
+        let fortran = dict_value(header, "fortran_order").map(|v| v.starts_with("True")).unwrap_or(false);
+        let shape = dict_value(header, "shape").ok_or("header has no 'shape'")?;
+        let dims: Vec<usize> = shape
+            .trim_matches(|c| c == '(' || c == ')')
+            .split(',')
+            .map(str::trim)
+            .filter(|s| !s.is_empty())
+            .map(|s| s.parse::<usize>().map_err(|_| format!("bad shape {shape}")))
+            .collect::<Result<_, _>>()?;
+        let [rows, cols] = dims[..] else {
+            return Err(format!("the array has shape {shape}; a grid needs a 2-D array"));
+        };
+        let cells = rows
+            .checked_mul(cols)
+            .filter(|&n| n <= MAX_CELLS)
+            .ok_or(format!("the array has {rows} × {cols} cells, more than {MAX_CELLS}"))?;
+        let (little, kind, size) = {
+            let mut chars = descr.chars();
+            let order = chars.next().ok_or("empty dtype")?;
+            let kind = chars.next().ok_or("bad dtype")?;
+            let size: usize = chars
+                .as_str()
+                .parse()
+                .ok()
+                .filter(|s| [1, 2, 4, 8].contains(s))
+                .ok_or(format!("unsupported dtype {descr}; use float or integer arrays"))?;
+            (order != '>', kind, size)
+        };
+        let decode = decoder(kind, size, little)
+            .ok_or_else(|| format!("unsupported dtype {descr}; use float or integer arrays"))?;
+        Ok(Header { rows, cols, cells, size, fortran, descr: descr.to_string(), data_start: start + len, decode })
+    }
+
+    /// Bytes of cell data the shape and dtype call for.
+    fn data_bytes(&self) -> usize {
+        self.cells * self.size
+    }
+
+    /// The error for a file with only `available` bytes of cells.
+    fn short_data(&self, available: u64) -> String {
+        format!(
+            "the data has {available} bytes, {} expected for {} × {} {}",
+            self.data_bytes(),
+            self.rows,
+            self.cols,
+            self.descr
+        )
+    }
+
+    /// Decode whole cells of `data` onto `values`.
+    fn decode_into(&self, data: &[u8], values: &mut Vec<f64>) {
+        values.extend(data.chunks_exact(self.size).map(self.decode));
+    }
+
+    /// The matrix of the decoded cells, transposed to row-major if the file is column-major.
+    fn finish(&self, mut values: Vec<f64>) -> Matrix {
+        let (rows, cols) = (self.rows, self.cols);
+        if self.fortran {
+            let mut t = vec![0.0; self.cells];
+            for j in 0..cols {
+                for i in 0..rows {
+                    if let (Some(dst), Some(&src)) = (t.get_mut(i * cols + j), values.get(j * rows + i)) {
+                        *dst = src;
+                    }
+                }
+            }
+            values = t;
+        }
+        Matrix { rows, cols, values }
+    }
 }
 
 /// Parse `.npy` bytes into a matrix; the error is a message for the user.
 pub fn parse_npy(bytes: &[u8]) -> Result<Matrix, String> {
-    if bytes.get(..6) != Some(b"\x93NUMPY") {
-        return Err("not a NumPy .npy file (bad magic bytes)".into());
+    let header = Header::parse(bytes)?;
+    let data = bytes.get(header.data_start..).ok_or("truncated data")?;
+    if data.len() < header.data_bytes() {
+        return Err(header.short_data(data.len() as u64));
     }
-    let major = *bytes.get(6).ok_or("truncated header")?;
-    let (len, start) = match major {
-        1 => (
-            u16::from_le_bytes([*bytes.get(8).ok_or("truncated header")?, *bytes.get(9).ok_or("truncated header")?])
-                as usize,
-            10,
-        ),
-        2 | 3 => {
-            let b = bytes.get(8..12).ok_or("truncated header")?;
-            (u32::from_le_bytes([b[0], b[1], b[2], b[3]]) as usize, 12)
-        }
-        v => return Err(format!("unsupported .npy version {v}")),
-    };
-    let header = std::str::from_utf8(bytes.get(start..start + len).ok_or("truncated header")?)
-        .map_err(|_| "header is not text".to_string())?;
-    let descr = dict_value(header, "descr").ok_or("header has no 'descr'")?;
-    let descr = descr.trim_matches(|c| c == '\'' || c == '"');
-    let fortran = dict_value(header, "fortran_order").map(|v| v.starts_with("True")).unwrap_or(false);
-    let shape = dict_value(header, "shape").ok_or("header has no 'shape'")?;
-    let dims: Vec<usize> = shape
-        .trim_matches(|c| c == '(' || c == ')')
-        .split(',')
-        .map(str::trim)
-        .filter(|s| !s.is_empty())
-        .map(|s| s.parse::<usize>().map_err(|_| format!("bad shape {shape}")))
-        .collect::<Result<_, _>>()?;
-    let [rows, cols] = dims[..] else {
-        return Err(format!("the array has shape {shape}; a grid needs a 2-D array"));
-    };
-    let cells = rows
-        .checked_mul(cols)
-        .filter(|&n| n <= MAX_CELLS)
-        .ok_or(format!("the array has {rows} × {cols} cells, more than {MAX_CELLS}"))?;
-    let (little, kind, size) = {
-        let mut chars = descr.chars();
-        let order = chars.next().ok_or("empty dtype")?;
-        let kind = chars.next().ok_or("bad dtype")?;
-        let size: usize = chars
-            .as_str()
-            .parse()
-            .ok()
-            .filter(|s| [1, 2, 4, 8].contains(s))
-            .ok_or(format!("unsupported dtype {descr}; use float or integer arrays"))?;
-        (order != '>', kind, size)
-    };
-    let data = bytes.get(start + len..).ok_or("truncated data")?;
-    if data.len() < cells * size {
-        return Err(format!(
-            "the data has {} bytes, {} expected for {rows} × {cols} {descr}",
-            data.len(),
-            cells * size
-        ));
-    }
-    let decode =
-        decoder(kind, size, little).ok_or_else(|| format!("unsupported dtype {descr}; use float or integer arrays"))?;
-    let mut values: Vec<f64> = data[..cells * size].chunks_exact(size).map(decode).collect();
-    if fortran {
-        // Column-major on disk: transpose to row-major.
-        let mut t = vec![0.0; cells];
-        for j in 0..cols {
-            for i in 0..rows {
-                if let (Some(dst), Some(&src)) = (t.get_mut(i * cols + j), values.get(j * rows + i)) {
-                    *dst = src;
-                }
-            }
-        }
-        values = t;
-    }
-    Ok(Matrix { rows, cols, values })
+    let mut values = Vec::with_capacity(header.cells);
+    header.decode_into(&data[..header.data_bytes()], &mut values);
+    Ok(header.finish(values))
 }
 
 /// How one cell of a dtype (kind `f`, `i` or `u`, `size` bytes, little- or big-endian) becomes a
@@ -293,5 +362,36 @@ mod tests {
         assert_eq!(t.column("x").and_then(|c| c.numbers()), Some(&[10.0, 15.0, 20.0, 10.0, 15.0, 20.0][..]));
         assert_eq!(t.column("y").and_then(|c| c.numbers()), Some(&[-1.0, -1.0, -1.0, 1.0, 1.0, 1.0][..]));
         assert_eq!(t.column("value").and_then(|c| c.numbers()), Some(&m.values[..]));
+    }
+
+    #[test]
+    fn files_are_read_in_chunks_to_the_same_matrix_as_their_bytes() {
+        let dir = tempfile::tempdir().expect("temp dir");
+        // Over two read chunks of f4 cells, C and Fortran order; a small file; a file cut short.
+        let (rows, cols) = (1100, 1000);
+        let data: Vec<u8> = (0..rows * cols).flat_map(|k| ((k % 977) as f32 - 300.5).to_le_bytes()).collect();
+        let shape = format!("({rows}, {cols})");
+        for (name, bytes) in [
+            ("big.npy", npy_raw("<f4", &shape, &data)),
+            ("fortran.npy", as_fortran(npy_raw("<f4", &shape, &data))),
+            ("small.npy", npy("(2, 3)", false, &[1.0, 2.0, 3.0, 4.0, 5.0, 6.0])),
+        ] {
+            let path = dir.path().join(name);
+            std::fs::write(&path, &bytes).expect("write");
+            assert_eq!(read_npy(&path).expect(name), parse_npy(&bytes).expect(name), "{name}");
+        }
+        let path = dir.path().join("short.npy");
+        let bytes = npy_raw("<f4", &shape, &data);
+        std::fs::write(&path, &bytes[..bytes.len() - 5]).expect("write");
+        let err = read_npy(&path).expect_err("short file").to_string();
+        assert!(err.contains("the data has 4399995 bytes, 4400000 expected for 1100 × 1000 <f4"), "{err}");
+    }
+
+    /// The same file marked column-major (the header keeps its length).
+    fn as_fortran(mut bytes: Vec<u8>) -> Vec<u8> {
+        let (from, to) = (b"'fortran_order': False", b"'fortran_order': True ");
+        let at = bytes.windows(from.len()).position(|w| w == from).expect("a C-order header");
+        bytes[at..at + to.len()].copy_from_slice(to);
+        bytes
     }
 }

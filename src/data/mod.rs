@@ -35,4 +35,4 @@ pub mod tree;
 
 pub use load::{LoadError, SourceData, load_source, load_source_with_warnings};
 pub use paths::{PathError, PathPolicy, resolve_data_path};
-pub use table::{Categories, Column, ColumnValues, NonFinite, Table};
+pub use table::{Categories, Column, ColumnValues, GridAxis, NonFinite, Table};

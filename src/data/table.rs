@@ -1,4 +1,8 @@
 //! The columnar table that chart kinds read: numbers, times and categories, one row per record.
+//! A grid source keeps its coordinate columns as [`GridAxis`]: its axis values, spread over the
+//! rows only when something reads the column row by row.
+
+use std::sync::OnceLock;
 
 /// The values of one column.
 #[derive(Clone, Debug, PartialEq)]
@@ -9,6 +13,78 @@ pub enum ColumnValues {
     Time(Vec<f64>),
     /// Text (and booleans) as categories.
     Text(Categories),
+    /// Numbers that are one coordinate of a row-major regular grid.
+    Axis(GridAxis),
+}
+
+/// One coordinate of a regular grid stored row-major: row `r` holds
+/// `coords[(r / repeat) % coords.len()]` (`x`: `repeat` 1; `y`: `repeat` = the number of x nodes).
+/// The long form is made once, on first use of [`GridAxis::values`]; grid kinds read the
+/// coordinates directly and never make it.
+#[derive(Clone, Debug)]
+pub struct GridAxis {
+    coords: Vec<f64>,
+    repeat: usize,
+    len: usize,
+    long: OnceLock<Vec<f64>>,
+}
+
+impl GridAxis {
+    /// An axis of `len` rows whose coordinates are `coords`, each repeated `repeat` times in a row,
+    /// the whole sequence cycling until `len` rows.
+    pub fn new(coords: Vec<f64>, repeat: usize, len: usize) -> GridAxis {
+        GridAxis { coords, repeat: repeat.max(1), len, long: OnceLock::new() }
+    }
+
+    /// The grid's coordinates along this axis.
+    pub fn coords(&self) -> &[f64] {
+        &self.coords
+    }
+
+    /// How many consecutive rows share one coordinate.
+    pub fn repeat(&self) -> usize {
+        self.repeat
+    }
+
+    /// Number of rows.
+    pub fn len(&self) -> usize {
+        self.len
+    }
+
+    /// Whether the axis has no rows.
+    pub fn is_empty(&self) -> bool {
+        self.len == 0
+    }
+
+    /// Whether the long form has been made (something read the column row by row).
+    pub fn is_spread(&self) -> bool {
+        self.long.get().is_some()
+    }
+
+    /// The value of every row (made on first call).
+    pub fn values(&self) -> &[f64] {
+        self.long.get_or_init(|| {
+            let mut out = Vec::with_capacity(self.len);
+            if !self.coords.is_empty() {
+                while out.len() < self.len {
+                    for &c in &self.coords {
+                        let n = self.repeat.min(self.len - out.len());
+                        out.extend(std::iter::repeat_n(c, n));
+                        if out.len() == self.len {
+                            break;
+                        }
+                    }
+                }
+            }
+            out
+        })
+    }
+}
+
+impl PartialEq for GridAxis {
+    fn eq(&self, other: &GridAxis) -> bool {
+        self.len == other.len && self.values() == other.values()
+    }
 }
 
 /// Text values stored as codes into a list of distinct levels (in order of first appearance).
@@ -73,6 +149,7 @@ impl Column {
         match &self.values {
             ColumnValues::Number(v) | ColumnValues::Time(v) => v.len(),
             ColumnValues::Text(c) => c.codes.len(),
+            ColumnValues::Axis(a) => a.len(),
         }
     }
     /// Whether the column has no rows.
@@ -83,8 +160,13 @@ impl Column {
     pub fn numbers(&self) -> Option<&[f64]> {
         match &self.values {
             ColumnValues::Number(v) | ColumnValues::Time(v) => Some(v),
+            ColumnValues::Axis(a) => Some(a.values()),
             ColumnValues::Text(_) => None,
         }
+    }
+    /// Whether the column holds numbers or times (asking does not spread a grid axis).
+    pub fn is_numeric(&self) -> bool {
+        !matches!(self.values, ColumnValues::Text(_))
     }
     /// The categories, if the column holds text.
     pub fn categories(&self) -> Option<&Categories> {
@@ -100,7 +182,7 @@ impl Column {
     /// A short name of the column's type for messages: "number", "time" or "text".
     pub fn type_name(&self) -> &'static str {
         match self.values {
-            ColumnValues::Number(_) => "number",
+            ColumnValues::Number(_) | ColumnValues::Axis(_) => "number",
             ColumnValues::Time(_) => "time",
             ColumnValues::Text(_) => "text",
         }
@@ -175,6 +257,21 @@ mod tests {
         assert_eq!(c.value(1), Some("a"));
         assert_eq!(c.value(2), None);
         assert_eq!(c.value(99), None);
+    }
+
+    #[test]
+    fn grid_axes_spread_over_the_rows_as_the_long_form_would() {
+        let x = GridAxis::new(vec![0.0, 1.0, 3.0], 1, 6);
+        let y = GridAxis::new(vec![5.0, 7.0], 3, 6);
+        assert_eq!(x.values(), [0.0, 1.0, 3.0, 0.0, 1.0, 3.0]);
+        assert_eq!(y.values(), [5.0, 5.0, 5.0, 7.0, 7.0, 7.0]);
+        let column = Column { name: "y".into(), values: ColumnValues::Axis(y.clone()) };
+        assert_eq!(column.len(), 6);
+        assert_eq!(column.type_name(), "number");
+        assert_eq!(column.key(4), Some("7".into()));
+        assert_eq!(GridAxis::new(Vec::new(), 1, 0).values(), [] as [f64; 0]);
+        assert_eq!(y, GridAxis::new(vec![5.0, 7.0], 3, 6));
+        assert_ne!(y, GridAxis::new(vec![5.0, 7.0], 2, 6));
     }
 
     #[test]

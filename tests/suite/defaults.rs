@@ -48,6 +48,38 @@ fn a_contour_of_an_npy_grid_needs_no_column_names() {
 }
 
 #[test]
+fn grid_kinds_read_an_npy_grid_directly_and_draw_what_its_long_form_draws() {
+    use dataink::data::ColumnValues;
+    let (rows, cols) = (5, 6);
+    let values: Vec<f64> = (0..30).map(|i| ((i % 6) as f64 - 2.5).powi(2) + ((i / 6) as f64 - 2.0).powi(2)).collect();
+    let grid = npy_f8(rows, cols, &values);
+    let mut csv = String::from("x,y,value\n");
+    for (k, v) in values.iter().enumerate() {
+        // The extent below maps column j to x = 10 + 2j and row i to y = -1 + i / 2.
+        csv.push_str(&format!("{},{},{v}\n", 10.0 + 2.0 * (k % cols) as f64, -1.0 + 0.5 * (k / cols) as f64));
+    }
+    let files: &[(&str, &[u8])] = &[("g.npy", &grid), ("g.csv", csv.as_bytes())];
+    for (kind, extra) in [("contour", ""), ("image", ""), ("surface", ""), ("section", "at_y = [0.0, 0.5]\n")] {
+        let chart = format!("[[chart]]\nname = \"c\"\ndata = \"g\"\nkind = \"{kind}\"\n{extra}");
+        let npy = format!("[data.g]\npath = \"g.npy\"\nextent = [10.0, 20.0, -1.0, 1.0]\n\n{chart}");
+        let long = format!("[data.g]\npath = \"g.csv\"\n\n{chart}");
+        let fixture = Fixture::new(&npy, files);
+        let loaded = fixture.load().unwrap_or_else(|e| panic!("{kind}: {e}"));
+        let table = &loaded.tables["g"];
+        let drawn = dataink::pipeline::draw_chart(&loaded, 0, &loaded.spec.chart[0]).unwrap_or_else(|e| panic!("{e}"));
+        // The coordinate columns were never spread over the 30 rows.
+        for name in ["x", "y"] {
+            let Some(ColumnValues::Axis(axis)) = table.column(name).map(|c| &c.values) else {
+                panic!("{name} is an axis")
+            };
+            assert!(!axis.is_spread(), "{kind}: `{name}` was read row by row");
+        }
+        let from_csv = scene(&long, files).unwrap_or_else(|e| panic!("{kind}: {e}"));
+        assert_eq!(drawn.scene, from_csv, "{kind}: the npy grid draws what its long form draws");
+    }
+}
+
+#[test]
 fn a_flow_table_with_x_y_u_v_columns_renders_as_written() {
     let mut csv = String::from("x,y,u,v\n");
     for j in 0..6 {

@@ -218,6 +218,17 @@ pub fn extent(values: &[f64], rows: &[u32]) -> Option<(f64, f64)> {
     finite_extent(rows.iter().filter_map(|&r| values.get(r as usize).copied()))
 }
 
+/// The finite extent of a column over `rows` (sorted, distinct): a grid's coordinate column over
+/// all its rows is read from its coordinates, without spreading them over the rows.
+pub fn column_extent(column: &Column, rows: &[u32]) -> Option<(f64, f64)> {
+    if let crate::data::ColumnValues::Axis(axis) = &column.values
+        && rows.len() == axis.len()
+    {
+        return finite_extent(axis.coords().iter().copied());
+    }
+    extent(column.numbers().unwrap_or(&[]), rows)
+}
+
 /// The smallest and largest finite value (`None` when there is none).
 pub fn finite_extent(values: impl IntoIterator<Item = f64>) -> Option<(f64, f64)> {
     let (lo, hi) = values
@@ -259,8 +270,7 @@ pub fn position_axis(
     let domain = if let Some(cats) = column.categories() {
         Domain::Categories(used_levels(cats, rows))
     } else {
-        let values = column.numbers().unwrap_or(&[]);
-        let (mut lo, mut hi) = match (options.domain, extent(values, rows)) {
+        let (mut lo, mut hi) = match (options.domain, column_extent(column, rows)) {
             (Some([a, b]), _) => (a, b),
             (None, Some(e)) => e,
             (None, None) => {

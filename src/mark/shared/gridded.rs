@@ -1,7 +1,7 @@
 //! Gridded input shared by the grid chart kinds (`contour`, `image`, `section`): a regular grid
 //! read from a long-form table with one row per node.
 
-use crate::data::{Column, Table};
+use crate::data::{Column, ColumnValues, Table};
 use crate::enrich::grid::Grid;
 use crate::mark::{MarkError, encode};
 use crate::spec::{ChannelOptions, Chart, ColorOptions};
@@ -40,7 +40,7 @@ pub fn load_grid<'t>(
     let y_col = encode::column(chart, index, "y", &y_opts.field, table)?;
     let z_col = encode::column(chart, index, "z", &z_opts.field, table)?;
     for (key, field, col) in [("x", &x_opts.field, x_col), ("y", &y_opts.field, y_col), ("z", &z_opts.field, z_col)] {
-        if col.numbers().is_none() {
+        if !col.is_numeric() {
             return Err(MarkError::at(
                 index,
                 &[key],
@@ -48,6 +48,14 @@ pub fn load_grid<'t>(
                 "use numeric columns for x, y and z",
             ));
         }
+    }
+    if let Some(grid) = grid_of_axes(x_col, y_col, z_col) {
+        // A grid source's own coordinates: every row is a node, every coordinate finite.
+        let Some((zmin, zmax)) = grid.range() else {
+            return Err(all_missing(chart, index, z_opts));
+        };
+        let rows = (0..table.rows as u32).collect();
+        return Ok(GridInput { grid, rows, warnings: Vec::new(), x_col, y_col, zmin, zmax });
     }
     // Rows without finite coordinates cannot be placed; a non-finite z is a hole in the grid.
     let (rows, warning) =
@@ -58,14 +66,34 @@ pub fn load_grid<'t>(
     }
     let grid = grid_from_rows(chart, index, x_col, y_col, z_col, &rows)?;
     let Some((zmin, zmax)) = grid.range() else {
-        return Err(MarkError::at(
-            index,
-            &["z"],
-            format!("chart \"{}\": every value of `{}` is missing or non-finite", chart.name, z_opts.field),
-            "check the z column",
-        ));
+        return Err(all_missing(chart, index, z_opts));
     };
     Ok(GridInput { grid, rows, warnings, x_col, y_col, zmin, zmax })
+}
+
+fn all_missing(chart: &Chart, index: usize, z_opts: &ColorOptions) -> MarkError {
+    MarkError::at(
+        index,
+        &["z"],
+        format!("chart \"{}\": every value of `{}` is missing or non-finite", chart.name, z_opts.field),
+        "check the z column",
+    )
+}
+
+/// The grid of a grid source read directly: `x` and `y` are its coordinate columns
+/// ([`ColumnValues::Axis`], x fastest, both increasing and finite) and `z` has a value per node.
+/// `None` for anything else, which goes through the rows.
+fn grid_of_axes(x_col: &Column, y_col: &Column, z_col: &Column) -> Option<Grid> {
+    let (ColumnValues::Axis(x), ColumnValues::Axis(y)) = (&x_col.values, &y_col.values) else { return None };
+    let (xs, ys) = (x.coords(), y.coords());
+    let nodes = xs.len().checked_mul(ys.len())?;
+    let increasing = |c: &[f64]| c.iter().all(|v| v.is_finite()) && c.windows(2).all(|w| w[0] < w[1]);
+    let z = z_col.numbers()?;
+    let fits = x.repeat() == 1 && y.repeat() == xs.len() && x.len() == nodes && y.len() == nodes && z.len() == nodes;
+    if !fits || !increasing(xs) || !increasing(ys) {
+        return None;
+    }
+    Grid::new(xs.to_vec(), ys.to_vec(), z.to_vec()).ok()
 }
 
 /// Build the grid from long-form rows: the distinct x and y values are the grid's axes.
