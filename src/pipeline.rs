@@ -818,7 +818,15 @@ pub fn render_all(
             })?;
             let lint = timed(&format!("lint chart \"{}\"", chart.name), || lint_chart(loaded, *index, chart, &out));
             progress(&chart.name);
-            Ok((*index, Rendered { name: chart.name.clone(), files, warnings: out.warnings, lint }))
+            Ok((
+                *index,
+                Rendered {
+                    name: chart.name.clone(),
+                    files,
+                    warnings: out.warnings.iter().map(ToString::to_string).collect(),
+                    lint,
+                },
+            ))
         })
         .collect();
     let mut rendered = Vec::new();

@@ -18,13 +18,14 @@ pub mod volume;
 
 pub use shared::{
     categorical, derived, encode, frame, geojson, geometry, gridded, highlight, level_labels, network_input, node_link,
-    overplot, raster, size, tree_input,
+    overplot, raster, size, tree_input, warning,
 };
 
 use std::fmt;
 
 pub use derived::{Derived, DerivedColumn};
 pub use registry::{ChartContext, FRAME_SIZE, KindInfo, Technique, technique};
+pub use warning::Warning;
 
 use crate::data::Table;
 use crate::guide::layout::LayoutError;
@@ -40,7 +41,7 @@ pub struct ChartOutput {
     /// Derived geometry in data coordinates (`--format csv`).
     pub derived: Derived,
     /// Non-fatal notes, e.g. rows dropped for non-finite values.
-    pub warnings: Vec<String>,
+    pub warnings: Vec<Warning>,
     /// Derived geometry as a GeoJSON FeatureCollection in data coordinates (`--format geojson`),
     /// for kinds whose output is geometry (contour lines and bands).
     pub geojson: Option<geojson::ContourFeatures>,

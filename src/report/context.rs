@@ -199,7 +199,7 @@ fn chart_entry(loaded: &Loaded, linted: &Linted) -> ChartEntry {
         notes,
         findings: lint.findings.iter().map(FindingEntry::new).collect(),
         allowed: lint.allowed.iter().map(FindingEntry::new).collect(),
-        drawing_notes: linted.output.warnings.clone(),
+        drawing_notes: linted.output.warnings.iter().map(ToString::to_string).collect(),
         name,
     }
 }

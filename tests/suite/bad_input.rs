@@ -141,7 +141,7 @@ fn non_finite_cells_are_dropped_with_a_counted_warning() {
     let out = fx.draw().expect("draws");
     assert_eq!(out[0].derived.len(), 2);
     assert_eq!(
-        out[0].warnings,
+        out[0].warnings.iter().map(ToString::to_string).collect::<Vec<_>>(),
         vec![
             "chart \"c\": dropped 4 of 6 rows with missing or non-finite values (`x`: 1 missing or NaN, 3 infinite)"
                 .to_string()
@@ -232,7 +232,7 @@ fn log_axis_drops_rows_it_cannot_place() {
     });
     assert_eq!(drawn, [2, 3, 4], "the rows with x = 1, 10, 100");
     assert_eq!(
-        out[0].warnings,
+        out[0].warnings.iter().map(ToString::to_string).collect::<Vec<_>>(),
         ["chart \"c\": dropped 2 of 5 rows with missing or non-finite values or values ≤ 0 on a log axis \
           (`x`: 2 ≤ 0 on a log axis)"]
     );
@@ -282,7 +282,7 @@ fn missing_values_as_people_write_them_keep_a_column_numeric() {
         let out = fx.draw().unwrap_or_else(|e| panic!("{missing}: {e}"));
         assert_eq!(out[0].derived.len(), 2, "{missing}");
         assert_eq!(
-            out[0].warnings,
+            out[0].warnings.iter().map(ToString::to_string).collect::<Vec<_>>(),
             vec![
                 "chart \"c\": dropped 1 of 3 rows with missing or non-finite values (`y`: 1 missing or NaN)"
                     .to_string()

@@ -71,7 +71,7 @@ fn a_big_scatter_embeds_its_points_as_one_raster_in_the_svg() {
     let n = 200_000;
     let out = scatter(n);
     assert!(
-        out.warnings.iter().any(|w| w.contains("200000 points drawn as an embedded raster in the SVG")),
+        out.warnings.iter().any(|w| w.to_string().contains("200000 points drawn as an embedded raster in the SVG")),
         "{:?}",
         out.warnings
     );
@@ -130,7 +130,7 @@ fn a_big_scatter_embeds_its_points_as_one_raster_in_the_svg() {
 #[test]
 fn scatters_up_to_the_limit_stay_vector() {
     let out = scatter(1_000);
-    assert!(out.warnings.iter().all(|w| !w.contains("embedded raster")), "{:?}", out.warnings);
+    assert!(out.warnings.iter().all(|w| !w.to_string().contains("embedded raster")), "{:?}", out.warnings);
     let svg = render::to_svg(&out.scene);
     assert_eq!(svg.matches("<image").count(), 0);
     assert_eq!(svg.matches("<circle").count(), 1_000);

@@ -274,8 +274,8 @@ kind = "segments"
 data = "t"
 columns = ["a", "k"]"#;
     let out = draw_ok(charts);
-    assert!(out[3].warnings.iter().any(|w| w.contains("`k` is constant")), "{:?}", out[3].warnings);
-    assert!(out[4].warnings.iter().any(|w| w.contains("`k` is constant")), "{:?}", out[4].warnings);
+    assert!(out[3].warnings.iter().any(|w| w.to_string().contains("`k` is constant")), "{:?}", out[3].warnings);
+    assert!(out[4].warnings.iter().any(|w| w.to_string().contains("`k` is constant")), "{:?}", out[4].warnings);
     let one_row = "[data.t]\nvalues = [{ a = 1, b = 2, c = 3 }]\n\n[[chart]]\nname = \"m\"\nkind = \"splom\"\ndata = \"t\"\ncolumns = [\"a\", \"b\", \"c\"]\n\n[[chart]]\nname = \"p\"\nkind = \"parallel\"\ndata = \"t\"\ncolumns = [\"a\", \"b\"]\n\n[[chart]]\nname = \"d\"\nkind = \"daisy\"\ndata = \"t\"\ncolumns = [\"a\", \"b\", \"c\"]\n\n[[chart]]\nname = \"f\"\nkind = \"faces\"\ndata = \"t\"\ncolumns = [\"a\", \"b\"]\n\n[[chart]]\nname = \"g\"\nkind = \"segments\"\ndata = \"t\"\ncolumns = [\"a\", \"b\"]\n";
     let out = Fixture::new(one_row, &[]).draw().unwrap_or_else(|e| panic!("{e}"));
     assert_eq!(out.len(), 5);

@@ -76,14 +76,13 @@ fn check_dropped(s: &Subject<'_>) -> Vec<Issue> {
     s.output
         .warnings
         .iter()
-        .filter_map(|w| crate::mark::encode::dropped_rows(w).map(|counts| (w, counts)))
+        .filter_map(|w| w.dropped_rows().map(|counts| (w, counts)))
         .filter(|(_, (dropped, _))| !caption_states_count(s, *dropped))
         .map(|(w, _)| {
-            let message = w.split_once("\": ").map_or(w.as_str(), |(_, m)| m).to_string();
             Issue::new(
                 "data",
                 "data",
-                message,
+                w.message(),
                 "say in the caption how many rows are missing, or clean the data so nothing is dropped silently",
             )
         })

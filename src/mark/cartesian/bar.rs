@@ -15,6 +15,7 @@ use crate::guide::time::format_timestamp;
 use crate::mark::derived::{Derived, DerivedColumn};
 use crate::mark::encode::{self, MISSING_LABEL};
 use crate::mark::registry::{AxisSpec, ChartContext, ColourSpec, KindInfo, Technique};
+use crate::mark::warning::Warning;
 use crate::mark::{ChartOutput, MarkError, frame};
 use crate::scene::{Color, Item, PathCmd, Point, Rect, Role, Shape, Style};
 use crate::spec::{BarOptions, Chart, ColorChannel, ColorOptions, ColorType, ScaleKind};
@@ -182,12 +183,12 @@ pub fn draw(chart: &Chart, options: &BarOptions, index: usize, table: &Table) ->
     }
     if clipped > 0 {
         let (min, max) = encode::finite_extent(bars.iter().map(|b| b.sum)).unwrap_or((lo, hi));
-        warnings.push(format!(
+        warnings.push(Warning::from(format!(
             "chart \"{}\": {clipped} of {} bars reach past the y domain [{lo}, {hi}] and are cut at its end \
              (marked with a break); widen `domain` to cover [{min}, {max}], or remove it",
             chart.name,
             bars.len()
-        ));
+        )));
     }
     if bars.iter().any(|b| b.sum < 0.0) && base == 0.0 {
         // Bars on both sides of zero: a zero line separates them.
@@ -205,11 +206,11 @@ pub fn draw(chart: &Chart, options: &BarOptions, index: usize, table: &Table) ->
         );
     }
     if narrowest < NARROW_BAR {
-        warnings.push(format!(
+        warnings.push(Warning::from(format!(
             "chart \"{}\": bars are {narrowest:.1} px wide, too narrow to see or compare; \
              aggregate into fewer categories or make `size` wider",
             chart.name
-        ));
+        )));
     }
     let scene = frame::scene(chart, frame, &theme, marks);
 

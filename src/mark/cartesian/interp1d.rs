@@ -8,6 +8,7 @@ use crate::guide::legend::{Legend, Symbol};
 use crate::guide::scale::Scale;
 use crate::mark::derived::{Derived, DerivedColumn};
 use crate::mark::registry::{AxisSpec, ChartContext, KindInfo, Technique};
+use crate::mark::warning::Warning;
 use crate::mark::{ChartOutput, MarkError, encode, frame};
 use crate::scene::{Color, Item, PathCmd, PerPoint, Point, PointBatch, Role, Shape, Stroke, Style};
 use crate::spec::{Chart, Interp1dOptions, InterpMethod};
@@ -89,9 +90,9 @@ pub fn draw(chart: &Chart, options: &Interp1dOptions, index: usize, table: &Tabl
     }
     let log = encode::log_fields(&[&x_opts, &y_opts]);
     let (rows, warning) = encode::placeable_rows(&chart.name, table.rows, &numeric, &log);
-    let warnings: Vec<String> = warning.into_iter().collect();
+    let warnings: Vec<Warning> = warning.into_iter().collect();
     if rows.is_empty() {
-        return Err(encode::no_rows(chart, index, table, warnings.first().map(String::as_str)));
+        return Err(encode::no_rows(chart, index, table, warnings.first()));
     }
     let pick = |col: &crate::data::Column| encode::values_at(col, &rows);
     let xs = pick(x_col);

@@ -7,6 +7,7 @@ use crate::guide::legend::{Legend, Symbol};
 use crate::mark::derived::{Derived, DerivedColumn};
 use crate::mark::encode;
 use crate::mark::registry::{AxisSpec, ChartContext, ColourSpec, KindInfo, Technique};
+use crate::mark::warning::Warning;
 use crate::mark::{ChartOutput, MarkError, frame};
 use crate::scene::{Color, Item, PathCmd, PerPoint, Point, PointBatch, Role, Shape, Stroke, Style};
 use crate::spec::{Chart, ColorType, LineOptions};
@@ -112,7 +113,7 @@ pub fn draw(chart: &Chart, options: &LineOptions, index: usize, table: &Table) -
         let y_opts = channel.options();
         let log = encode::log_fields(&[&x_opts, &y_opts]);
         let (kept, warning) = encode::placeable_rows(&chart.name, table.rows, &used, &log);
-        warnings.extend(warning);
+        warnings.extend((warning).into_iter().map(Warning::from));
         let title = channel.options().title.unwrap_or_else(|| channel.field().to_string());
         match &split_categories {
             Some(cats) => {
@@ -141,7 +142,7 @@ pub fn draw(chart: &Chart, options: &LineOptions, index: usize, table: &Table) -
     }
     series.retain(|s| !s.rows.is_empty());
     if series.is_empty() {
-        return Err(encode::no_rows(chart, index, table, warnings.first().map(String::as_str)));
+        return Err(encode::no_rows(chart, index, table, warnings.first()));
     }
     let n_series = series.len();
     // With `color`, each category's colour follows the encoding (its domain, range or scheme).

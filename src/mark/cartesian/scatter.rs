@@ -8,6 +8,7 @@ use crate::mark::geometry::{Geometry, Plot, PlotScale};
 use crate::mark::overplot::{point_opacity, point_radius};
 use crate::mark::registry::{AxisSpec, ChartContext, ColourSpec, KindInfo, Technique};
 use crate::mark::size::{mapped_radius, size_legend_mapped};
+use crate::mark::warning::Warning;
 use crate::mark::{ChartOutput, MarkError, frame, highlight};
 use crate::scene::{Color, Item, PerPoint, PointBatch, Role, Shape, Stroke, Style};
 use crate::selection::Highlight;
@@ -60,7 +61,7 @@ pub fn draw(
     }
     let log = encode::log_fields(&[&x_opts, &y_opts]);
     let (mut rows, warning) = encode::placeable_rows(&chart.name, table.rows, &numeric, &log);
-    let mut warnings: Vec<String> = warning.into_iter().collect();
+    let mut warnings: Vec<Warning> = warning.into_iter().collect();
 
     // Marker area is proportional to the value, so negative sizes have no honest mark.
     let mut max_size = 0.0f64;
@@ -68,16 +69,16 @@ pub fn draw(
         let before = rows.len();
         rows.retain(|&r| values.get(r as usize).is_some_and(|v| *v >= 0.0));
         if rows.len() < before {
-            warnings.push(format!(
+            warnings.push(Warning::from(format!(
                 "chart \"{}\": dropped {} rows with negative `point_size` values (marker area cannot be negative)",
                 chart.name,
                 before - rows.len()
-            ));
+            )));
         }
         max_size = rows.iter().filter_map(|&r| values.get(r as usize)).fold(0.0, |a, &b| a.max(b));
     }
     if rows.is_empty() {
-        return Err(encode::no_rows(chart, index, table, warnings.first().map(String::as_str)));
+        return Err(encode::no_rows(chart, index, table, warnings.first()));
     }
 
     let n = rows.len();
@@ -145,7 +146,7 @@ pub fn draw(
         .into_iter()
         .collect();
     marks.extend(highlight::layers(&rows, highlight, batch));
-    warnings.extend(frame::raster_note(chart, &marks));
+    warnings.extend((frame::raster_note(chart, &marks)).into_iter().map(Warning::from));
     let plot = Plot {
         rect: frame.plot,
         x: PlotScale { field: x_opts.field.clone(), scale: frame.x.clone() },

@@ -11,6 +11,7 @@ use crate::guide::scale::{LinearScale, Scale};
 use crate::mark::derived::{Derived, DerivedColumn};
 use crate::mark::raster::{NAN_COLOR, image_extent, raster_for};
 use crate::mark::registry::{ChartContext, ColourSpec, KindInfo, Technique};
+use crate::mark::warning::Warning;
 use crate::mark::{ChartOutput, MarkError, encode, frame};
 use crate::scene::{Color, Item, PathCmd, Point, Rect, Role, Shape, Stroke, Style};
 use crate::spec::defaults;
@@ -48,9 +49,9 @@ pub fn draw(chart: &Chart, options: &HypersliceOptions, index: usize, table: &Ta
     let z_col = encode::column(chart, index, "z", &z_opts.field, table)?;
     // Rows need finite coordinates; a non-finite value stays in the grid as a hole.
     let (rows, warning) = encode::finite_rows(&chart.name, table.rows, &columns);
-    let warnings: Vec<String> = warning.into_iter().collect();
+    let warnings: Vec<Warning> = warning.into_iter().collect();
     if rows.is_empty() {
-        return Err(encode::no_rows(chart, index, table, warnings.first().map(String::as_str)));
+        return Err(encode::no_rows(chart, index, table, warnings.first()));
     }
     let pick = |col: &crate::data::Column| encode::values_at(col, &rows);
     let coords: Vec<Vec<f64>> = columns.iter().map(|(_, c)| pick(c)).collect();

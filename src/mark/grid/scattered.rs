@@ -13,6 +13,7 @@ use crate::guide::scale::Scale;
 use crate::mark::derived::Derived;
 use crate::mark::level_labels::level_labels;
 use crate::mark::registry::{AxisSpec, ChartContext, ColourSpec, KindInfo, Technique};
+use crate::mark::warning::Warning;
 use crate::mark::{ChartOutput, MarkError, encode, frame};
 use crate::scene::{Color, Item, PathCmd, PerPoint, Point, PointBatch, Raster, Rect, Role, Shape, Stroke, Style};
 use crate::spec::defaults;
@@ -48,9 +49,9 @@ pub fn draw(chart: &Chart, options: &ScatteredOptions, index: usize, table: &Tab
         table.rows,
         &[(x_opts.field.as_str(), x_col), (y_opts.field.as_str(), y_col), (z_opts.field.as_str(), z_col)],
     );
-    let mut warnings: Vec<String> = warning.into_iter().collect();
+    let mut warnings: Vec<Warning> = warning.into_iter().collect();
     if rows.is_empty() {
-        return Err(encode::no_rows(chart, index, table, warnings.first().map(String::as_str)));
+        return Err(encode::no_rows(chart, index, table, warnings.first()));
     }
     let pick = |col: &crate::data::Column| encode::values_at(col, &rows);
     let (xs, ys, zs) = (pick(x_col), pick(y_col), pick(z_col));
@@ -59,17 +60,17 @@ pub fn draw(chart: &Chart, options: &ScatteredOptions, index: usize, table: &Tab
         MarkError::at(index, &["x"], format!("chart \"{}\": {e}", chart.name), "check the point coordinates")
     })?;
     if tin.merged_duplicates() > 0 {
-        warnings.push(format!(
+        warnings.push(Warning::from(format!(
             "chart \"{}\": merged {} points that repeat an earlier point's position (the first one's value is kept)",
             chart.name,
             tin.merged_duplicates()
-        ));
+        )));
     }
     if tin.is_degenerate() {
-        warnings.push(format!(
+        warnings.push(Warning::from(format!(
             "chart \"{}\": the points are fewer than three or all on one line, so there are no triangles; only the points are drawn",
             chart.name
-        ));
+        )));
     }
 
     let (zmin, zmax) = encode::extent(&zs, &(0..zs.len() as u32).collect::<Vec<_>>()).unwrap_or((0.0, 1.0));

@@ -13,6 +13,7 @@ use crate::layout::treemap::{self as tiling, Rect as Cell, TreemapOptions as Til
 use crate::mark::derived::{Derived, DerivedColumn};
 use crate::mark::registry::{ChartContext, ColourSpec, KindInfo, Technique};
 use crate::mark::tree_input::{Branches, branch_legend, branch_palette, labels_of, node_rows, tree_of};
+use crate::mark::warning::Warning;
 use crate::mark::{ChartOutput, MarkError, encode, frame, with_default_size};
 use crate::scene::{Anchor, Baseline, Color, Item, Point, Rect, Role, Shape, Style, Text};
 use crate::spec::defaults;
@@ -42,11 +43,11 @@ pub fn draw(chart: &Chart, options: &TreemapOptions, index: usize, table: &Table
             let limit = auto_depth(h, &depths, w * hgt * 0.7 / MIN_CELL_AREA);
             let deepest = depths.iter().max().copied().unwrap_or(0);
             if limit < deepest {
-                warnings.push(format!(
+                warnings.push(Warning::from(format!(
                     "chart \"{}\": {deepest} levels are too many to show in this size; the top {limit} are drawn \
                      (set `depth` to choose)",
                     chart.name
-                ));
+                )));
             }
             limit
         }
@@ -85,11 +86,11 @@ pub fn draw(chart: &Chart, options: &TreemapOptions, index: usize, table: &Table
     let map = tiling::layout(h, &leaf_values, bounds, &tiling_options)
         .map_err(|e| MarkError::at(index, &["padding"], format!("chart \"{}\": {e}", chart.name), ""))?;
     if map.weights.invalid() > 0 {
-        warnings.push(format!(
+        warnings.push(Warning::from(format!(
             "chart \"{}\": {} leaves have negative or missing values; they count as 0 and are not drawn",
             chart.name,
             map.weights.invalid()
-        ));
+        )));
     }
     if map.values[h.root()] <= 0.0 {
         return Err(MarkError::at(
@@ -164,7 +165,7 @@ fn leaf_values(
     options: &TreemapOptions,
     tree: &Tree,
     table: &Table,
-    warnings: &mut Vec<String>,
+    warnings: &mut Vec<Warning>,
 ) -> Result<Vec<f64>, MarkError> {
     let h = &tree.hierarchy;
     let Some(field) = options.value.as_deref() else { return Ok(vec![1.0; h.len()]) };
@@ -179,11 +180,11 @@ fn leaf_values(
         })
         .count();
     if overridden > 0 {
-        warnings.push(format!(
+        warnings.push(Warning::from(format!(
             "chart \"{}\": {overridden} inner nodes have a `{field}` that differs from the sum of their leaves; \
              areas use the leaf sums",
             chart.name
-        ));
+        )));
     }
     Ok(values)
 }

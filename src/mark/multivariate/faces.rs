@@ -10,6 +10,7 @@ use crate::mark::derived::{Derived, DerivedColumn};
 use crate::mark::encode::{self, ColorEncoding};
 use crate::mark::frame;
 use crate::mark::registry::{ChartContext, ColourSpec, KindInfo, Technique};
+use crate::mark::warning::Warning;
 use crate::mark::{ChartOutput, MarkError, highlight, with_default_size};
 use crate::scene::{Anchor, Baseline, Color, Item, Point, Role, Text};
 use crate::selection::Highlight;
@@ -59,11 +60,11 @@ pub fn draw(
         let values = encode::values_at(col, &rows);
         let (lo, hi) = encode::finite_extent(values.iter().copied()).unwrap_or((0.0, 0.0));
         if hi <= lo {
-            warnings.push(format!(
+            warnings.push(Warning::from(format!(
                 "chart \"{}\": column `{field}` is constant, so {} stays neutral",
                 chart.name,
                 feature.label()
-            ));
+            )));
         }
         for (p, v) in params.iter_mut().zip(&values) {
             p.set(feature, if hi > lo { (v - lo) / (hi - lo) } else { 0.5 });

@@ -18,6 +18,7 @@ use crate::mark::derived::{Derived, DerivedColumn};
 use crate::mark::encode;
 use crate::mark::frame;
 use crate::mark::registry::{ChartContext, KindInfo, Technique};
+use crate::mark::warning::Warning;
 use crate::mark::{ChartOutput, MarkError, highlight, with_default_size};
 use crate::scene::{Anchor, Baseline, Color, Item, PathCmd, Point, Raster, Rect, Role, Shape, Style, Text};
 use crate::selection::Highlight;
@@ -66,12 +67,13 @@ pub fn draw(
             SegmentScale::Shared => shared.unwrap_or((0.0, 1.0)),
         };
         if extent.is_none() {
-            warnings.push(format!("chart \"{}\": column `{}` has no finite values", chart.name, opts.field));
+            warnings
+                .push(Warning::from(format!("chart \"{}\": column `{}` has no finite values", chart.name, opts.field)));
         } else if hi <= lo {
-            warnings.push(format!(
+            warnings.push(Warning::from(format!(
                 "chart \"{}\": column `{}` is constant; its segment is one colour",
                 chart.name, opts.field
-            ));
+            )));
         }
         let span = if hi > lo { hi - lo } else { 1.0 };
         scaled.push(

@@ -17,6 +17,7 @@ use crate::mark::encode::{self, ColorEncoding};
 use crate::mark::geometry::{Geometry, Plot, PlotScale, RedrawnCells};
 use crate::mark::overplot::{point_opacity, point_radius};
 use crate::mark::registry::{ChartContext, ColourSpec, KindInfo, Technique};
+use crate::mark::warning::Warning;
 use crate::mark::{ChartOutput, MarkError, frame, highlight, with_default_size};
 use crate::scene::{
     Anchor, Baseline, Color, Item, PathCmd, PerPoint, Point, PointBatch, Raster, Rect, Role, Shape, Stroke, Style, Text,
@@ -61,10 +62,10 @@ pub fn draw(
         SplomMode::Auto => n > AUTO_DENSITY_ROWS,
     };
     if density && options.color.is_some() {
-        warnings.push(format!(
+        warnings.push(Warning::from(format!(
             "chart \"{}\": `color` is not drawn in density mode (bins count rows of every colour)",
             chart.name
-        ));
+        )));
     }
 
     let (colors, color_legend) = encode::color_encoding(
@@ -188,7 +189,7 @@ pub fn draw(
             }
         }
     }
-    warnings.extend(frame::raster_note(chart, &items));
+    warnings.extend((frame::raster_note(chart, &items)).into_iter().map(Warning::from));
     let fields: Vec<&str> = columns.iter().map(|(o, _)| o.field.as_str()).collect();
     items.extend(grid.axes(&axes, &fields, layout, &theme));
     if !diagonals.is_empty() {

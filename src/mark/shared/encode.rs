@@ -10,6 +10,7 @@ use crate::guide::scale::Scale;
 use crate::scene::Color;
 use crate::spec::{ChannelOptions, ColorChannel, ColorType, ScaleKind};
 
+use crate::mark::warning::{ColumnLoss, Warning};
 use crate::mark::{MarkError, categorical};
 
 /// Grey used for rows whose colour value is missing.
@@ -81,7 +82,7 @@ pub fn require_numeric(
 /// This is the one non-finite policy of every chart kind: a row with a missing, NaN or infinite
 /// value in any numeric column the chart uses is dropped, and a warning says how many rows were
 /// dropped and why. Text columns never drop rows (missing text is its own category).
-pub fn finite_rows(chart: &str, rows: usize, numeric: &[(&str, &Column)]) -> (Vec<u32>, Option<String>) {
+pub fn finite_rows(chart: &str, rows: usize, numeric: &[(&str, &Column)]) -> (Vec<u32>, Option<Warning>) {
     placeable_rows(chart, rows, numeric, &[])
 }
 
@@ -93,7 +94,7 @@ pub fn placeable_rows(
     rows: usize,
     numeric: &[(&str, &Column)],
     log: &[&str],
-) -> (Vec<u32>, Option<String>) {
+) -> (Vec<u32>, Option<Warning>) {
     let slices: Vec<(&[f64], bool)> =
         numeric.iter().filter_map(|(name, c)| Some((c.numbers()?, log.contains(name)))).collect();
     let placeable = |v: &f64, on_log: bool| v.is_finite() && (!on_log || *v > 0.0);
@@ -109,52 +110,24 @@ pub fn placeable_rows(
     if kept.len() == rows {
         return (kept, None);
     }
-    let mut on_log_axis = false;
-    let details: Vec<String> = numeric
+    let columns = numeric
         .iter()
         .filter_map(|(name, c)| {
             let values = c.numbers()?;
             let n = NonFinite::count(values);
-            let nonpositive =
+            let non_positive =
                 if log.contains(name) { values.iter().filter(|v| v.is_finite() && **v <= 0.0).count() } else { 0 };
-            on_log_axis |= nonpositive > 0;
-            let mut parts = Vec::new();
-            if n.nan > 0 {
-                parts.push(format!("{} missing or NaN", n.nan));
-            }
-            if n.infinite > 0 {
-                parts.push(format!("{} infinite", n.infinite));
-            }
-            if nonpositive > 0 {
-                parts.push(format!("{nonpositive} ≤ 0 on a log axis"));
-            }
-            (!parts.is_empty()).then(|| format!("`{name}`: {}", parts.join(", ")))
+            let loss = ColumnLoss { field: (*name).to_string(), missing: n.nan, infinite: n.infinite, non_positive };
+            (n.total() + non_positive > 0).then_some(loss)
         })
         .collect();
-    let warning = format!(
-        "chart \"{chart}\": dropped {} of {rows} rows{DROPPED_SUFFIX}{} ({})",
-        rows - kept.len(),
-        if on_log_axis { " or values ≤ 0 on a log axis" } else { "" },
-        details.join("; ")
-    );
+    let warning = Warning::DroppedRows { chart: chart.to_string(), dropped: rows - kept.len(), rows, columns };
     (kept, Some(warning))
 }
 
 /// The fields of the channels that sit on a log-scaled axis.
 pub fn log_fields<'a>(channels: &[&'a ChannelOptions]) -> Vec<&'a str> {
     channels.iter().filter(|c| c.scale == Some(ScaleKind::Log)).map(|c| c.field.as_str()).collect()
-}
-
-/// What follows the counts in [`finite_rows`]'s warning.
-const DROPPED_SUFFIX: &str = " with missing or non-finite values";
-
-/// The counts `(dropped, rows)` of a warning written by [`finite_rows`], or `None` for any
-/// other warning (lint rules read it back from a chart's warnings).
-pub fn dropped_rows(warning: &str) -> Option<(usize, usize)> {
-    let (_, rest) = warning.split_once(": dropped ")?;
-    let (counts, _) = rest.split_once(DROPPED_SUFFIX)?;
-    let (dropped, rows) = counts.strip_suffix(" rows")?.split_once(" of ")?;
-    Some((dropped.parse().ok()?, rows.parse().ok()?))
 }
 
 /// The rows a chart draws: the rows finite in every numeric column of `numeric` and in the
@@ -166,7 +139,7 @@ pub fn drawn_rows<'a>(
     table: &'a Table,
     mut numeric: Vec<(&'a str, &'a Column)>,
     color: Option<&'a ColorChannel>,
-) -> Result<(Vec<u32>, Vec<String>), MarkError> {
+) -> Result<(Vec<u32>, Vec<Warning>), MarkError> {
     numeric.retain(|(_, c)| c.numbers().is_some());
     if let Some(c) = color
         && let Some(col) = table.column(c.field()).filter(|col| col.numbers().is_some())
@@ -174,16 +147,16 @@ pub fn drawn_rows<'a>(
         numeric.push((c.field(), col));
     }
     let (rows, warning) = finite_rows(&chart.name, table.rows, &numeric);
-    let warnings: Vec<String> = warning.into_iter().collect();
+    let warnings: Vec<Warning> = warning.into_iter().collect();
     if rows.is_empty() {
-        return Err(no_rows(chart, index, table, warnings.first().map(String::as_str)));
+        return Err(no_rows(chart, index, table, warnings.first()));
     }
     Ok((rows, warnings))
 }
 
 /// The error for a chart left with no rows: an empty table, or every row dropped by the
 /// non-finite policy (`dropped` is that warning, which names the columns).
-pub fn no_rows(chart: &crate::spec::Chart, index: usize, table: &Table, dropped: Option<&str>) -> MarkError {
+pub fn no_rows(chart: &crate::spec::Chart, index: usize, table: &Table, dropped: Option<&Warning>) -> MarkError {
     if table.rows == 0 {
         return MarkError::at(
             index,
@@ -192,9 +165,8 @@ pub fn no_rows(chart: &crate::spec::Chart, index: usize, table: &Table, dropped:
             "the source has a header but no records; check the file",
         );
     }
-    let why = dropped
-        .and_then(|w| w.split_once(" rows with ").map(|(_, rest)| format!(": every row has {rest}")))
-        .unwrap_or_default();
+    let why =
+        dropped.and_then(Warning::what_rows_lack).map(|lack| format!(": every row has {lack}")).unwrap_or_default();
     MarkError::at(
         index,
         &[],
@@ -611,7 +583,11 @@ mod tests {
         let column = table.column("v").expect("column v");
         let (kept, warning) = super::finite_rows("c", 4, &[("v", column)]);
         assert_eq!(kept, [0, 2]);
-        assert_eq!(warning.as_deref().and_then(super::dropped_rows), Some((2, 4)));
-        assert_eq!(super::dropped_rows("chart \"c\": 3 node labels were left out"), None);
+        let warning = warning.expect("a warning");
+        assert_eq!(warning.dropped_rows(), Some((2, 4)));
+        assert_eq!(
+            warning.to_string(),
+            "chart \"c\": dropped 2 of 4 rows with missing or non-finite values (`v`: 1 missing or NaN, 1 infinite)"
+        );
     }
 }

@@ -3,6 +3,7 @@
 
 use crate::data::{Column, ColumnValues, Table};
 use crate::enrich::grid::Grid;
+use crate::mark::warning::Warning;
 use crate::mark::{MarkError, encode};
 use crate::spec::{ChannelOptions, Chart, ColorOptions};
 
@@ -16,7 +17,7 @@ pub struct GridInput<'t> {
     /// Rows with finite coordinates.
     pub rows: Vec<u32>,
     /// Warnings from the non-finite policy.
-    pub warnings: Vec<String>,
+    pub warnings: Vec<Warning>,
     /// The x column.
     pub x_col: &'t Column,
     /// The y column.
@@ -60,9 +61,9 @@ pub fn load_grid<'t>(
     // Rows without finite coordinates cannot be placed; a non-finite z is a hole in the grid.
     let (rows, warning) =
         encode::finite_rows(&chart.name, table.rows, &[(x_opts.field.as_str(), x_col), (y_opts.field.as_str(), y_col)]);
-    let warnings: Vec<String> = warning.into_iter().collect();
+    let warnings: Vec<Warning> = warning.into_iter().collect();
     if rows.is_empty() {
-        return Err(encode::no_rows(chart, index, table, warnings.first().map(String::as_str)));
+        return Err(encode::no_rows(chart, index, table, warnings.first()));
     }
     let grid = grid_from_rows(chart, index, x_col, y_col, z_col, &rows)?;
     let Some((zmin, zmax)) = grid.range() else {

@@ -18,3 +18,4 @@ pub mod overplot;
 pub mod raster;
 pub mod size;
 pub mod tree_input;
+pub mod warning;

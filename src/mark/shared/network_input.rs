@@ -5,6 +5,7 @@
 use crate::data::network::{EdgeColumns, Network};
 use crate::data::{Column, Table};
 use crate::layout::{circular, force, layered};
+use crate::mark::warning::Warning;
 use crate::mark::{MarkError, encode};
 use crate::spec::{Chart, GraphLayout, NodeTable};
 
@@ -17,7 +18,7 @@ pub struct NetworkInput<'t> {
     /// Each node's label.
     pub labels: Vec<String>,
     /// Non-fatal notes (dropped rows, self-loops).
-    pub warnings: Vec<String>,
+    pub warnings: Vec<Warning>,
 }
 
 /// Most edge rows a graph or linkmap chart reads: layouts and the drawing grow with them, and
@@ -77,24 +78,27 @@ pub fn network_of<'t>(
         false => {
             let (network, left_out) = network.without_isolated();
             if left_out > 0 {
-                warnings.push(format!(
+                warnings.push(Warning::from(format!(
                     "chart \"{name}\": {left_out} nodes without a link were left out (`nodes.isolated = true` draws them)"
-                ));
+                )));
             }
             network
         }
     };
     if network.missing_endpoints > 0 {
-        warnings.push(format!(
+        warnings.push(Warning::from(format!(
             "chart \"{name}\": {} edges without a source or target were left out",
             network.missing_endpoints
-        ));
+        )));
     }
     if network.bad_weights > 0 {
-        warnings.push(format!("chart \"{name}\": {} edges with a missing weight were left out", network.bad_weights));
+        warnings.push(Warning::from(format!(
+            "chart \"{name}\": {} edges with a missing weight were left out",
+            network.bad_weights
+        )));
     }
     if network.self_loops > 0 {
-        warnings.push(format!("chart \"{name}\": {} self-loops are not drawn", network.self_loops));
+        warnings.push(Warning::from(format!("chart \"{name}\": {} self-loops are not drawn", network.self_loops)));
     }
     let labels = match (node_spec.and_then(|s| s.label.as_deref().map(|l| (s, l))), nodes) {
         (Some((spec, field)), Some(table)) => {

@@ -10,6 +10,7 @@ use crate::mark::derived::{Derived, DerivedColumn};
 use crate::mark::frame::Fit;
 use crate::mark::network_input::{NetworkInput, Placement, node_column, place};
 use crate::mark::size::{area_radius, size_legend};
+use crate::mark::warning::Warning;
 use crate::mark::{ChartOutput, MarkError, encode, frame};
 use crate::scene::{Anchor, Baseline, Color, Item, PathCmd, Point, Rect, Role, Shape, Stroke, Style, Text};
 use crate::spec::{Chart, GraphLayout, NodeTable};
@@ -145,8 +146,8 @@ pub fn draw_network(chart: &Chart, index: usize, input: NetworkInput, look: &Loo
     let mut warnings = input.warnings;
     if hidden > 0 {
         let verb = if hidden == 1 { "was" } else { "were" };
-        warnings
-            .push(format!("chart \"{}\": {hidden} node {labels_word} {verb} left out to avoid overlaps", chart.name));
+        let note = format!("chart \"{}\": {hidden} node {labels_word} {verb} left out to avoid overlaps", chart.name);
+        warnings.push(Warning::from(note));
     }
     let scene = canvas.scene(chart, items, note.as_deref());
     Ok(ChartOutput { scene, derived, warnings, geojson: None, geometry: Default::default() })

@@ -23,6 +23,7 @@ use crate::guide::ticks::extended;
 use crate::mark::derived::{Derived, DerivedColumn};
 use crate::mark::gridded::grid_from_rows;
 use crate::mark::registry::{AxisSpec, ChartContext, KindInfo, Technique};
+use crate::mark::warning::Warning;
 use crate::mark::{ChartOutput, MarkError, encode, frame};
 use crate::scene::{Anchor, Baseline, Color, Item, PathCmd, Point, Raster, Rect, Role, Shape, Stroke, Style, Text};
 use crate::spec::defaults;
@@ -174,7 +175,7 @@ pub fn draw(chart: &Chart, options: &FlowOptions, index: usize, table: &Table) -
         marks.extend(arrow_key(&frame, &theme, density, max_speed, options.unit.as_deref()));
     }
     let mut warnings = input.warnings;
-    warnings.extend(budget.exhausted().then(|| budget_warning(&chart.name)));
+    warnings.extend((budget.exhausted().then(|| budget_warning(&chart.name))).into_iter().map(Warning::from));
     let scene = frame::scene(chart, frame, &theme, marks);
     Ok(ChartOutput { scene, derived: derived.finish(), warnings, geojson: None, geometry: Default::default() })
 }
@@ -197,7 +198,7 @@ struct FieldInput<'t> {
     rows: Vec<u32>,
     x_col: &'t Column,
     y_col: &'t Column,
-    warnings: Vec<String>,
+    warnings: Vec<Warning>,
 }
 
 fn field_error(chart: &Chart, index: usize, e: &dyn std::fmt::Display) -> MarkError {
@@ -236,7 +237,7 @@ fn read_field<'t>(
     }
     let (rows, warning) = encode::finite_rows(&chart.name, table.rows, &placed);
     if rows.is_empty() {
-        return Err(encode::no_rows(chart, index, table, warning.as_deref()));
+        return Err(encode::no_rows(chart, index, table, warning.as_ref()));
     }
     let field = match t_col.and_then(Column::numbers) {
         None => {
