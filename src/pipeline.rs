@@ -549,8 +549,10 @@ fn missing_columns(
         .into_iter()
         .filter(|(field, _)| table.column(field).is_none())
         .map(|(field, path)| {
-            let (message, hint) = mark::encode::missing_column(chart_name, data_name, &field, table);
-            let d = Diagnostic::error(message).with_hint(hint).with_label("no such column");
+            let (message, hint) = mark::encode::missing_column(data_name, &field, table);
+            let d = Diagnostic::error(format!("chart \"{chart_name}\": {message}"))
+                .with_hint(hint)
+                .with_label("no such column");
             match spans.span_of(&path) {
                 Some(span) => d.at(span),
                 None => d,
@@ -739,7 +741,7 @@ pub fn select_charts<'s>(spec: &'s Spec, names: &[String]) -> Result<Vec<(usize,
 /// Draw one chart of a loaded spec.
 pub fn draw_chart(loaded: &Loaded, index: usize, chart: &spec::Chart) -> Result<ChartOutput, MarkError> {
     let table = loaded.tables.get(&chart.data).ok_or_else(|| {
-        MarkError::at(index, &["data"], format!("chart \"{}\": data \"{}\" was not loaded", chart.name, chart.data), "")
+        MarkError::at(&["data"], format!("data \"{}\" was not loaded", chart.data), "").in_chart(index, &chart.name)
     })?;
     let highlight = chart.highlight.as_ref().and_then(|name| loaded.highlights.get(name));
     mark::draw_in(
@@ -781,12 +783,7 @@ pub fn render_all(
         {
             problems.push(mark_diagnostic(
                 loaded,
-                &MarkError::at(
-                    *index,
-                    &["size"],
-                    format!("chart \"{}\": {e}", chart.name),
-                    "reduce `size` or `--scale`",
-                ),
+                &MarkError::at(&["size"], e.to_string(), "reduce `size` or `--scale`").in_chart(*index, &chart.name),
             ));
         }
     }

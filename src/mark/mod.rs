@@ -50,15 +50,19 @@ pub struct ChartOutput {
     pub geometry: geometry::Geometry,
 }
 
-/// Why a chart could not be drawn. Each error carries the spec path it is about.
+/// Why a chart could not be drawn. Kinds raise it about the chart being drawn, with a path
+/// relative to the chart; [`draw_in`] places it once, as it leaves the kind: the chart's name
+/// before the message and `chart[i]` before the path.
 #[derive(Clone, Debug, PartialEq)]
 pub struct MarkError {
     /// What went wrong.
     pub message: String,
     /// How to fix it.
     pub hint: String,
-    /// Where in the spec (e.g. `chart[2].x`).
+    /// Where in the spec (e.g. `chart[2].x`; relative to the chart until placed).
     pub path: Vec<PathSeg>,
+    /// Whether the chart's name and index have been added.
+    placed: bool,
 }
 
 impl fmt::Display for MarkError {
@@ -70,15 +74,15 @@ impl fmt::Display for MarkError {
 impl std::error::Error for MarkError {}
 
 impl MarkError {
-    /// An error about the chart at `index`, pointing at `key` (or the whole chart if empty).
-    pub fn at(index: usize, keys: &[&str], message: impl Into<String>, hint: impl Into<String>) -> MarkError {
-        let mut path = vec![PathSeg::Key("chart".into()), PathSeg::Index(index)];
-        path.extend(keys.iter().map(|k| PathSeg::Key(k.to_string())));
-        MarkError { message: message.into(), hint: hint.into(), path }
+    /// An error about the chart being drawn, pointing at `keys` within it (or the whole chart
+    /// if empty).
+    pub fn at(keys: &[&str], message: impl Into<String>, hint: impl Into<String>) -> MarkError {
+        let path = keys.iter().map(|k| PathSeg::Key(k.to_string())).collect();
+        MarkError { message: message.into(), hint: hint.into(), path, placed: false }
     }
 
-    /// A layout error of the chart at `index`.
-    pub fn layout(index: usize, name: &str, error: LayoutError) -> MarkError {
+    /// A layout error of the chart being drawn.
+    pub fn layout(error: LayoutError) -> MarkError {
         let (key, hint) = match &error {
             LayoutError::TooSmall { .. } => ("size", "make `size` larger or `font_size` smaller"),
             LayoutError::AspectNeedsLinear => ("aspect", "remove `aspect`, or use linear scales on both axes"),
@@ -86,7 +90,20 @@ impl MarkError {
                 (if *axis == "x" { "x" } else { "y" }, "check the axis' scale and the column's values")
             }
         };
-        MarkError::at(index, &[key], format!("chart \"{name}\": {error}"), hint)
+        MarkError::at(&[key], error.to_string(), hint)
+    }
+
+    /// The error placed in chart number `index`, named `name` (an error already placed is
+    /// returned as it is).
+    pub fn in_chart(mut self, index: usize, name: &str) -> MarkError {
+        if !self.placed {
+            self.message = format!("chart \"{name}\": {}", self.message);
+            let mut path = vec![PathSeg::Key("chart".into()), PathSeg::Index(index)];
+            path.append(&mut self.path);
+            self.path = path;
+            self.placed = true;
+        }
+        self
     }
 }
 
@@ -101,9 +118,17 @@ pub fn draw(
     draw_in(&ChartContext::new(chart, index, table).with_highlight(highlight))
 }
 
-/// Draw a chart bound to its data.
+/// Draw a chart bound to its data. Errors and notes leave with the chart's name (and errors
+/// with its place in the spec) added here, once.
 pub fn draw_in(cx: &ChartContext<'_>) -> Result<ChartOutput, MarkError> {
-    technique(&cx.chart.kind).draw(cx)
+    let name = &cx.chart.name;
+    let mut output = technique(&cx.chart.kind).draw(cx).map_err(|e| e.in_chart(cx.index, name))?;
+    for warning in &mut output.warnings {
+        if let Warning::Note(text) = warning {
+            *text = format!("chart \"{name}\": {text}");
+        }
+    }
+    Ok(output)
 }
 
 /// The spec keys of a chart kind whose values name columns (a string, a table with `field`, or

@@ -9,7 +9,6 @@
 
 use super::{ChartOutput, MarkError};
 use crate::data::Table;
-use crate::guide::layout::LayoutError;
 use crate::layout::hyperbolic::Mobius;
 use crate::selection::Highlight;
 use crate::spec::defaults::Convention;
@@ -165,17 +164,6 @@ impl<'a> ChartContext<'a> {
     pub fn with_view(mut self, view: Option<&'a Mobius>) -> ChartContext<'a> {
         self.view = view;
         self
-    }
-
-    /// An error about this chart, pointing at `keys` (or the whole chart when empty), its message
-    /// prefixed with the chart's name.
-    pub fn error(&self, keys: &[&str], message: impl std::fmt::Display, hint: impl Into<String>) -> MarkError {
-        MarkError::at(self.index, keys, format!("chart \"{}\": {message}", self.chart.name), hint)
-    }
-
-    /// A layout error of this chart.
-    pub fn layout_error(&self, error: LayoutError) -> MarkError {
-        MarkError::layout(self.index, &self.chart.name, error)
     }
 }
 

@@ -260,7 +260,7 @@ fn unknown_colour_scheme_suggests_the_closest() {
     let spec = format!("[data.d]\npath = \"d.csv\"\n{}color = {{ field = \"y\", scheme = \"virdis\" }}\n", XY_CHART);
     // Fractional values: a continuous colour (few whole numbers would be categories).
     let out = Fixture::new(&spec, &[("d.csv", b"x,y\n1,2.5\n2,3.25\n")]).draw().expect_err("scheme");
-    assert!(out.contains("error: unknown continuous colour scheme `virdis`\n"), "{out}");
+    assert!(out.contains("error: chart \"c\": unknown continuous colour scheme `virdis`\n"), "{out}");
     assert!(out.contains("= hint: did you mean `viridis`?"), "{out}");
 }
 
@@ -341,7 +341,7 @@ fn keys_and_values_from_other_tools_get_the_dataink_spelling() {
     let jet = Fixture::new(&format!("{fractional}{XY_CHART}color = {{ field = \"y\", scheme = \"jet\" }}\n"), &[])
         .draw()
         .expect_err("jet");
-    assert!(jet.contains("error: unknown continuous colour scheme `jet`\n"), "{jet}");
+    assert!(jet.contains("error: chart \"c\": unknown continuous colour scheme `jet`\n"), "{jet}");
     assert!(jet.contains("rainbow maps") && jet.contains("use `viridis`, `cividis` or `magma`"), "{jet}");
     // interp1d's methods: the harmonic-mean slopes are `pchip`.
     let interp = "[data.d]\nvalues = [{ x = 1, y = 2 }, { x = 2, y = 3 }, { x = 3, y = 1 }]\n[[chart]]\nname = \"c\"\nkind = \"interp1d\"\ndata = \"d\"\nx = \"x\"\ny = \"y\"\nmethods = [\"harmonic\"]\n";

@@ -43,18 +43,18 @@ struct Bar {
 }
 
 /// Draw a bar chart.
-pub fn draw(chart: &Chart, options: &BarOptions, index: usize, table: &Table) -> Result<ChartOutput, MarkError> {
+pub fn draw(chart: &Chart, options: &BarOptions, table: &Table) -> Result<ChartOutput, MarkError> {
     let x_opts = options.x.options();
     let y_opts = options.y.options();
-    let x_col = encode::column(chart, index, "x", &x_opts.field, table)?;
-    let y_col = encode::column(chart, index, "y", &y_opts.field, table)?;
+    let x_col = encode::column(chart, "x", &x_opts.field, table)?;
+    let y_col = encode::column(chart, "y", &y_opts.field, table)?;
     if table.rows == 0 {
-        return Err(encode::no_rows(chart, index, table, None));
+        return Err(encode::no_rows(chart, table, None));
     }
-    check_scales(chart, index, options, y_col)?;
-    let color = grouping_channel(chart, index, options.color.as_ref(), table)?;
+    check_scales(options, y_col)?;
+    let color = grouping_channel(chart, options.color.as_ref(), table)?;
     let color_col = match &color {
-        Some(c) => Some(encode::column(chart, index, "color", c.field(), table)?),
+        Some(c) => Some(encode::column(chart, "color", c.field(), table)?),
         None => None,
     };
 
@@ -62,7 +62,7 @@ pub fn draw(chart: &Chart, options: &BarOptions, index: usize, table: &Table) ->
     if x_col.numbers().is_some() {
         numeric.push((x_opts.field.as_str(), x_col));
     }
-    let (rows, warnings) = encode::drawn_rows(chart, index, table, numeric, color.as_ref())?;
+    let (rows, warnings) = encode::drawn_rows(chart, table, numeric, color.as_ref())?;
     let mut warnings = warnings;
 
     let x_keys = keys(x_col, &rows);
@@ -80,12 +80,8 @@ pub fn draw(chart: &Chart, options: &BarOptions, index: usize, table: &Table) ->
             format!("{nx} categories")
         };
         return Err(MarkError::at(
-            index,
             &["x"],
-            format!(
-                "chart \"{}\": {what} do not fit a {width} px wide chart (each bar would be narrower than a pixel)",
-                chart.name
-            ),
+            format!("{what} do not fit a {width} px wide chart (each bar would be narrower than a pixel)"),
             "bar charts suit tens of categories: filter or aggregate the data into fewer categories, or make `size` wider",
         ));
     }
@@ -120,18 +116,11 @@ pub fn draw(chart: &Chart, options: &BarOptions, index: usize, table: &Table) ->
         grid: x_opts.grid.unwrap_or(false),
         inset: 0.0,
     };
-    let (colors, legend) = encode::color_encoding(
-        chart,
-        index,
-        color.as_ref(),
-        options.mark_color.as_deref(),
-        table,
-        &rows,
-        Symbol::Square,
-    )?;
-    let (frame, theme) = frame::cartesian(chart, index, x_axis, y_axis, legend.into_iter().collect())?;
+    let (colors, legend) =
+        encode::color_encoding(chart, color.as_ref(), options.mark_color.as_deref(), table, &rows, Symbol::Square)?;
+    let (frame, theme) = frame::cartesian(chart, x_axis, y_axis, legend.into_iter().collect())?;
     let Scale::Band(band) = &frame.x else {
-        return Err(MarkError::at(index, &["x"], format!("chart \"{}\": x is not a band scale", chart.name), ""));
+        return Err(MarkError::at(&["x"], format!("x is not a band scale"), ""));
     };
 
     // The baseline: zero, or the end of the value axis nearest zero when zero is left out.
@@ -184,9 +173,8 @@ pub fn draw(chart: &Chart, options: &BarOptions, index: usize, table: &Table) ->
     if clipped > 0 {
         let (min, max) = encode::finite_extent(bars.iter().map(|b| b.sum)).unwrap_or((lo, hi));
         warnings.push(Warning::from(format!(
-            "chart \"{}\": {clipped} of {} bars reach past the y domain [{lo}, {hi}] and are cut at its end \
+            "{clipped} of {} bars reach past the y domain [{lo}, {hi}] and are cut at its end \
              (marked with a break); widen `domain` to cover [{min}, {max}], or remove it",
-            chart.name,
             bars.len()
         )));
     }
@@ -207,9 +195,8 @@ pub fn draw(chart: &Chart, options: &BarOptions, index: usize, table: &Table) ->
     }
     if narrowest < NARROW_BAR {
         warnings.push(Warning::from(format!(
-            "chart \"{}\": bars are {narrowest:.1} px wide, too narrow to see or compare; \
-             aggregate into fewer categories or make `size` wider",
-            chart.name
+            "bars are {narrowest:.1} px wide, too narrow to see or compare; \
+             aggregate into fewer categories or make `size` wider"
         )));
     }
     let scene = frame::scene(chart, frame, &theme, marks);
@@ -260,23 +247,16 @@ fn clip_mark(x: f64, width: f64, end_px: f64, base_px: f64, plot: (f64, f64), co
 
 /// Errors for scales a bar chart cannot draw honestly: a non-band x, a y that is text, time,
 /// logarithmic or a band.
-fn check_scales(chart: &Chart, index: usize, options: &BarOptions, y_col: &Column) -> Result<(), MarkError> {
+fn check_scales(options: &BarOptions, y_col: &Column) -> Result<(), MarkError> {
     let x_opts = options.x.options();
     if let Some(kind) = x_opts.scale.filter(|k| *k != ScaleKind::Band) {
         return Err(MarkError::at(
-            index,
             &["x", "scale"],
-            format!(
-                "chart \"{}\": bars place every x value in its own band, so x cannot have a {} scale",
-                chart.name,
-                encode::scale_name(kind)
-            ),
+            format!("bars place every x value in its own band, so x cannot have a {} scale", encode::scale_name(kind)),
             "remove `scale` from x (or set `scale = \"band\"`); for a numeric x axis use a line or scatter chart",
         ));
     }
     encode::require_numeric(
-        chart,
-        index,
         "y",
         y_col,
         "a bar's length",
@@ -284,25 +264,16 @@ fn check_scales(chart: &Chart, index: usize, options: &BarOptions, y_col: &Colum
     )?;
     if y_col.is_time() {
         return Err(MarkError::at(
-            index,
             &["y"],
-            format!(
-                "chart \"{}\": y column `{}` holds dates or times, which cannot be summed into bars",
-                chart.name, y_col.name
-            ),
+            format!("y column `{}` holds dates or times, which cannot be summed into bars", y_col.name),
             "use a numeric column for y; put dates on x, where each becomes a category",
         ));
     }
     match options.y.options().scale {
         None | Some(ScaleKind::Linear) => Ok(()),
         Some(kind) => Err(MarkError::at(
-            index,
             &["y", "scale"],
-            format!(
-                "chart \"{}\": a bar's length is measured from zero, which a {} scale does not have",
-                chart.name,
-                encode::scale_name(kind)
-            ),
+            format!("a bar's length is measured from zero, which a {} scale does not have", encode::scale_name(kind)),
             "remove `scale` from y (bars need a linear scale); for values spanning decades use a scatter or line chart on a log scale",
         )),
     }
@@ -312,7 +283,6 @@ fn check_scales(chart: &Chart, index: usize, options: &BarOptions, y_col: &Colum
 /// distinct values; `type = "continuous"` is an error, since groups need categories.
 fn grouping_channel(
     chart: &Chart,
-    index: usize,
     channel: Option<&ColorChannel>,
     table: &Table,
 ) -> Result<Option<ColorChannel>, MarkError> {
@@ -320,16 +290,12 @@ fn grouping_channel(
     let options = channel.options();
     if options.r#type == Some(ColorType::Continuous) {
         return Err(MarkError::at(
-            index,
             &["color", "type"],
-            format!(
-                "chart \"{}\": bars are grouped by colour, which needs categories, not a continuous scale",
-                chart.name
-            ),
+            format!("bars are grouped by colour, which needs categories, not a continuous scale"),
             "remove `type = \"continuous\"`: a numeric column is then grouped by its distinct values",
         ));
     }
-    encode::column(chart, index, "color", &options.field, table)?;
+    encode::column(chart, "color", &options.field, table)?;
     Ok(Some(ColorChannel::Detailed(ColorOptions { r#type: Some(ColorType::Categorical), ..options })))
 }
 
@@ -427,7 +393,7 @@ impl Technique for BarOptions {
     }
 
     fn draw(&self, cx: &ChartContext<'_>) -> Result<ChartOutput, MarkError> {
-        draw(&cx.chart, self, cx.index, cx.table)
+        draw(&cx.chart, self, cx.table)
     }
 
     fn cartesian_axes(&self) -> Vec<AxisSpec> {

@@ -39,28 +39,26 @@ pub fn method_name(method: InterpMethod) -> &'static str {
 }
 
 /// Draw an interp1d chart.
-pub fn draw(chart: &Chart, options: &Interp1dOptions, index: usize, table: &Table) -> Result<ChartOutput, MarkError> {
+pub fn draw(chart: &Chart, options: &Interp1dOptions, table: &Table) -> Result<ChartOutput, MarkError> {
     let x_opts = options.x.options();
     let y_opts = options.y.options();
-    let x_col = encode::column(chart, index, "x", &x_opts.field, table)?;
-    let y_col = encode::column(chart, index, "y", &y_opts.field, table)?;
+    let x_col = encode::column(chart, "x", &x_opts.field, table)?;
+    let y_col = encode::column(chart, "y", &y_opts.field, table)?;
     let methods = options.methods.clone().unwrap_or_else(|| vec![InterpMethod::Pchip]);
     if methods.is_empty() {
         return Err(MarkError::at(
-            index,
             &["methods"],
-            format!("chart \"{}\": `methods` is empty", chart.name),
+            format!("`methods` is empty"),
             "name at least one method, e.g. methods = [\"linear\", \"pchip\"]",
         ));
     }
     let needs_slopes = methods.contains(&InterpMethod::Hermite);
     let slope_col = match (&options.slopes, needs_slopes) {
-        (Some(field), _) => Some(encode::column(chart, index, "slopes", field, table)?),
+        (Some(field), _) => Some(encode::column(chart, "slopes", field, table)?),
         (None, true) => {
             return Err(MarkError::at(
-                index,
                 &["methods"],
-                format!("chart \"{}\": method `hermite` needs the slopes at the knots", chart.name),
+                format!("method `hermite` needs the slopes at the knots"),
                 "add `slopes = \"COLUMN\"` naming a column of dy/dx values, or use \"hermite-mean\" or \"pchip\"",
             ));
         }
@@ -72,13 +70,8 @@ pub fn draw(chart: &Chart, options: &Interp1dOptions, index: usize, table: &Tabl
     {
         if let Some(col) = col.filter(|c| c.numbers().is_none()) {
             return Err(MarkError::at(
-                index,
                 &[key],
-                format!(
-                    "chart \"{}\": column `{field}` holds {}; interpolation needs numbers",
-                    chart.name,
-                    col.type_name()
-                ),
+                format!("column `{field}` holds {}; interpolation needs numbers", col.type_name()),
                 "use a numeric column",
             ));
         }
@@ -92,7 +85,7 @@ pub fn draw(chart: &Chart, options: &Interp1dOptions, index: usize, table: &Tabl
     let (rows, warning) = encode::placeable_rows(&chart.name, table.rows, &numeric, &log);
     let warnings: Vec<Warning> = warning.into_iter().collect();
     if rows.is_empty() {
-        return Err(encode::no_rows(chart, index, table, warnings.first()));
+        return Err(encode::no_rows(chart, table, warnings.first()));
     }
     let pick = |col: &crate::data::Column| encode::values_at(col, &rows);
     let xs = pick(x_col);
@@ -109,7 +102,7 @@ pub fn draw(chart: &Chart, options: &Interp1dOptions, index: usize, table: &Tabl
             InterpMethod::HermiteMean => Method::Hermite(Slopes::ArithmeticMean),
             InterpMethod::Pchip => Method::Hermite(Slopes::HarmonicMean),
         };
-        let interpolant = Interpolant::new(&xs, &ys, method, bounded).map_err(|e| interp_error(chart, index, &e))?;
+        let interpolant = Interpolant::new(&xs, &ys, method, bounded).map_err(|e| interp_error(&e))?;
         curves.push((m, interpolant));
     }
 
@@ -123,14 +116,14 @@ pub fn draw(chart: &Chart, options: &Interp1dOptions, index: usize, table: &Tabl
             hi = hi.max(*y);
         }
     }
-    let palette = encode::palette(index, &["scheme"], options.scheme.as_deref())?;
+    let palette = encode::palette(&["scheme"], options.scheme.as_deref())?;
     let colors: Vec<Color> =
         (0..curves.len()).map(|i| palette.get(i % palette.len().max(1)).copied().unwrap_or(Color::BLACK)).collect();
     let stroke_width = options.stroke_width.unwrap_or(2.0);
     let knot_radius = 3.5;
 
-    let mut x_axis = encode::position_axis(chart, index, "x", &x_opts, x_col, &rows)?;
-    let mut y_axis = encode::position_axis(chart, index, "y", &y_opts, y_col, &rows)?;
+    let mut x_axis = encode::position_axis("x", &x_opts, x_col, &rows)?;
+    let mut y_axis = encode::position_axis("y", &y_opts, y_col, &rows)?;
     if y_opts.domain.is_none() {
         y_axis.domain = Domain::Continuous(lo, hi);
     }
@@ -141,7 +134,7 @@ pub fn draw(chart: &Chart, options: &Interp1dOptions, index: usize, table: &Tabl
         entries: curves.iter().zip(&colors).map(|((m, _), c)| (method_label(*m).to_string(), *c)).collect(),
         symbol: Symbol::Line,
     };
-    let (frame, theme) = frame::cartesian(chart, index, x_axis, y_axis, vec![legend])?;
+    let (frame, theme) = frame::cartesian(chart, x_axis, y_axis, vec![legend])?;
 
     let affine = is_affine(&frame.x) && is_affine(&frame.y);
     let to_px = |x: f64, y: f64| Point::new(frame.x.map(x), frame.y.map(y));
@@ -199,18 +192,13 @@ fn is_affine(scale: &Scale) -> bool {
     matches!(scale, Scale::Linear(_) | Scale::Time(_))
 }
 
-fn interp_error(chart: &Chart, index: usize, e: &Interp1dError) -> MarkError {
+fn interp_error(e: &Interp1dError) -> MarkError {
     let key = match e {
         Interp1dError::SlopesLength { .. } => "slopes",
         Interp1dError::NonFinite { column, .. } if column.contains("slope") => "slopes",
         _ => "x",
     };
-    MarkError::at(
-        index,
-        &[key],
-        format!("chart \"{}\": {e}", chart.name),
-        "check the knots: x values must be distinct and there must be at least two",
-    )
+    MarkError::at(&[key], format!("{e}"), "check the knots: x values must be distinct and there must be at least two")
 }
 
 fn polyline(points: impl Iterator<Item = (f64, f64)>, to_px: &impl Fn(f64, f64) -> Point) -> Vec<PathCmd> {
@@ -265,7 +253,7 @@ impl Technique for Interp1dOptions {
     }
 
     fn draw(&self, cx: &ChartContext<'_>) -> Result<ChartOutput, MarkError> {
-        draw(&cx.chart, self, cx.index, cx.table)
+        draw(&cx.chart, self, cx.table)
     }
 
     fn cartesian_axes(&self) -> Vec<AxisSpec> {

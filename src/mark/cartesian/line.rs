@@ -23,15 +23,14 @@ struct Series<'t> {
 }
 
 /// Draw a line chart.
-pub fn draw(chart: &Chart, options: &LineOptions, index: usize, table: &Table) -> Result<ChartOutput, MarkError> {
+pub fn draw(chart: &Chart, options: &LineOptions, table: &Table) -> Result<ChartOutput, MarkError> {
     let x_opts = options.x.options();
-    let x_col = encode::column(chart, index, "x", &x_opts.field, table)?;
+    let x_col = encode::column(chart, "x", &x_opts.field, table)?;
     let y_channels = options.y.as_slice();
     if y_channels.is_empty() {
         return Err(MarkError::at(
-            index,
             &["y"],
-            format!("chart \"{}\": `y` lists no columns", chart.name),
+            format!("`y` lists no columns"),
             "name at least one column, e.g. y = \"value\"",
         ));
     }
@@ -44,37 +43,30 @@ pub fn draw(chart: &Chart, options: &LineOptions, index: usize, table: &Table) -
     let split_key = if color.is_some() { "color" } else { "series" };
     if options.series.is_some() && color.is_some() {
         return Err(MarkError::at(
-            index,
             &["color"],
-            format!("chart \"{}\": `series` and `color` both split the rows into series", chart.name),
+            format!("`series` and `color` both split the rows into series"),
             "keep one: `color = \"COLUMN\"` (with colour options as a table) or `series = \"COLUMN\"`",
         ));
     }
     if color.as_ref().is_some_and(|c| c.r#type == Some(ColorType::Continuous)) {
         return Err(MarkError::at(
-            index,
             &["color", "type"],
-            format!("chart \"{}\": a line chart's `color` splits the rows into series by category", chart.name),
+            format!("a line chart's `color` splits the rows into series by category"),
             "remove `type = \"continuous\"`; to show a quantity along the line, use a scatter chart's `color`",
         ));
     }
     let split_field = options.split_field();
     if split_field.is_some() && y_channels.len() > 1 {
         return Err(MarkError::at(
-            index,
             &[split_key],
-            format!(
-                "chart \"{}\": `{split_key}` splits one `y` column, but {} are given",
-                chart.name,
-                y_channels.len()
-            ),
+            format!("`{split_key}` splits one `y` column, but {} are given", y_channels.len()),
             "either list several y columns (wide data) or give one y column and `series` (long data)",
         ));
     }
     let mut y_cols = Vec::new();
     for (i, channel) in y_channels.iter().enumerate() {
         let key_path: &[&str] = &["y"];
-        let col = encode::column(chart, index, key_path[0], channel.field(), table).map_err(|mut e| {
+        let col = encode::column(chart, key_path[0], channel.field(), table).map_err(|mut e| {
             if y_channels.len() > 1 {
                 e.path.push(crate::spec::PathSeg::Index(i));
             }
@@ -82,16 +74,15 @@ pub fn draw(chart: &Chart, options: &LineOptions, index: usize, table: &Table) -
         })?;
         if col.numbers().is_none() {
             return Err(MarkError::at(
-                index,
                 &["y"],
-                format!("chart \"{}\": y column `{}` holds text; a line needs numbers", chart.name, channel.field()),
+                format!("y column `{}` holds text; a line needs numbers", channel.field()),
                 "use a numeric column for y (put categories in `series`)",
             ));
         }
         y_cols.push((channel, col));
     }
     let series_col = match split_field {
-        Some(field) => Some(encode::column(chart, index, split_key, field, table)?),
+        Some(field) => Some(encode::column(chart, split_key, field, table)?),
         None => None,
     };
 
@@ -102,8 +93,8 @@ pub fn draw(chart: &Chart, options: &LineOptions, index: usize, table: &Table) -
     }
     let mut warnings = Vec::new();
     let all_rows: Vec<u32> = (0..table.rows as u32).collect();
-    let palette = encode::palette(index, &["scheme"], options.scheme.as_deref())?;
-    let single_color = encode::fixed_color(index, options.mark_color.as_deref())?;
+    let palette = encode::palette(&["scheme"], options.scheme.as_deref())?;
+    let single_color = encode::fixed_color(options.mark_color.as_deref())?;
 
     let split_categories = series_col.map(|sc| sc.categories().cloned().unwrap_or_else(|| numeric_categories(sc)));
     let mut series: Vec<Series> = Vec::new();
@@ -142,14 +133,14 @@ pub fn draw(chart: &Chart, options: &LineOptions, index: usize, table: &Table) -
     }
     series.retain(|s| !s.rows.is_empty());
     if series.is_empty() {
-        return Err(encode::no_rows(chart, index, table, warnings.first()));
+        return Err(encode::no_rows(chart, table, warnings.first()));
     }
     let n_series = series.len();
     // With `color`, each category's colour follows the encoding (its domain, range or scheme).
     let by_category = match (&color, &split_categories) {
         (Some(options), Some(cats)) => {
             let drawn: Vec<u32> = series.iter().flat_map(|s| s.rows.iter().copied()).collect();
-            let (per_level, entries) = crate::mark::categorical::assign(chart, index, options, cats, &drawn)?;
+            let (per_level, entries) = crate::mark::categorical::assign(options, cats, &drawn)?;
             let colours: std::collections::HashMap<String, Color> =
                 cats.levels.iter().cloned().zip(per_level).collect();
             Some((colours, entries))
@@ -176,9 +167,9 @@ pub fn draw(chart: &Chart, options: &LineOptions, index: usize, table: &Table) -
         v.dedup();
         v
     };
-    let x_axis = encode::position_axis(chart, index, "x", &x_opts, x_col, &all_series_rows)?;
+    let x_axis = encode::position_axis("x", &x_opts, x_col, &all_series_rows)?;
     let first_y = y_cols[0].0.options();
-    let mut y_axis = encode::position_axis(chart, index, "y", &first_y, y_cols[0].1, &series[0].rows)?;
+    let mut y_axis = encode::position_axis("y", &first_y, y_cols[0].1, &series[0].rows)?;
     let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
     for s in &series {
         if let Some((a, b)) = encode::extent(s.y.numbers().unwrap_or(&[]), &s.rows) {
@@ -223,7 +214,7 @@ pub fn draw(chart: &Chart, options: &LineOptions, index: usize, table: &Table) -
         _ => Vec::new(),
     };
 
-    let (frame, theme) = frame::cartesian(chart, index, x_axis, y_axis, legends)?;
+    let (frame, theme) = frame::cartesian(chart, x_axis, y_axis, legends)?;
 
     let mut marks = Vec::new();
     let mut derived_series = Vec::new();
@@ -341,7 +332,7 @@ impl Technique for LineOptions {
     }
 
     fn draw(&self, cx: &ChartContext<'_>) -> Result<ChartOutput, MarkError> {
-        draw(&cx.chart, self, cx.index, cx.table)
+        draw(&cx.chart, self, cx.table)
     }
 
     fn cartesian_axes(&self) -> Vec<AxisSpec> {

@@ -19,29 +19,24 @@ use crate::spec::{Chart, ScatterOptions};
 pub fn draw(
     chart: &Chart,
     options: &ScatterOptions,
-    index: usize,
     table: &Table,
     highlight: Option<&Highlight>,
 ) -> Result<ChartOutput, MarkError> {
     let x_opts = options.x.options();
     let y_opts = options.y.options();
-    let x_col = encode::column(chart, index, "x", &x_opts.field, table)?;
-    let y_col = encode::column(chart, index, "y", &y_opts.field, table)?;
+    let x_col = encode::column(chart, "x", &x_opts.field, table)?;
+    let y_col = encode::column(chart, "y", &y_opts.field, table)?;
     let size_opts = options.point_size.as_ref().map(|s| s.options());
     let size_col = match &size_opts {
-        Some(o) => Some(encode::column(chart, index, "point_size", &o.field, table)?),
+        Some(o) => Some(encode::column(chart, "point_size", &o.field, table)?),
         None => None,
     };
     if let (Some(col), Some(o)) = (size_col, &size_opts)
         && col.numbers().is_none()
     {
         return Err(MarkError::at(
-            index,
             &["point_size"],
-            format!(
-                "chart \"{}\": `point_size` column `{}` holds text; marker area needs numbers",
-                chart.name, o.field
-            ),
+            format!("`point_size` column `{}` holds text; marker area needs numbers", o.field),
             "size by a numeric column, or colour by this one instead",
         ));
     }
@@ -70,22 +65,20 @@ pub fn draw(
         rows.retain(|&r| values.get(r as usize).is_some_and(|v| *v >= 0.0));
         if rows.len() < before {
             warnings.push(Warning::from(format!(
-                "chart \"{}\": dropped {} rows with negative `point_size` values (marker area cannot be negative)",
-                chart.name,
+                "dropped {} rows with negative `point_size` values (marker area cannot be negative)",
                 before - rows.len()
             )));
         }
         max_size = rows.iter().filter_map(|&r| values.get(r as usize)).fold(0.0, |a, &b| a.max(b));
     }
     if rows.is_empty() {
-        return Err(encode::no_rows(chart, index, table, warnings.first()));
+        return Err(encode::no_rows(chart, table, warnings.first()));
     }
 
     let n = rows.len();
     let opacity = options.opacity.unwrap_or_else(|| point_opacity(n));
     let (colors, color_legend) = encode::color_encoding(
         chart,
-        index,
         options.color.as_ref(),
         options.mark_color.as_deref(),
         table,
@@ -105,11 +98,11 @@ pub fn draw(
 
     let base_radius = options.radius.unwrap_or_else(|| point_radius(n));
     let largest_radius = if size_col.is_some() && max_size > 0.0 { max_radius } else { base_radius };
-    let mut x_axis = encode::position_axis(chart, index, "x", &x_opts, x_col, &rows)?;
-    let mut y_axis = encode::position_axis(chart, index, "y", &y_opts, y_col, &rows)?;
+    let mut x_axis = encode::position_axis("x", &x_opts, x_col, &rows)?;
+    let mut y_axis = encode::position_axis("y", &y_opts, y_col, &rows)?;
     x_axis.inset = largest_radius + 1.0;
     y_axis.inset = largest_radius + 1.0;
-    let (frame, theme) = frame::cartesian(chart, index, x_axis, y_axis, legends)?;
+    let (frame, theme) = frame::cartesian(chart, x_axis, y_axis, legends)?;
 
     let x_pos = encode::Positioner::new(&frame.x, x_col);
     let y_pos = encode::Positioner::new(&frame.y, y_col);
@@ -146,7 +139,7 @@ pub fn draw(
         .into_iter()
         .collect();
     marks.extend(highlight::layers(&rows, highlight, batch));
-    warnings.extend((frame::raster_note(chart, &marks)).into_iter().map(Warning::from));
+    warnings.extend((frame::raster_note(&marks)).into_iter().map(Warning::from));
     let plot = Plot {
         rect: frame.plot,
         x: PlotScale { field: x_opts.field.clone(), scale: frame.x.clone() },
@@ -181,7 +174,7 @@ impl Technique for ScatterOptions {
     }
 
     fn draw(&self, cx: &ChartContext<'_>) -> Result<ChartOutput, MarkError> {
-        draw(&cx.chart, self, cx.index, cx.table, cx.highlight)
+        draw(&cx.chart, self, cx.table, cx.highlight)
     }
 
     fn cartesian_axes(&self) -> Vec<AxisSpec> {

@@ -19,22 +19,16 @@ use crate::spec::{Chart, ContourOptions, Levels, SaddleRule};
 pub const DEFAULT_LEVELS: u32 = 10;
 
 /// Draw a contour chart.
-pub fn draw(chart: &Chart, options: &ContourOptions, index: usize, table: &Table) -> Result<ChartOutput, MarkError> {
+pub fn draw(chart: &Chart, options: &ContourOptions, table: &Table) -> Result<ChartOutput, MarkError> {
     let x_opts = options.x.options();
     let y_opts = options.y.options();
     let z_opts = options.z.options();
     let GridInput { grid, rows, warnings, x_col, y_col, zmin, zmax } =
-        gridded::load_grid(chart, index, &x_opts, &y_opts, &z_opts, table)?;
+        gridded::load_grid(chart, &x_opts, &y_opts, &z_opts, table)?;
     if grid.nx() < 2 || grid.ny() < 2 {
         return Err(MarkError::at(
-            index,
             &["x"],
-            format!(
-                "chart \"{}\": contours need at least 2 × 2 grid nodes, the grid has {} × {}",
-                chart.name,
-                grid.nx(),
-                grid.ny()
-            ),
+            format!("contours need at least 2 × 2 grid nodes, the grid has {} × {}", grid.nx(), grid.ny()),
             "give at least two distinct coordinates along each axis",
         ));
     }
@@ -43,14 +37,13 @@ pub fn draw(chart: &Chart, options: &ContourOptions, index: usize, table: &Table
         Some(Levels::Count(n)) => contour::nice_levels(zmin, zmax, (*n as usize).max(1)),
         None => contour::nice_levels(zmin, zmax, DEFAULT_LEVELS as usize),
     };
-    let levels = contour::clean_levels(&levels).map_err(|e| {
-        MarkError::at(index, &["levels"], format!("chart \"{}\": {e}", chart.name), "give fewer levels")
-    })?;
+    let levels =
+        contour::clean_levels(&levels).map_err(|e| MarkError::at(&["levels"], format!("{e}"), "give fewer levels"))?;
     let saddle = match options.saddle.unwrap_or(SaddleRule::Asymptotic) {
         SaddleRule::Asymptotic => Saddle::Asymptotic,
         SaddleRule::Center => Saddle::Center,
     };
-    let map = encode::continuous_map(index, &["z", "scheme"], z_opts.scheme.as_deref())?;
+    let map = encode::continuous_map(&["z", "scheme"], z_opts.scheme.as_deref())?;
     let fill = options.fill.unwrap_or(true);
     let draw_lines = options.lines.unwrap_or(true);
 
@@ -72,8 +65,8 @@ pub fn draw(chart: &Chart, options: &ContourOptions, index: usize, table: &Table
     } else {
         Legend::ColorBar { title: z_title, map: map.clone(), domain: (lo, hi) }
     };
-    let mut x_axis = encode::position_axis(chart, index, "x", &x_opts, x_col, &rows)?;
-    let mut y_axis = encode::position_axis(chart, index, "y", &y_opts, y_col, &rows)?;
+    let mut x_axis = encode::position_axis("x", &x_opts, x_col, &rows)?;
+    let mut y_axis = encode::position_axis("y", &y_opts, y_col, &rows)?;
     // The grid fills the plot exactly.
     for (axis, opts) in [(&mut x_axis, &x_opts), (&mut y_axis, &y_opts)] {
         axis.nice = opts.nice.unwrap_or(false) && opts.domain.is_none();
@@ -85,14 +78,13 @@ pub fn draw(chart: &Chart, options: &ContourOptions, index: usize, table: &Table
     if let (Some(&y0), Some(&y1)) = (grid.ys().first(), grid.ys().last()) {
         y_axis.domain = Domain::Continuous(y0, y1);
     }
-    let (frame, theme) = frame::cartesian(chart, index, x_axis, y_axis, encode::shown_legends(legend, &z_opts))?;
+    let (frame, theme) = frame::cartesian(chart, x_axis, y_axis, encode::shown_legends(legend, &z_opts))?;
     let to_px = |(x, y): (f64, f64)| Point::new(frame.x.map(x), frame.y.map(y));
 
     let mut marks = Vec::new();
     let bands = if fill {
-        contour::contour_bands(&grid, &edges, saddle).map_err(|e| {
-            MarkError::at(index, &["levels"], format!("chart \"{}\": {e}", chart.name), "give fewer levels")
-        })?
+        contour::contour_bands(&grid, &edges, saddle)
+            .map_err(|e| MarkError::at(&["levels"], format!("{e}"), "give fewer levels"))?
     } else {
         Vec::new()
     };
@@ -116,9 +108,8 @@ pub fn draw(chart: &Chart, options: &ContourOptions, index: usize, table: &Table
             }
         }
     }
-    let lines = contour::contour_lines(&grid, &levels, saddle).map_err(|e| {
-        MarkError::at(index, &["levels"], format!("chart \"{}\": {e}", chart.name), "give fewer levels")
-    })?;
+    let lines = contour::contour_lines(&grid, &levels, saddle)
+        .map_err(|e| MarkError::at(&["levels"], format!("{e}"), "give fewer levels"))?;
     let mut derived_level = Vec::new();
     let mut derived_line = Vec::new();
     let mut derived_x = Vec::new();
@@ -210,7 +201,7 @@ impl Technique for ContourOptions {
     }
 
     fn draw(&self, cx: &ChartContext<'_>) -> Result<ChartOutput, MarkError> {
-        draw(&cx.chart, self, cx.index, cx.table)
+        draw(&cx.chart, self, cx.table)
     }
 
     fn cartesian_axes(&self) -> Vec<AxisSpec> {

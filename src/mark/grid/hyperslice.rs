@@ -18,79 +18,65 @@ use crate::spec::defaults;
 use crate::spec::{Chart, HypersliceOptions, Resample};
 
 /// Draw a hyperslice matrix.
-pub fn draw(chart: &Chart, options: &HypersliceOptions, index: usize, table: &Table) -> Result<ChartOutput, MarkError> {
+pub fn draw(chart: &Chart, options: &HypersliceOptions, table: &Table) -> Result<ChartOutput, MarkError> {
     let z_opts = options.z.options();
     if options.axes.len() < 2 {
         return Err(MarkError::at(
-            index,
             &["axes"],
-            format!("chart \"{}\": a hyperslice needs at least 2 axes, got {}", chart.name, options.axes.len()),
+            format!("a hyperslice needs at least 2 axes, got {}", options.axes.len()),
             "list the grid's coordinate columns, e.g. axes = [\"x1\", \"x2\", \"x3\"]",
         ));
     }
     let mut columns = Vec::new();
     for (k, name) in options.axes.iter().enumerate() {
-        let col = encode::column(chart, index, "axes", name, table).map_err(|mut e| {
+        let col = encode::column(chart, "axes", name, table).map_err(|mut e| {
             e.path.push(crate::spec::PathSeg::Index(k));
             e
         })?;
         if col.numbers().is_none() {
-            let mut e = MarkError::at(
-                index,
-                &["axes"],
-                format!("chart \"{}\": axis column `{name}` holds text", chart.name),
-                "use numeric coordinate columns",
-            );
+            let mut e =
+                MarkError::at(&["axes"], format!("axis column `{name}` holds text"), "use numeric coordinate columns");
             e.path.push(crate::spec::PathSeg::Index(k));
             return Err(e);
         }
         columns.push((name.as_str(), col));
     }
-    let z_col = encode::column(chart, index, "z", &z_opts.field, table)?;
+    let z_col = encode::column(chart, "z", &z_opts.field, table)?;
     // Rows need finite coordinates; a non-finite value stays in the grid as a hole.
     let (rows, warning) = encode::finite_rows(&chart.name, table.rows, &columns);
     let warnings: Vec<Warning> = warning.into_iter().collect();
     if rows.is_empty() {
-        return Err(encode::no_rows(chart, index, table, warnings.first()));
+        return Err(encode::no_rows(chart, table, warnings.first()));
     }
     let pick = |col: &crate::data::Column| encode::values_at(col, &rows);
     let coords: Vec<Vec<f64>> = columns.iter().map(|(_, c)| pick(c)).collect();
     let coord_refs: Vec<&[f64]> = coords.iter().map(Vec::as_slice).collect();
     let values = pick(z_col);
-    let grid = NdGrid::from_rows(&options.axes, &coord_refs, &values).map_err(|e| {
-        MarkError::at(
-            index,
-            &["axes"],
-            format!("chart \"{}\": {e}", chart.name),
-            "hyperslice needs one row per node of a regular grid",
-        )
-    })?;
+    let grid = NdGrid::from_rows(&options.axes, &coord_refs, &values)
+        .map_err(|e| MarkError::at(&["axes"], format!("{e}"), "hyperslice needs one row per node of a regular grid"))?;
     let dims = grid.dims();
     let focus_values: Vec<f64> = match &options.focus {
         Some(f) if f.len() == dims => f.clone(),
         Some(f) => {
             return Err(MarkError::at(
-                index,
                 &["focus"],
-                format!("chart \"{}\": `focus` has {} coordinates for {dims} axes", chart.name, f.len()),
+                format!("`focus` has {} coordinates for {dims} axes", f.len()),
                 "give one coordinate per axis, in the order of `axes`",
             ));
         }
         None => (0..dims).map(|k| grid.axis(k).and_then(|(_, c)| c.get(c.len() / 2).copied()).unwrap_or(0.0)).collect(),
     };
     let focus = grid.nearest_index(&focus_values);
-    let slices = slice_matrix(&grid, &focus).map_err(|e| {
-        MarkError::at(index, &["focus"], format!("chart \"{}\": {e}", chart.name), "check the focus point")
-    })?;
+    let slices =
+        slice_matrix(&grid, &focus).map_err(|e| MarkError::at(&["focus"], format!("{e}"), "check the focus point"))?;
     let Some((zmin, zmax)) = grid.range() else {
         return Err(MarkError::at(
-            index,
             &["z"],
-            format!("chart \"{}\": every value of `{}` is missing", chart.name, z_opts.field),
+            format!("every value of `{}` is missing", z_opts.field),
             "check the z column",
         ));
     };
-    let map = encode::continuous_map(index, &["z", "scheme"], z_opts.scheme.as_deref())?;
+    let map = encode::continuous_map(&["z", "scheme"], z_opts.scheme.as_deref())?;
     let (lo, hi) = encode::color_domain(&map, zmin, zmax, z_opts.midpoint);
 
     let z_title = title_with_unit(z_opts.title.as_deref().unwrap_or(&z_opts.field), z_opts.unit.as_deref());
@@ -108,11 +94,10 @@ pub fn draw(chart: &Chart, options: &HypersliceOptions, index: usize, table: &Ta
     let avail_h = room - bottom;
     let side = ((avail_w.min(avail_h) - gap * (n as f64 - 1.0)) / n as f64).floor();
     if side < 24.0 {
-        return Err(MarkError::layout(
-            index,
-            &chart.name,
-            crate::guide::layout::LayoutError::TooSmall { plot_width: side.max(0.0), plot_height: side.max(0.0) },
-        ));
+        return Err(MarkError::layout(crate::guide::layout::LayoutError::TooSmall {
+            plot_width: side.max(0.0),
+            plot_height: side.max(0.0),
+        }));
     }
     let origin = Point::new(m + left, m + title_h);
     let mut items = vec![canvas.background()];
@@ -193,7 +178,7 @@ impl Technique for HypersliceOptions {
     }
 
     fn draw(&self, cx: &ChartContext<'_>) -> Result<ChartOutput, MarkError> {
-        draw(&cx.chart, self, cx.index, cx.table)
+        draw(&cx.chart, self, cx.table)
     }
 
     fn colour_encodings(&self) -> Vec<ColourSpec> {

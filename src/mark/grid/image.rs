@@ -19,24 +19,24 @@ use crate::spec::defaults;
 use crate::spec::{Chart, ImageOptions, Resample};
 
 /// Draw an image chart.
-pub fn draw(chart: &Chart, options: &ImageOptions, index: usize, table: &Table) -> Result<ChartOutput, MarkError> {
+pub fn draw(chart: &Chart, options: &ImageOptions, table: &Table) -> Result<ChartOutput, MarkError> {
     let x_opts = options.x.options();
     let y_opts = options.y.options();
     let z_opts = options.z.options();
     let GridInput { grid, rows, warnings, x_col, y_col, zmin, zmax } =
-        gridded::load_grid(chart, index, &x_opts, &y_opts, &z_opts, table)?;
-    let map = encode::continuous_map(index, &["z", "scheme"], z_opts.scheme.as_deref())?;
+        gridded::load_grid(chart, &x_opts, &y_opts, &z_opts, table)?;
+    let map = encode::continuous_map(&["z", "scheme"], z_opts.scheme.as_deref())?;
     let (lo, hi) = encode::color_domain(&map, zmin, zmax, z_opts.midpoint);
     let nan_color = match options.nan_color.as_deref() {
         None => NAN_COLOR,
         Some(s) => color::parse_color(s).ok_or_else(|| {
-            MarkError::at(index, &["nan_color"], format!("`{s}` is not a colour"), "use a CSS colour name or #rrggbb")
+            MarkError::at(&["nan_color"], format!("`{s}` is not a colour"), "use a CSS colour name or #rrggbb")
         })?,
     };
     let resample = options.resample.unwrap_or(Resample::Nearest);
 
-    let mut x_axis = encode::position_axis(chart, index, "x", &x_opts, x_col, &rows)?;
-    let mut y_axis = encode::position_axis(chart, index, "y", &y_opts, y_col, &rows)?;
+    let mut x_axis = encode::position_axis("x", &x_opts, x_col, &rows)?;
+    let mut y_axis = encode::position_axis("y", &y_opts, y_col, &rows)?;
     for (axis, opts, coords) in [(&mut x_axis, &x_opts, grid.xs()), (&mut y_axis, &y_opts, grid.ys())] {
         axis.nice = false;
         axis.grid = false;
@@ -48,7 +48,7 @@ pub fn draw(chart: &Chart, options: &ImageOptions, index: usize, table: &Table) 
     }
     let title = title_with_unit(z_opts.title.as_deref().unwrap_or(&z_opts.field), z_opts.unit.as_deref());
     let legend = Legend::ColorBar { title, map: map.clone(), domain: (lo, hi) };
-    let (frame, theme) = frame::cartesian(chart, index, x_axis, y_axis, encode::shown_legends(legend, &z_opts))?;
+    let (frame, theme) = frame::cartesian(chart, x_axis, y_axis, encode::shown_legends(legend, &z_opts))?;
 
     let width = (frame.plot.w.round().max(1.0) as usize).min(MAX_RASTER_SIDE);
     let height = (frame.plot.h.round().max(1.0) as usize).min(MAX_RASTER_SIDE);
@@ -81,7 +81,7 @@ impl Technique for ImageOptions {
     }
 
     fn draw(&self, cx: &ChartContext<'_>) -> Result<ChartOutput, MarkError> {
-        draw(&cx.chart, self, cx.index, cx.table)
+        draw(&cx.chart, self, cx.table)
     }
 
     fn cartesian_axes(&self) -> Vec<AxisSpec> {

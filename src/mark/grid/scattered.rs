@@ -23,23 +23,18 @@ use crate::spec::{Chart, Levels, ScatteredOptions};
 const POINT_RADIUS: f64 = 3.0;
 
 /// Draw a scattered-data chart.
-pub fn draw(chart: &Chart, options: &ScatteredOptions, index: usize, table: &Table) -> Result<ChartOutput, MarkError> {
+pub fn draw(chart: &Chart, options: &ScatteredOptions, table: &Table) -> Result<ChartOutput, MarkError> {
     let x_opts = options.x.options();
     let y_opts = options.y.options();
     let z_opts = options.z.options();
-    let x_col = encode::column(chart, index, "x", &x_opts.field, table)?;
-    let y_col = encode::column(chart, index, "y", &y_opts.field, table)?;
-    let z_col = encode::column(chart, index, "z", &z_opts.field, table)?;
+    let x_col = encode::column(chart, "x", &x_opts.field, table)?;
+    let y_col = encode::column(chart, "y", &y_opts.field, table)?;
+    let z_col = encode::column(chart, "z", &z_opts.field, table)?;
     for (key, field, col) in [("x", &x_opts.field, x_col), ("y", &y_opts.field, y_col), ("z", &z_opts.field, z_col)] {
         if col.numbers().is_none() || col.is_time() {
             return Err(MarkError::at(
-                index,
                 &[key],
-                format!(
-                    "chart \"{}\": column `{field}` holds {}; scattered data needs numbers",
-                    chart.name,
-                    col.type_name()
-                ),
+                format!("column `{field}` holds {}; scattered data needs numbers", col.type_name()),
                 "use numeric columns for x, y and z",
             ));
         }
@@ -51,39 +46,36 @@ pub fn draw(chart: &Chart, options: &ScatteredOptions, index: usize, table: &Tab
     );
     let mut warnings: Vec<Warning> = warning.into_iter().collect();
     if rows.is_empty() {
-        return Err(encode::no_rows(chart, index, table, warnings.first()));
+        return Err(encode::no_rows(chart, table, warnings.first()));
     }
     let pick = |col: &crate::data::Column| encode::values_at(col, &rows);
     let (xs, ys, zs) = (pick(x_col), pick(y_col), pick(z_col));
     let points: Vec<(f64, f64)> = xs.iter().copied().zip(ys.iter().copied()).collect();
-    let tin = Triangulation::new(&points, &zs).map_err(|e| {
-        MarkError::at(index, &["x"], format!("chart \"{}\": {e}", chart.name), "check the point coordinates")
-    })?;
+    let tin = Triangulation::new(&points, &zs)
+        .map_err(|e| MarkError::at(&["x"], format!("{e}"), "check the point coordinates"))?;
     if tin.merged_duplicates() > 0 {
         warnings.push(Warning::from(format!(
-            "chart \"{}\": merged {} points that repeat an earlier point's position (the first one's value is kept)",
-            chart.name,
+            "merged {} points that repeat an earlier point's position (the first one's value is kept)",
             tin.merged_duplicates()
         )));
     }
     if tin.is_degenerate() {
         warnings.push(Warning::from(format!(
-            "chart \"{}\": the points are fewer than three or all on one line, so there are no triangles; only the points are drawn",
-            chart.name
+            "the points are fewer than three or all on one line, so there are no triangles; only the points are drawn"
         )));
     }
 
     let (zmin, zmax) = encode::extent(&zs, &(0..zs.len() as u32).collect::<Vec<_>>()).unwrap_or((0.0, 1.0));
-    let map = encode::continuous_map(index, &["z", "scheme"], z_opts.scheme.as_deref())?;
+    let map = encode::continuous_map(&["z", "scheme"], z_opts.scheme.as_deref())?;
     let (lo, hi) = encode::color_domain(&map, zmin, zmax, z_opts.midpoint);
     let color_of = |v: f64| map.at((v - lo) / (hi - lo));
     let title = title_with_unit(z_opts.title.as_deref().unwrap_or(&z_opts.field), z_opts.unit.as_deref());
     let legend = Legend::ColorBar { title, map: map.clone(), domain: (lo, hi) };
-    let mut x_axis = encode::position_axis(chart, index, "x", &x_opts, x_col, &rows)?;
-    let mut y_axis = encode::position_axis(chart, index, "y", &y_opts, y_col, &rows)?;
+    let mut x_axis = encode::position_axis("x", &x_opts, x_col, &rows)?;
+    let mut y_axis = encode::position_axis("y", &y_opts, y_col, &rows)?;
     x_axis.inset = POINT_RADIUS + 1.5;
     y_axis.inset = POINT_RADIUS + 1.5;
-    let (frame, theme) = frame::cartesian(chart, index, x_axis, y_axis, encode::shown_legends(legend, &z_opts))?;
+    let (frame, theme) = frame::cartesian(chart, x_axis, y_axis, encode::shown_legends(legend, &z_opts))?;
     let to_px = |(x, y): (f64, f64)| Point::new(frame.x.map(x), frame.y.map(y));
 
     let mut marks = Vec::new();
@@ -116,9 +108,9 @@ pub fn draw(chart: &Chart, options: &ScatteredOptions, index: usize, table: &Tab
     }
     if options.voronoi.unwrap_or(false) {
         let clip = domain_rect(&frame.x, &frame.y, frame.plot);
-        let cells = tin.voronoi_cells(clip).map_err(|e| {
-            MarkError::at(index, &["voronoi"], format!("chart \"{}\": {e}", chart.name), "check the point coordinates")
-        })?;
+        let cells = tin
+            .voronoi_cells(clip)
+            .map_err(|e| MarkError::at(&["voronoi"], format!("{e}"), "check the point coordinates"))?;
         let mut cmds = Vec::new();
         for cell in &cells {
             for (k, &p) in cell.iter().enumerate() {
@@ -156,12 +148,10 @@ pub fn draw(chart: &Chart, options: &ScatteredOptions, index: usize, table: &Tab
             Levels::Values(v) => v.clone(),
             Levels::Count(n) => nice_levels(zmin, zmax, (*n as usize).max(1)),
         };
-        let levels = clean_levels(&levels).map_err(|e| {
-            MarkError::at(index, &["levels"], format!("chart \"{}\": {e}", chart.name), "give fewer levels")
-        })?;
-        let lines = tin.contour_lines(&levels).map_err(|e| {
-            MarkError::at(index, &["levels"], format!("chart \"{}\": {e}", chart.name), "give fewer levels")
-        })?;
+        let levels =
+            clean_levels(&levels).map_err(|e| MarkError::at(&["levels"], format!("{e}"), "give fewer levels"))?;
+        let lines =
+            tin.contour_lines(&levels).map_err(|e| MarkError::at(&["levels"], format!("{e}"), "give fewer levels"))?;
         for line in &lines {
             let cmds = frame::polyline(&line.points, line.closed, &to_px);
             marks.push(
@@ -263,7 +253,7 @@ impl Technique for ScatteredOptions {
     }
 
     fn draw(&self, cx: &ChartContext<'_>) -> Result<ChartOutput, MarkError> {
-        draw(&cx.chart, self, cx.index, cx.table)
+        draw(&cx.chart, self, cx.table)
     }
 
     fn cartesian_axes(&self) -> Vec<AxisSpec> {

@@ -23,30 +23,24 @@ struct Cut {
 }
 
 /// Draw a section chart.
-pub fn draw(chart: &Chart, options: &SectionOptions, index: usize, table: &Table) -> Result<ChartOutput, MarkError> {
+pub fn draw(chart: &Chart, options: &SectionOptions, table: &Table) -> Result<ChartOutput, MarkError> {
     let x_opts = options.x.options();
     let y_opts = options.y.options();
     let z_opts = options.z.options();
-    let GridInput { grid, warnings, .. } = gridded::load_grid(chart, index, &x_opts, &y_opts, &z_opts, table)?;
+    let GridInput { grid, warnings, .. } = gridded::load_grid(chart, &x_opts, &y_opts, &z_opts, table)?;
     let (along_x, at, key) = match (&options.at_y, &options.at_x) {
         (Some(v), None) => (true, v.clone(), "at_y"),
         (None, Some(v)) => (false, v.clone(), "at_x"),
         _ => {
             return Err(MarkError::at(
-                index,
                 &[],
-                format!("chart \"{}\": a section needs exactly one of `at_y` or `at_x`", chart.name),
+                format!("a section needs exactly one of `at_y` or `at_x`"),
                 "at_y = [0.5, 1.0] draws z along x at those y values; at_x does the same along y",
             ));
         }
     };
     if at.is_empty() {
-        return Err(MarkError::at(
-            index,
-            &[key],
-            format!("chart \"{}\": `{key}` is empty", chart.name),
-            "give at least one value",
-        ));
+        return Err(MarkError::at(&[key], format!("`{key}` is empty"), "give at least one value"));
     }
     let (positions, across) = if along_x { (grid.xs(), grid.ys()) } else { (grid.ys(), grid.xs()) };
     let (lo_c, hi_c) = (across.first().copied().unwrap_or(0.0), across.last().copied().unwrap_or(0.0));
@@ -54,11 +48,9 @@ pub fn draw(chart: &Chart, options: &SectionOptions, index: usize, table: &Table
     for (k, &v) in at.iter().enumerate() {
         if !(v.is_finite() && v >= lo_c && v <= hi_c) {
             let mut e = MarkError::at(
-                index,
                 &[key],
                 format!(
-                    "chart \"{}\": {} = {} lies outside the grid's {} range [{}, {}]",
-                    chart.name,
+                    "{} = {} lies outside the grid's {} range [{}, {}]",
                     key,
                     format_value(v),
                     if along_x { "y" } else { "x" },
@@ -84,9 +76,8 @@ pub fn draw(chart: &Chart, options: &SectionOptions, index: usize, table: &Table
     }
     if zlo > zhi {
         return Err(MarkError::at(
-            index,
             &[key],
-            format!("chart \"{}\": every section crosses only missing values", chart.name),
+            format!("every section crosses only missing values"),
             "cut the field where it has values",
         ));
     }
@@ -108,7 +99,7 @@ pub fn draw(chart: &Chart, options: &SectionOptions, index: usize, table: &Table
         grid: true,
         inset: 1.0,
     };
-    let palette = encode::palette(index, &["scheme"], options.scheme.as_deref())?;
+    let palette = encode::palette(&["scheme"], options.scheme.as_deref())?;
     let colors: Vec<Color> =
         (0..cuts.len()).map(|i| palette.get(i % palette.len().max(1)).copied().unwrap_or(Color::BLACK)).collect();
     let label = |c: &Cut| format!("{cut_name} = {}", format_value(c.at));
@@ -120,7 +111,7 @@ pub fn draw(chart: &Chart, options: &SectionOptions, index: usize, table: &Table
                 entries: cuts.iter().zip(&colors).map(|(c, col)| (label(c), *col)).collect(),
                 symbol: Symbol::Line,
             };
-            let (frame, theme) = frame::cartesian(chart, index, position_axis, value_axis, vec![legend])?;
+            let (frame, theme) = frame::cartesian(chart, position_axis, value_axis, vec![legend])?;
             let marks = cuts
                 .iter()
                 .zip(&colors)
@@ -130,7 +121,7 @@ pub fn draw(chart: &Chart, options: &SectionOptions, index: usize, table: &Table
         }
         SectionLayout::Multiples => {
             let shared = options.shared_scale.unwrap_or(true);
-            multiples(chart, index, &cuts, &colors, position_axis, value_axis, shared, stroke_width, &label)?
+            multiples(chart, &cuts, &colors, position_axis, value_axis, shared, stroke_width, &label)?
         }
     };
 
@@ -170,7 +161,6 @@ fn section_path(
 #[allow(clippy::too_many_arguments)]
 fn multiples(
     chart: &Chart,
-    index: usize,
     cuts: &[Cut],
     colors: &[Color],
     position_axis: PositionAxis,
@@ -209,7 +199,7 @@ fn multiples(
             theme: panel_theme.clone(),
             equal_aspect: false,
         };
-        let frame = layout::cartesian(&spec).map_err(|e| MarkError::layout(index, &chart.name, e))?;
+        let frame = layout::cartesian(&spec).map_err(|e| MarkError::layout(e))?;
         let dy = title_h + panel_h * k as f64;
         let mark = section_path(cut, &frame.x, &frame.y, *color, stroke_width).labelled(label(cut));
         let mut panel = frame.under;
@@ -237,7 +227,7 @@ impl Technique for SectionOptions {
     }
 
     fn draw(&self, cx: &ChartContext<'_>) -> Result<ChartOutput, MarkError> {
-        draw(&cx.chart, self, cx.index, cx.table)
+        draw(&cx.chart, self, cx.table)
     }
 
     fn scheme(&self) -> Option<&str> {

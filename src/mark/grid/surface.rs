@@ -18,18 +18,17 @@ use crate::spec::{Chart, SurfaceOptions};
 use crate::text::measure;
 
 /// Draw a surface chart.
-pub fn draw(chart: &Chart, options: &SurfaceOptions, index: usize, table: &Table) -> Result<ChartOutput, MarkError> {
+pub fn draw(chart: &Chart, options: &SurfaceOptions, table: &Table) -> Result<ChartOutput, MarkError> {
     let x_opts = options.x.options();
     let y_opts = options.y.options();
     let z_opts = options.z.options();
     let GridInput { grid, rows, warnings, zmin, zmax, .. } =
-        gridded::load_grid(chart, index, &x_opts, &y_opts, &z_opts, table)?;
-    let map = encode::continuous_map(index, &["z", "scheme"], z_opts.scheme.as_deref())?;
+        gridded::load_grid(chart, &x_opts, &y_opts, &z_opts, table)?;
+    let map = encode::continuous_map(&["z", "scheme"], z_opts.scheme.as_deref())?;
     let (lo, hi) = encode::color_domain(&map, zmin, zmax, z_opts.midpoint);
     let view = View { azimuth_deg: options.azimuth.unwrap_or(-60.0), elevation_deg: options.elevation.unwrap_or(30.0) };
-    let projection = surface::project(&grid, view, Light::default(), options.z_scale).map_err(|e| {
-        MarkError::at(index, &["z"], format!("chart \"{}\": {e}", chart.name), "check the grid and the view")
-    })?;
+    let projection = surface::project(&grid, view, Light::default(), options.z_scale)
+        .map_err(|e| MarkError::at(&["z"], format!("{e}"), "check the grid and the view"))?;
 
     let z_title = title_with_unit(z_opts.title.as_deref().unwrap_or(&z_opts.field), z_opts.unit.as_deref());
     let canvas = frame::PanelCanvas::new(
@@ -48,11 +47,10 @@ pub fn draw(chart: &Chart, options: &SurfaceOptions, index: usize, table: &Table
         room - 1.5 * pad,
     );
     if area.w < 40.0 || area.h < 40.0 {
-        return Err(MarkError::layout(
-            index,
-            &chart.name,
-            crate::guide::layout::LayoutError::TooSmall { plot_width: area.w.max(0.0), plot_height: area.h.max(0.0) },
-        ));
+        return Err(MarkError::layout(crate::guide::layout::LayoutError::TooSmall {
+            plot_width: area.w.max(0.0),
+            plot_height: area.h.max(0.0),
+        }));
     }
     // The projected box bounds every quad and axis line: fit it to the area, one scale for
     // both directions, centred (screen v runs up, canvas y down).
@@ -217,7 +215,7 @@ impl Technique for SurfaceOptions {
     }
 
     fn draw(&self, cx: &ChartContext<'_>) -> Result<ChartOutput, MarkError> {
-        draw(&cx.chart, self, cx.index, cx.table)
+        draw(&cx.chart, self, cx.table)
     }
 
     fn colour_encodings(&self) -> Vec<ColourSpec> {

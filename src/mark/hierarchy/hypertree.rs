@@ -33,13 +33,7 @@ const DISK_FILL: Color = Color::rgb(0xf7, 0xf7, 0xf5);
 const EDGE: Color = Color::rgb(0x8c, 0x8c, 0x8c);
 
 /// The node named by `focus`: an id (or path), else a label that only one node has.
-fn find_focus(
-    chart: &Chart,
-    index: usize,
-    ids: &[String],
-    labels: &[String],
-    wanted: &str,
-) -> Result<usize, MarkError> {
+fn find_focus(ids: &[String], labels: &[String], wanted: &str) -> Result<usize, MarkError> {
     if let Some(node) = ids.iter().position(|i| i == wanted) {
         return Ok(node);
     }
@@ -49,16 +43,14 @@ fn find_focus(
         [] => {
             let names: Vec<&str> = labels.iter().map(String::as_str).collect();
             Err(MarkError::at(
-                index,
                 &["focus"],
-                format!("chart \"{}\": no node has the id or label `{wanted}`", chart.name),
+                format!("no node has the id or label `{wanted}`"),
                 crate::spec::suggest::hint(wanted, &names, "labels", true),
             ))
         }
         several => Err(MarkError::at(
-            index,
             &["focus"],
-            format!("chart \"{}\": {} nodes are labelled `{wanted}`", chart.name, several.len()),
+            format!("{} nodes are labelled `{wanted}`", several.len()),
             format!("name the node by its id instead, e.g. `{}`", ids[several[0]]),
         )),
     }
@@ -67,26 +59,19 @@ fn find_focus(
 /// Draw a hyperbolic tree, its view moved by `view` after centring the spec's focus (the explorer's drag
 /// and click-to-focus), also returning the disk and every node's position in it. With a moved
 /// view the ring and the caption name the node nearest the centre.
-pub fn draw(
-    chart: &Chart,
-    options: &HypertreeOptions,
-    index: usize,
-    table: &Table,
-    view: &Mobius,
-) -> Result<ChartOutput, MarkError> {
+pub fn draw(chart: &Chart, options: &HypertreeOptions, table: &Table, view: &Mobius) -> Result<ChartOutput, MarkError> {
     let chart = &with_default_size(chart);
-    let tree = tree_of(chart, index, &options.tree, table)?;
-    let labels = labels_of(chart, index, &tree, options.label.as_deref(), table)?;
+    let tree = tree_of(chart, &options.tree, table)?;
+    let labels = labels_of(chart, &tree, options.label.as_deref(), table)?;
     let h = &tree.hierarchy;
     let focus = match options.focus.as_deref() {
         None => h.root(),
-        Some(wanted) => find_focus(chart, index, &tree.ids, &labels, wanted)?,
+        Some(wanted) => find_focus(&tree.ids, &labels, wanted)?,
     };
     let layout_options = HyperbolicOptions { spacing: options.spacing.unwrap_or(1.2), weight_by_leaves: true };
-    let layout = HyperbolicLayout::new(h, &layout_options)
-        .map_err(|e| MarkError::at(index, &["spacing"], format!("chart \"{}\": {e}", chart.name), ""))?;
-    let positions = view_from(&layout, focus, view)
-        .map_err(|e| MarkError::at(index, &["focus"], format!("chart \"{}\": {e}", chart.name), ""))?;
+    let layout =
+        HyperbolicLayout::new(h, &layout_options).map_err(|e| MarkError::at(&["spacing"], format!("{e}"), ""))?;
+    let positions = view_from(&layout, focus, view).map_err(|e| MarkError::at(&["focus"], format!("{e}"), ""))?;
     let focus = if *view == Mobius::identity() { focus } else { nearest_centre(&positions).unwrap_or(focus) };
 
     // Colours: a column, or one hue per branch.
@@ -95,11 +80,11 @@ pub fn draw(
     let (color_of, legend): (Box<dyn Fn(usize) -> Color>, _) = if options.color.is_some() {
         let rows: Vec<u32> = tree.rows.iter().flatten().copied().collect();
         let (encoding, legend) =
-            encode::color_encoding(chart, index, options.color.as_ref(), None, table, &rows, Symbol::Circle)?;
+            encode::color_encoding(chart, options.color.as_ref(), None, table, &rows, Symbol::Circle)?;
         let node_rows = tree.rows.clone();
         (Box::new(move |n| node_rows[n].map_or(encode::MISSING_COLOR, |r| encoding.color_of(r))), legend)
     } else {
-        palette = branch_palette(index, options.scheme.as_deref(), branches.heads.len())?;
+        palette = branch_palette(options.scheme.as_deref(), branches.heads.len())?;
         let legend = branch_legend(&branches, &labels, &palette);
         let (b, p) = (&branches, &palette);
         (Box::new(move |n| b.color(n, p)), legend)
@@ -123,7 +108,7 @@ pub fn draw(
     let radius = (width.min(canvas.room) / 2.0 - 4.0).floor();
     if radius < 60.0 {
         let error = LayoutError::TooSmall { plot_width: width, plot_height: canvas.room };
-        return Err(MarkError::layout(index, &chart.name, error));
+        return Err(MarkError::layout(error));
     }
     let center = Point::new(m + width / 2.0, canvas.top() + canvas.room / 2.0);
     let to_px = |z: [f64; 2]| Point::new(center.x + radius * z[0], center.y - radius * z[1]);
@@ -213,7 +198,7 @@ impl Technique for HypertreeOptions {
     }
 
     fn draw(&self, cx: &ChartContext<'_>) -> Result<ChartOutput, MarkError> {
-        draw(&cx.chart, self, cx.index, cx.table, cx.view.unwrap_or(&Mobius::identity()))
+        draw(&cx.chart, self, cx.table, cx.view.unwrap_or(&Mobius::identity()))
     }
 
     fn colour_encodings(&self) -> Vec<ColourSpec> {

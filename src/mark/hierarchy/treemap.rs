@@ -28,12 +28,12 @@ const MIN_CELL_AREA: f64 = 120.0;
 const MIN_LABEL_SIZE: f64 = crate::guide::theme::MIN_TEXT_SIZE;
 
 /// Draw a treemap.
-pub fn draw(chart: &Chart, options: &TreemapOptions, index: usize, table: &Table) -> Result<ChartOutput, MarkError> {
+pub fn draw(chart: &Chart, options: &TreemapOptions, table: &Table) -> Result<ChartOutput, MarkError> {
     let chart = &with_default_size(chart);
-    let tree = tree_of(chart, index, &options.tree, table)?;
-    let labels = labels_of(chart, index, &tree, options.label.as_deref(), table)?;
+    let tree = tree_of(chart, &options.tree, table)?;
+    let labels = labels_of(chart, &tree, options.label.as_deref(), table)?;
     let mut warnings = Vec::new();
-    let leaf_values = leaf_values(chart, index, options, &tree, table, &mut warnings)?;
+    let leaf_values = leaf_values(chart, options, &tree, table, &mut warnings)?;
     let h = &tree.hierarchy;
     let depths = h.depths();
     let limit = match options.depth {
@@ -44,9 +44,8 @@ pub fn draw(chart: &Chart, options: &TreemapOptions, index: usize, table: &Table
             let deepest = depths.iter().max().copied().unwrap_or(0);
             if limit < deepest {
                 warnings.push(Warning::from(format!(
-                    "chart \"{}\": {deepest} levels are too many to show in this size; the top {limit} are drawn \
-                     (set `depth` to choose)",
-                    chart.name
+                    "{deepest} levels are too many to show in this size; the top {limit} are drawn \
+                     (set `depth` to choose)"
                 )));
             }
             limit
@@ -54,7 +53,7 @@ pub fn draw(chart: &Chart, options: &TreemapOptions, index: usize, table: &Table
     };
     let shown_leaf = |node: usize| h.is_leaf(node) || depths[node] == limit;
 
-    let fill = Fill::new(chart, index, options, table, (&tree, &labels), (&depths, limit))?;
+    let fill = Fill::new(chart, options, table, (&tree, &labels), (&depths, limit))?;
     let value_title = options.value.as_deref().map(|v| title_with_unit(v, options.unit.as_deref()));
     let mut chart = chart.clone();
     let leaves = (0..h.len()).filter(|&n| h.is_leaf(n)).count();
@@ -70,7 +69,7 @@ pub fn draw(chart: &Chart, options: &TreemapOptions, index: usize, table: &Table
     let bounds = Cell::new(m, canvas.top(), canvas.width - m - canvas.legend_room(), canvas.top() + canvas.room);
     if bounds.width() < 60.0 || bounds.height() < 60.0 {
         let error = LayoutError::TooSmall { plot_width: bounds.width(), plot_height: bounds.height() };
-        return Err(MarkError::layout(index, &chart.name, error));
+        return Err(MarkError::layout(error));
     }
     let header = if options.headers.unwrap_or(true) { (theme.label_size * 1.45).round() } else { 0.0 };
     let tiling_options = TilingOptions {
@@ -84,19 +83,17 @@ pub fn draw(chart: &Chart, options: &TreemapOptions, index: usize, table: &Table
         ..TilingOptions::default()
     };
     let map = tiling::layout(h, &leaf_values, bounds, &tiling_options)
-        .map_err(|e| MarkError::at(index, &["padding"], format!("chart \"{}\": {e}", chart.name), ""))?;
+        .map_err(|e| MarkError::at(&["padding"], format!("{e}"), ""))?;
     if map.weights.invalid() > 0 {
         warnings.push(Warning::from(format!(
-            "chart \"{}\": {} leaves have negative or missing values; they count as 0 and are not drawn",
-            chart.name,
+            "{} leaves have negative or missing values; they count as 0 and are not drawn",
             map.weights.invalid()
         )));
     }
     if map.values[h.root()] <= 0.0 {
         return Err(MarkError::at(
-            index,
             &["value"],
-            format!("chart \"{}\": the leaves' values add up to 0, so there is nothing to draw", chart.name),
+            format!("the leaves' values add up to 0, so there is nothing to draw"),
             "check the `value` column: sizes must be positive numbers",
         ));
     }
@@ -161,7 +158,6 @@ fn auto_depth(h: &crate::layout::hierarchy::Hierarchy, depths: &[u32], max_cells
 /// that the leaf sums override.
 fn leaf_values(
     chart: &Chart,
-    index: usize,
     options: &TreemapOptions,
     tree: &Tree,
     table: &Table,
@@ -169,8 +165,8 @@ fn leaf_values(
 ) -> Result<Vec<f64>, MarkError> {
     let h = &tree.hierarchy;
     let Some(field) = options.value.as_deref() else { return Ok(vec![1.0; h.len()]) };
-    let column = encode::column(chart, index, "value", field, table)?;
-    encode::require_numeric(chart, index, "value", column, "a treemap's area", "size rectangles by a numeric column")?;
+    let column = encode::column(chart, "value", field, table)?;
+    encode::require_numeric("value", column, "a treemap's area", "size rectangles by a numeric column")?;
     let values = tree.values_of(column);
     let sums =
         h.sum_leaves(&values.iter().map(|v| if v.is_finite() && *v > 0.0 { *v } else { 0.0 }).collect::<Vec<_>>());
@@ -181,9 +177,8 @@ fn leaf_values(
         .count();
     if overridden > 0 {
         warnings.push(Warning::from(format!(
-            "chart \"{}\": {overridden} inner nodes have a `{field}` that differs from the sum of their leaves; \
-             areas use the leaf sums",
-            chart.name
+            "{overridden} inner nodes have a `{field}` that differs from the sum of their leaves; \
+             areas use the leaf sums"
         )));
     }
     Ok(values)
@@ -207,7 +202,6 @@ enum FillMode {
 impl Fill {
     fn new(
         chart: &Chart,
-        index: usize,
         options: &TreemapOptions,
         table: &Table,
         (tree, labels): (&Tree, &[String]),
@@ -221,22 +215,22 @@ impl Fill {
         let (mode, legend) = if options.color.is_some() {
             let rows: Vec<u32> = shown_leaves.iter().filter_map(|&n| tree.rows[n]).collect();
             let (encoding, legend) =
-                encode::color_encoding(chart, index, options.color.as_ref(), None, table, &rows, Symbol::Square)?;
+                encode::color_encoding(chart, options.color.as_ref(), None, table, &rows, Symbol::Square)?;
             (FillMode::Column(encoding, tree.rows.clone()), legend)
         } else {
             match options.color_by.unwrap_or(TreemapColor::Branch) {
                 TreemapColor::Branch => {
-                    palette = branch_palette(index, options.scheme.as_deref(), branches.heads.len())?;
+                    palette = branch_palette(options.scheme.as_deref(), branches.heads.len())?;
                     (FillMode::Branch, branch_legend(&branches, labels, &palette))
                 }
                 TreemapColor::Depth => {
-                    let map = encode::continuous_map(index, &["scheme"], options.scheme.as_deref())?;
+                    let map = encode::continuous_map(&["scheme"], options.scheme.as_deref())?;
                     let deepest = shown_leaves.iter().map(|&n| depths[n]).max().unwrap_or(1).max(2) as f64;
                     let legend = Legend::ColorBar { title: "depth".into(), map: map.clone(), domain: (1.0, deepest) };
                     (FillMode::Depth(map, deepest), Some(legend))
                 }
                 TreemapColor::Value => {
-                    let map = encode::continuous_map(index, &["scheme"], options.scheme.as_deref())?;
+                    let map = encode::continuous_map(&["scheme"], options.scheme.as_deref())?;
                     let sums =
                         tree.hierarchy.sum_leaves(&match options.value.as_deref().and_then(|f| table.column(f)) {
                             Some(c) => tree.values_of(c).iter().map(|v| if *v > 0.0 { *v } else { 0.0 }).collect(),
@@ -369,7 +363,7 @@ impl Technique for TreemapOptions {
     }
 
     fn draw(&self, cx: &ChartContext<'_>) -> Result<ChartOutput, MarkError> {
-        draw(&cx.chart, self, cx.index, cx.table)
+        draw(&cx.chart, self, cx.table)
     }
 
     fn colour_encodings(&self) -> Vec<ColourSpec> {

@@ -40,30 +40,28 @@ pub fn arc_span(i: usize, k: usize) -> (f64, f64) {
 pub fn draw(
     chart: &Chart,
     options: &DaisyOptions,
-    index: usize,
     table: &Table,
     highlight: Option<&Highlight>,
 ) -> Result<ChartOutput, MarkError> {
     let chart = &with_default_size(chart);
-    let columns = encode::columns(chart, index, "columns", &options.columns, table)?;
+    let columns = encode::columns(chart, "columns", &options.columns, table)?;
     let fields: Vec<(&str, &Column)> = columns.iter().map(|(o, c)| (o.field.as_str(), *c)).collect();
-    let (rows, warnings) = encode::drawn_rows(chart, index, table, fields, options.color.as_ref())?;
+    let (rows, warnings) = encode::drawn_rows(chart, table, fields, options.color.as_ref())?;
     let n = rows.len();
     let (colors, color_legend) = encode::color_encoding(
         chart,
-        index,
         options.color.as_ref(),
         options.mark_color.as_deref(),
         table,
         &rows,
         Symbol::Line,
     )?;
-    let axes = encode::column_axes(chart, index, &columns, &rows)?;
+    let axes = encode::column_axes(&columns, &rows)?;
     let mut legends: Vec<Legend> = color_legend.into_iter().collect();
     legends.extend(highlight.map(|h| highlight::legend(h, &rows, Symbol::Line)));
     let canvas = frame::PanelCanvas::new(chart, legends);
     let theme = &canvas.theme;
-    let wheel = Wheel::lay_out(&canvas, &axes).map_err(|e| MarkError::layout(index, &chart.name, e))?;
+    let wheel = Wheel::lay_out(&canvas, &axes).map_err(|e| MarkError::layout(e))?;
 
     let k = columns.len();
     let positioners: Vec<Positioner> =
@@ -344,7 +342,7 @@ impl Technique for DaisyOptions {
     }
 
     fn draw(&self, cx: &ChartContext<'_>) -> Result<ChartOutput, MarkError> {
-        draw(&cx.chart, self, cx.index, cx.table, cx.highlight)
+        draw(&cx.chart, self, cx.table, cx.highlight)
     }
 
     fn colour_encodings(&self) -> Vec<ColourSpec> {

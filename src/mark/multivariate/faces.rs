@@ -35,23 +35,22 @@ pub const KEY_TITLE: &str = "Features";
 pub fn draw(
     chart: &Chart,
     options: &FacesOptions,
-    index: usize,
     table: &Table,
     highlight: Option<&Highlight>,
 ) -> Result<ChartOutput, MarkError> {
     let chart = &with_default_size(chart);
-    let (key, mapping) = feature_columns(chart, index, options)?;
+    let (key, mapping) = feature_columns(options)?;
     let mut numeric: Vec<(&str, &Column)> = Vec::new();
     for (_, field) in &mapping {
-        let col = encode::column(chart, index, key, field, table)?;
-        encode::require_numeric(chart, index, key, col, "a facial feature", "map a numeric column to the feature")?;
+        let col = encode::column(chart, key, field, table)?;
+        encode::require_numeric(key, col, "a facial feature", "map a numeric column to the feature")?;
         numeric.push((field.as_str(), col));
     }
     let label_col = match &options.label {
-        Some(field) => Some(encode::column(chart, index, "label", field, table)?),
+        Some(field) => Some(encode::column(chart, "label", field, table)?),
         None => None,
     };
-    let (rows, mut warnings) = encode::drawn_rows(chart, index, table, numeric.clone(), options.color.as_ref())?;
+    let (rows, mut warnings) = encode::drawn_rows(chart, table, numeric.clone(), options.color.as_ref())?;
 
     // Each column scaled over the drawn rows; a constant column leaves its feature neutral.
     let mut params = vec![FaceParams::neutral(); rows.len()];
@@ -60,11 +59,7 @@ pub fn draw(
         let values = encode::values_at(col, &rows);
         let (lo, hi) = encode::finite_extent(values.iter().copied()).unwrap_or((0.0, 0.0));
         if hi <= lo {
-            warnings.push(Warning::from(format!(
-                "chart \"{}\": column `{field}` is constant, so {} stays neutral",
-                chart.name,
-                feature.label()
-            )));
+            warnings.push(Warning::from(format!("column `{field}` is constant, so {} stays neutral", feature.label())));
         }
         for (p, v) in params.iter_mut().zip(&values) {
             p.set(feature, if hi > lo { (v - lo) / (hi - lo) } else { 0.5 });
@@ -74,7 +69,7 @@ pub fn draw(
     }
 
     let (colors, color_legend) =
-        encode::color_encoding(chart, index, options.color.as_ref(), None, table, &rows, Symbol::Circle)?;
+        encode::color_encoding(chart, options.color.as_ref(), None, table, &rows, Symbol::Circle)?;
     let mut legends: Vec<Legend> = color_legend.into_iter().collect();
     legends.extend(highlight.map(|h| highlight::legend(h, &rows, Symbol::Circle)));
     if options.key.unwrap_or(true) {
@@ -84,16 +79,14 @@ pub fn draw(
     let theme = canvas.theme.clone();
     let grid = FaceGrid::lay_out(&canvas, rows.len(), options.per_row).map_err(|e| match e {
         LayoutError::TooSmall { plot_width, .. } if plot_width > 0.0 => MarkError::at(
-            index,
             &["size"],
             format!(
-                "chart \"{}\": {} faces would be {plot_width:.0} px each, too small to read (at least {MIN_FACE} px)",
-                chart.name,
+                "{} faces would be {plot_width:.0} px each, too small to read (at least {MIN_FACE} px)",
                 rows.len()
             ),
             "make `size` larger, or draw fewer rows (faces suit tens of rows, not hundreds)",
         ),
-        e => MarkError::layout(index, &chart.name, e),
+        e => MarkError::layout(e),
     })?;
 
     let mut items = vec![canvas.background()];
@@ -162,42 +155,30 @@ type FeatureColumns = Vec<(Feature, String)>;
 
 /// The spec key the mapping comes from (`columns` or `features`) and (feature, column) per
 /// mapped feature: from `columns` in feature order, or from `features`.
-fn feature_columns(
-    chart: &Chart,
-    index: usize,
-    options: &FacesOptions,
-) -> Result<(&'static str, FeatureColumns), MarkError> {
+fn feature_columns(options: &FacesOptions) -> Result<(&'static str, FeatureColumns), MarkError> {
     match (&options.columns, &options.features) {
         (Some(_), Some(_)) => Err(MarkError::at(
-            index,
             &["features"],
-            format!("chart \"{}\": give `columns` or `features`, not both", chart.name),
+            format!("give `columns` or `features`, not both"),
             "`columns` assigns features in order; `features` names them",
         )),
         (None, None) => Err(MarkError::at(
-            index,
             &[],
-            format!("chart \"{}\": faces need `columns` or `features`", chart.name),
+            format!("faces need `columns` or `features`"),
             "e.g. `columns = [\"mpg\", \"hp\", \"weight\"]` or `features = { mouth_curvature = \"mpg\" }`",
         )),
         (Some(columns), None) => {
             if columns.len() > MAX_COLUMNS {
                 return Err(MarkError::at(
-                    index,
                     &["columns"],
-                    format!(
-                        "chart \"{}\": {} columns given; faces show at most {MAX_COLUMNS}",
-                        chart.name,
-                        columns.len()
-                    ),
+                    format!("{} columns given; faces show at most {MAX_COLUMNS}", columns.len()),
                     "drop the least important columns, or use parallel coordinates for wide tables",
                 ));
             }
             if columns.is_empty() {
                 return Err(MarkError::at(
-                    index,
                     &["columns"],
-                    format!("chart \"{}\": `columns` is empty", chart.name),
+                    format!("`columns` is empty"),
                     "name at least one numeric column",
                 ));
             }
@@ -214,21 +195,15 @@ fn feature_columns(
             out.sort_by_key(|(f, _)| *f);
             if out.is_empty() {
                 return Err(MarkError::at(
-                    index,
                     &["features"],
-                    format!("chart \"{}\": `features` maps no column", chart.name),
+                    format!("`features` maps no column"),
                     "e.g. `features = { mouth_curvature = \"mpg\" }`",
                 ));
             }
             if out.len() > MAX_COLUMNS {
                 return Err(MarkError::at(
-                    index,
                     &["features"],
-                    format!(
-                        "chart \"{}\": {} features mapped; faces show at most {MAX_COLUMNS} columns",
-                        chart.name,
-                        out.len()
-                    ),
+                    format!("{} features mapped; faces show at most {MAX_COLUMNS} columns", out.len()),
                     "leave one feature neutral",
                 ));
             }
@@ -288,7 +263,7 @@ impl Technique for FacesOptions {
     }
 
     fn draw(&self, cx: &ChartContext<'_>) -> Result<ChartOutput, MarkError> {
-        draw(&cx.chart, self, cx.index, cx.table, cx.highlight)
+        draw(&cx.chart, self, cx.table, cx.highlight)
     }
 
     fn colour_encodings(&self) -> Vec<ColourSpec> {

@@ -27,15 +27,14 @@ pub(super) const DEFAULT_SIZE: [f64; 2] = [820.0, 440.0];
 pub fn draw(
     chart: &Chart,
     options: &ParallelOptions,
-    index: usize,
     table: &Table,
     highlight: Option<&Highlight>,
 ) -> Result<ChartOutput, MarkError> {
     let chart = &with_default_size(chart);
-    let mut columns = encode::columns(chart, index, "columns", &options.columns, table)?;
-    let inverted = inverted_columns(chart, index, options, &columns)?;
+    let mut columns = encode::columns(chart, "columns", &options.columns, table)?;
+    let inverted = inverted_columns(options, &columns)?;
     let fields: Vec<(&str, &Column)> = columns.iter().map(|(o, c)| (o.field.as_str(), *c)).collect();
-    let (rows, warnings) = encode::drawn_rows(chart, index, table, fields, options.color.as_ref())?;
+    let (rows, warnings) = encode::drawn_rows(chart, table, fields, options.color.as_ref())?;
     if options.order == Some(AxisOrder::Correlation) {
         let values: Vec<Option<Vec<f64>>> =
             columns.iter().map(|(_, c)| c.numbers().map(|_| encode::values_at(c, &rows))).collect();
@@ -46,22 +45,20 @@ pub fn draw(
     let n = rows.len();
     let (colors, color_legend) = encode::color_encoding(
         chart,
-        index,
         options.color.as_ref(),
         options.mark_color.as_deref(),
         table,
         &rows,
         Symbol::Line,
     )?;
-    let mut axes = encode::column_axes(chart, index, &columns, &rows)?;
+    let mut axes = encode::column_axes(&columns, &rows)?;
     if options.shared_scale == Some(true) {
         share_domain(&mut axes);
     }
     let mut legends: Vec<Legend> = color_legend.into_iter().collect();
     legends.extend(highlight.map(|h| highlight::legend(h, &rows, Symbol::Line)));
     let canvas = frame::PanelCanvas::new(chart, legends);
-    let layout =
-        AxesLayout::lay_out(&canvas, &axes, &inverted).map_err(|e| MarkError::layout(index, &chart.name, e))?;
+    let layout = AxesLayout::lay_out(&canvas, &axes, &inverted).map_err(|e| MarkError::layout(e))?;
 
     let opacity = options.opacity.unwrap_or_else(|| line_opacity(n));
     let width = options.stroke_width.unwrap_or(if n > 1_000 { 1.0 } else { 1.4 });
@@ -99,8 +96,6 @@ pub fn draw(
 
 /// The columns named in `invert`, each checked against `columns`.
 fn inverted_columns(
-    chart: &Chart,
-    index: usize,
     options: &ParallelOptions,
     columns: &[(ChannelOptions, &Column)],
 ) -> Result<Vec<String>, MarkError> {
@@ -110,9 +105,8 @@ fn inverted_columns(
         if !fields.contains(&name.as_str()) {
             let hint = crate::spec::suggest::hint(name, &fields, "axes", false);
             return Err(MarkError::at(
-                index,
                 &["invert"],
-                format!("chart \"{}\": `invert` names `{name}`, which is not one of the axes", chart.name),
+                format!("`invert` names `{name}`, which is not one of the axes"),
                 hint,
             ));
         }
@@ -340,7 +334,7 @@ impl Technique for ParallelOptions {
     }
 
     fn draw(&self, cx: &ChartContext<'_>) -> Result<ChartOutput, MarkError> {
-        draw(&cx.chart, self, cx.index, cx.table, cx.highlight)
+        draw(&cx.chart, self, cx.table, cx.highlight)
     }
 
     fn colour_encodings(&self) -> Vec<ColourSpec> {

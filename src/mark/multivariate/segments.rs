@@ -36,19 +36,18 @@ const NAN_COLOR: Color = Color::rgb(0xd9, 0xd9, 0xd9);
 pub fn draw(
     chart: &Chart,
     options: &SegmentsOptions,
-    index: usize,
     table: &Table,
     highlight: Option<&Highlight>,
 ) -> Result<ChartOutput, MarkError> {
     let chart = &with_default_size(chart);
-    let columns = encode::columns(chart, index, "columns", &options.columns, table)?;
+    let columns = encode::columns(chart, "columns", &options.columns, table)?;
     for (_, col) in &columns {
-        encode::require_numeric(chart, index, "columns", col, "a circle segment", "colour pixels by numeric columns")?;
+        encode::require_numeric("columns", col, "a circle segment", "colour pixels by numeric columns")?;
     }
     if table.rows == 0 {
-        return Err(encode::no_rows(chart, index, table, None));
+        return Err(encode::no_rows(chart, table, None));
     }
-    let order = row_order(chart, index, options, table)?;
+    let order = row_order(chart, options, table)?;
     let mut warnings = Vec::new();
 
     // Per column: values in row order, scaled to [0, 1]; missing cells stay NaN (their pixels
@@ -67,13 +66,9 @@ pub fn draw(
             SegmentScale::Shared => shared.unwrap_or((0.0, 1.0)),
         };
         if extent.is_none() {
-            warnings
-                .push(Warning::from(format!("chart \"{}\": column `{}` has no finite values", chart.name, opts.field)));
+            warnings.push(Warning::from(format!("column `{}` has no finite values", opts.field)));
         } else if hi <= lo {
-            warnings.push(Warning::from(format!(
-                "chart \"{}\": column `{}` is constant; its segment is one colour",
-                chart.name, opts.field
-            )));
+            warnings.push(Warning::from(format!("column `{}` is constant; its segment is one colour", opts.field)));
         }
         let span = if hi > lo { hi - lo } else { 1.0 };
         scaled.push(
@@ -92,10 +87,10 @@ pub fn draw(
         );
     }
 
-    let map = encode::continuous_map(index, &["scheme"], options.scheme.as_deref())?;
+    let map = encode::continuous_map(&["scheme"], options.scheme.as_deref())?;
     let nan = match &options.nan_color {
         Some(s) => parse_color(s).ok_or_else(|| {
-            MarkError::at(index, &["nan_color"], format!("`{s}` is not a colour"), "use a CSS colour name or `#rrggbb`")
+            MarkError::at(&["nan_color"], format!("`{s}` is not a colour"), "use a CSS colour name or `#rrggbb`")
         })?,
         None => NAN_COLOR,
     };
@@ -142,7 +137,7 @@ pub fn draw(
         .enumerate()
         .map(|(s, (title, range))| (mid_angle(s, labels.len()), Disk::label_width(title, range.as_deref(), theme)))
         .collect();
-    let disk = Disk::lay_out(&canvas, &widths).map_err(|e| MarkError::layout(index, &chart.name, e))?;
+    let disk = Disk::lay_out(&canvas, &widths).map_err(|e| MarkError::layout(e))?;
     let layout = SegmentLayout::new(disk.diameter, columns.len());
     let value_refs: Vec<&[f64]> = scaled.iter().map(Vec::as_slice).collect();
     let to_rgba = |t: f64| {
@@ -194,10 +189,10 @@ pub fn draw(
 
 /// Table rows in drawing order: sorted by `order_by` (stable; missing values last), or as
 /// given.
-fn row_order(chart: &Chart, index: usize, options: &SegmentsOptions, table: &Table) -> Result<Vec<u32>, MarkError> {
+fn row_order(chart: &Chart, options: &SegmentsOptions, table: &Table) -> Result<Vec<u32>, MarkError> {
     let mut order: Vec<u32> = (0..table.rows as u32).collect();
     let Some(field) = &options.order_by else { return Ok(order) };
-    let col: &Column = encode::column(chart, index, "order_by", field, table)?;
+    let col: &Column = encode::column(chart, "order_by", field, table)?;
     let descending = options.descending == Some(true);
     if let Some(values) = col.numbers() {
         // Sort (value, row) pairs: no lookups inside the comparisons, and a stable parallel
@@ -346,7 +341,7 @@ impl Technique for SegmentsOptions {
     }
 
     fn draw(&self, cx: &ChartContext<'_>) -> Result<ChartOutput, MarkError> {
-        draw(&cx.chart, self, cx.index, cx.table, cx.highlight)
+        draw(&cx.chart, self, cx.table, cx.highlight)
     }
 
     fn scheme(&self) -> Option<&str> {

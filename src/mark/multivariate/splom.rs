@@ -37,16 +37,13 @@ const DENSITY_BIN_PX: f64 = 3.0;
 pub fn draw(
     chart: &Chart,
     options: &SplomOptions,
-    index: usize,
     table: &Table,
     highlight: Option<&Highlight>,
 ) -> Result<ChartOutput, MarkError> {
     let chart = &with_default_size(chart);
-    let columns = encode::columns(chart, index, "columns", &options.columns, table)?;
+    let columns = encode::columns(chart, "columns", &options.columns, table)?;
     for (_, col) in &columns {
         encode::require_numeric(
-            chart,
-            index,
             "columns",
             col,
             "a scatter-plot matrix",
@@ -54,7 +51,7 @@ pub fn draw(
         )?;
     }
     let fields: Vec<(&str, &Column)> = columns.iter().map(|(o, c)| (o.field.as_str(), *c)).collect();
-    let (rows, mut warnings) = encode::drawn_rows(chart, index, table, fields, options.color.as_ref())?;
+    let (rows, mut warnings) = encode::drawn_rows(chart, table, fields, options.color.as_ref())?;
     let n = rows.len();
     let density = match options.mode.unwrap_or(SplomMode::Auto) {
         SplomMode::Points => false,
@@ -62,15 +59,11 @@ pub fn draw(
         SplomMode::Auto => n > AUTO_DENSITY_ROWS,
     };
     if density && options.color.is_some() {
-        warnings.push(Warning::from(format!(
-            "chart \"{}\": `color` is not drawn in density mode (bins count rows of every colour)",
-            chart.name
-        )));
+        warnings.push(Warning::from(format!("`color` is not drawn in density mode (bins count rows of every colour)")));
     }
 
     let (colors, color_legend) = encode::color_encoding(
         chart,
-        index,
         options.color.as_ref().filter(|_| !density),
         options.mark_color.as_deref(),
         table,
@@ -83,7 +76,7 @@ pub fn draw(
 
     let mut axes = Vec::with_capacity(columns.len());
     for (opts, col) in &columns {
-        let mut axis = encode::position_axis(chart, index, "columns", opts, col, &rows)?;
+        let mut axis = encode::position_axis("columns", opts, col, &rows)?;
         axis.inset = radius + 1.0;
         // Small multiples: the data's extent plus a margin, so end ticks sit inside the cells
         // rather than on the edges where neighbouring labels would meet.
@@ -105,7 +98,7 @@ pub fn draw(
     legends.extend(highlight.map(|h| highlight::legend(h, &rows, Symbol::Circle)));
     let mut canvas = frame::PanelCanvas::new(chart, legends);
     let theme = canvas.theme.clone();
-    let grid = Grid::lay_out(&canvas, &axes).map_err(|e| MarkError::layout(index, &chart.name, e))?;
+    let grid = Grid::lay_out(&canvas, &axes).map_err(|e| MarkError::layout(e))?;
     let layout = options.layout.unwrap_or(MatrixLayout::Full);
     let shown = |i: usize, j: usize| match layout {
         MatrixLayout::Full => true,
@@ -189,7 +182,7 @@ pub fn draw(
             }
         }
     }
-    warnings.extend((frame::raster_note(chart, &items)).into_iter().map(Warning::from));
+    warnings.extend((frame::raster_note(&items)).into_iter().map(Warning::from));
     let fields: Vec<&str> = columns.iter().map(|(o, _)| o.field.as_str()).collect();
     items.extend(grid.axes(&axes, &fields, layout, &theme));
     if !diagonals.is_empty() {
@@ -659,7 +652,7 @@ impl Technique for SplomOptions {
     }
 
     fn draw(&self, cx: &ChartContext<'_>) -> Result<ChartOutput, MarkError> {
-        draw(&cx.chart, self, cx.index, cx.table, cx.highlight)
+        draw(&cx.chart, self, cx.table, cx.highlight)
     }
 
     fn colour_encodings(&self) -> Vec<ColourSpec> {

@@ -19,7 +19,6 @@ pub(super) const DEFAULT_SIZE: [f64; 2] = [760.0, 620.0];
 pub fn draw(
     chart: &Chart,
     options: &GraphOptions,
-    index: usize,
     table: &Table,
     nodes: Option<&Table>,
 ) -> Result<ChartOutput, MarkError> {
@@ -27,7 +26,7 @@ pub fn draw(
     let channels = (options.source.as_str(), options.target.as_str(), options.weight.as_deref());
     let layout = options.layout.unwrap_or(GraphLayout::Force);
     let keep_isolated = layout != GraphLayout::Given;
-    let input = network_of(chart, index, channels, (options.nodes.as_ref(), keep_isolated), table, nodes)?;
+    let input = network_of(chart, channels, (options.nodes.as_ref(), keep_isolated), table, nodes)?;
     let look = Look {
         layout,
         seed: options.seed.unwrap_or(1),
@@ -40,7 +39,7 @@ pub fn draw(
         fade: (0.25, false),
         nodes: options.nodes.as_ref(),
     };
-    draw_network(chart, index, input, &look)
+    draw_network(chart, input, &look)
 }
 
 /// `kind = "graph"`.
@@ -55,7 +54,7 @@ impl Technique for GraphOptions {
     }
 
     fn draw(&self, cx: &ChartContext<'_>) -> Result<ChartOutput, MarkError> {
-        draw(&cx.chart, self, cx.index, cx.table, cx.nodes)
+        draw(&cx.chart, self, cx.table, cx.nodes)
     }
 
     fn scheme(&self) -> Option<&str> {

@@ -33,14 +33,13 @@ const EMPTY_CELL: Color = Color::rgb(0xf3, 0xf3, 0xf3);
 pub fn draw(
     chart: &Chart,
     options: &LinkmapOptions,
-    index: usize,
     table: &Table,
     nodes: Option<&Table>,
 ) -> Result<ChartOutput, MarkError> {
     let mode = options.mode.unwrap_or(LinkMode::Links);
     let chart = &with_default_size(chart);
     let channels = (options.source.as_str(), options.target.as_str(), Some(options.weight.as_str()));
-    let input = network_of(chart, index, channels, (options.nodes.as_ref(), false), table, nodes)?;
+    let input = network_of(chart, channels, (options.nodes.as_ref(), false), table, nodes)?;
     match mode {
         LinkMode::Links => {
             let look = Look {
@@ -55,27 +54,21 @@ pub fn draw(
                 fade: (0.0, true),
                 nodes: options.nodes.as_ref(),
             };
-            draw_network(chart, index, input, &look)
+            draw_network(chart, input, &look)
         }
-        LinkMode::Matrix => draw_matrix(chart, options, index, input),
+        LinkMode::Matrix => draw_matrix(chart, options, input),
     }
 }
 
 /// The adjacency matrix: row = source, column = target, in clustering order.
-fn draw_matrix(
-    chart: &Chart,
-    options: &LinkmapOptions,
-    index: usize,
-    input: NetworkInput,
-) -> Result<ChartOutput, MarkError> {
+fn draw_matrix(chart: &Chart, options: &LinkmapOptions, input: NetworkInput) -> Result<ChartOutput, MarkError> {
     let network = &input.network;
     let n = network.node_count();
     let pairs = network.edge_pairs();
     let weights = network.weights();
     let weighted: Vec<(u32, u32, f64)> = pairs.iter().zip(&weights).map(|(&(s, t), &w)| (s, t, w)).collect();
-    let order = cluster_order(n, &weighted).map_err(|e| {
-        MarkError::at(index, &["mode"], format!("chart \"{}\": {e}", chart.name), "use `mode = \"links\"`")
-    })?;
+    let order =
+        cluster_order(n, &weighted).map_err(|e| MarkError::at(&["mode"], format!("{e}"), "use `mode = \"links\"`"))?;
     let mut slot = vec![0usize; n];
     for (k, &node) in order.iter().enumerate() {
         slot[node] = k;
@@ -86,7 +79,7 @@ fn draw_matrix(
         let cell = cells.entry((slot[s as usize], slot[t as usize])).or_insert((0.0, e.weight.row));
         cell.0 += w;
     }
-    let map = encode::continuous_map(index, &["scheme"], Some(options.scheme.as_deref().unwrap_or(DEFAULT_SCHEME)))?;
+    let map = encode::continuous_map(&["scheme"], Some(options.scheme.as_deref().unwrap_or(DEFAULT_SCHEME)))?;
     let (lo, hi) = encode::finite_extent(cells.values().map(|c| c.0)).unwrap_or((0.0, 1.0));
     let (lo, hi) = if hi > lo { (lo, hi) } else { (lo - 0.5, hi + 0.5) };
     let legend = Legend::ColorBar {
@@ -113,7 +106,7 @@ fn draw_matrix(
     let side = cell * n as f64;
     if side_room < 40.0 {
         let error = LayoutError::TooSmall { plot_width: width, plot_height: canvas.room };
-        return Err(MarkError::layout(index, &chart.name, error));
+        return Err(MarkError::layout(error));
     }
     let show_labels = cell >= label_size * 0.9;
     let offset = if show_labels { widest + 6.0 } else { 0.0 };
@@ -176,7 +169,7 @@ impl Technique for LinkmapOptions {
     }
 
     fn draw(&self, cx: &ChartContext<'_>) -> Result<ChartOutput, MarkError> {
-        draw(&cx.chart, self, cx.index, cx.table, cx.nodes)
+        draw(&cx.chart, self, cx.table, cx.nodes)
     }
 
     fn scheme(&self) -> Option<&str> {

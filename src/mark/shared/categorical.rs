@@ -99,8 +99,6 @@ fn quoted(labels: &[String]) -> String {
 /// from `range` (parsed colours; fewer colours than categories in that order is an error) or
 /// from the `scheme` palette, which repeats when there are more categories than colours.
 pub fn assign(
-    chart: &Chart,
-    index: usize,
     options: &ColorOptions,
     categories: &Categories,
     rows: &[u32],
@@ -115,11 +113,9 @@ pub fn assign(
             used.iter().filter(|l| *l != MISSING_LABEL && !order.contains(*l)).cloned().collect();
         if !outside.is_empty() {
             return Err(MarkError::at(
-                index,
                 &["color", "domain"],
                 format!(
-                    "chart \"{}\": {} of column `{}` {} not in the colour `domain`",
-                    chart.name,
+                    "{} of column `{}` {} not in the colour `domain`",
                     quoted(&outside),
                     options.field,
                     if outside.len() == 1 { "is" } else { "are" }
@@ -130,8 +126,8 @@ pub fn assign(
         }
     }
     let colours = match &options.range {
-        Some(range) => parsed_range(chart, index, range, order.len())?,
-        None => palette(index, &["color", "scheme"], options.scheme.as_deref())?,
+        Some(range) => parsed_range(range, order.len())?,
+        None => palette(&["color", "scheme"], options.scheme.as_deref())?,
     };
     let colour_at = |i: usize| colours.get(i % colours.len().max(1)).copied().unwrap_or(MISSING_COLOR);
     let colour_of = |level: &str| order.iter().position(|l| l == level).map(colour_at).unwrap_or(MISSING_COLOR);
@@ -143,14 +139,13 @@ pub fn assign(
 }
 
 /// The colours of a `range`: each parsed, and at least `needed` of them.
-fn parsed_range(chart: &Chart, index: usize, range: &[String], needed: usize) -> Result<Vec<Color>, MarkError> {
+fn parsed_range(range: &[String], needed: usize) -> Result<Vec<Color>, MarkError> {
     let mut colours = Vec::with_capacity(range.len());
     for (i, s) in range.iter().enumerate() {
         let c = color::parse_color(s).ok_or_else(|| {
             let mut e = MarkError::at(
-                index,
                 &["color", "range"],
-                format!("chart \"{}\": `{}` in the colour `range` is not a colour", chart.name, s),
+                format!("`{}` in the colour `range` is not a colour", s),
                 "use a hex colour such as \"#1f77b4\" or a CSS colour name such as \"steelblue\"",
             );
             e.path.push(crate::spec::PathSeg::Index(i));
@@ -160,11 +155,9 @@ fn parsed_range(chart: &Chart, index: usize, range: &[String], needed: usize) ->
     }
     if colours.len() < needed {
         return Err(MarkError::at(
-            index,
             &["color", "range"],
             format!(
-                "chart \"{}\": the colour `range` has {} colour{} for {needed} categories",
-                chart.name,
+                "the colour `range` has {} colour{} for {needed} categories",
                 colours.len(),
                 if colours.len() == 1 { "" } else { "s" }
             ),

@@ -19,30 +19,28 @@ pub const MISSING_COLOR: Color = Color::rgb(0xa0, 0xa0, 0xa0);
 pub const DEFAULT_MARK_COLOR: Color = Color::rgb(0x00, 0x72, 0xb2);
 
 /// The message and hint for a column name that is not in the table.
-pub fn missing_column(chart: &str, data: &str, field: &str, table: &Table) -> (String, String) {
+pub fn missing_column(data: &str, field: &str, table: &Table) -> (String, String) {
     let names = table.column_names();
-    let message = format!("chart \"{chart}\": data \"{data}\" has no column `{field}`");
+    let message = format!("data \"{data}\" has no column `{field}`");
     (message, crate::spec::suggest::hint(field, &names, "columns", true))
 }
 
 /// The column a channel names, or an error pointing at the channel's key.
 pub fn column<'t>(
     chart: &crate::spec::Chart,
-    index: usize,
     key: &str,
     field: &str,
     table: &'t Table,
 ) -> Result<&'t Column, MarkError> {
     table.column(field).ok_or_else(|| {
-        let (message, hint) = missing_column(&chart.name, &chart.data, field, table);
-        MarkError::at(index, &[key], message, hint)
+        let (message, hint) = missing_column(&chart.data, field, table);
+        MarkError::at(&[key], message, hint)
     })
 }
 
 /// The columns of a list-of-channels key (`columns` of splom, parallel, ...) with their options.
 pub fn columns<'t>(
     chart: &crate::spec::Chart,
-    index: usize,
     key: &str,
     channels: &[crate::spec::Channel],
     table: &'t Table,
@@ -51,30 +49,18 @@ pub fn columns<'t>(
         .iter()
         .map(|c| {
             let options = c.options();
-            let col = column(chart, index, key, &options.field, table)?;
+            let col = column(chart, key, &options.field, table)?;
             Ok((options, col))
         })
         .collect()
 }
 
 /// An error unless `column` is numeric; `what` names what needs the numbers.
-pub fn require_numeric(
-    chart: &crate::spec::Chart,
-    index: usize,
-    key: &str,
-    column: &Column,
-    what: &str,
-    hint: &str,
-) -> Result<(), MarkError> {
+pub fn require_numeric(key: &str, column: &Column, what: &str, hint: &str) -> Result<(), MarkError> {
     if column.numbers().is_some() {
         return Ok(());
     }
-    Err(MarkError::at(
-        index,
-        &[key],
-        format!("chart \"{}\": column `{}` holds text; {what} needs numbers", chart.name, column.name),
-        hint,
-    ))
+    Err(MarkError::at(&[key], format!("column `{}` holds text; {what} needs numbers", column.name), hint))
 }
 
 /// Rows whose numeric channel values are all finite, plus the warning that counts the rest.
@@ -135,7 +121,6 @@ pub fn log_fields<'a>(channels: &[&'a ChannelOptions]) -> Vec<&'a str> {
 /// no-rows error when none is left.
 pub fn drawn_rows<'a>(
     chart: &crate::spec::Chart,
-    index: usize,
     table: &'a Table,
     mut numeric: Vec<(&'a str, &'a Column)>,
     color: Option<&'a ColorChannel>,
@@ -149,28 +134,26 @@ pub fn drawn_rows<'a>(
     let (rows, warning) = finite_rows(&chart.name, table.rows, &numeric);
     let warnings: Vec<Warning> = warning.into_iter().collect();
     if rows.is_empty() {
-        return Err(no_rows(chart, index, table, warnings.first()));
+        return Err(no_rows(chart, table, warnings.first()));
     }
     Ok((rows, warnings))
 }
 
 /// The error for a chart left with no rows: an empty table, or every row dropped by the
 /// non-finite policy (`dropped` is that warning, which names the columns).
-pub fn no_rows(chart: &crate::spec::Chart, index: usize, table: &Table, dropped: Option<&Warning>) -> MarkError {
+pub fn no_rows(chart: &crate::spec::Chart, table: &Table, dropped: Option<&Warning>) -> MarkError {
     if table.rows == 0 {
         return MarkError::at(
-            index,
             &["data"],
-            format!("chart \"{}\": data \"{}\" has no rows", chart.name, chart.data),
+            format!("data \"{}\" has no rows", chart.data),
             "the source has a header but no records; check the file",
         );
     }
     let why =
         dropped.and_then(Warning::what_rows_lack).map(|lack| format!(": every row has {lack}")).unwrap_or_default();
     MarkError::at(
-        index,
         &[],
-        format!("chart \"{}\": no rows left to plot out of {}{why}", chart.name, table.rows),
+        format!("no rows left to plot out of {}{why}", table.rows),
         "rows with missing or non-finite values in the charted columns are dropped; check those columns",
     )
 }
@@ -212,8 +195,6 @@ pub fn finite_extent(values: impl IntoIterator<Item = f64>) -> Option<(f64, f64)
 
 /// Resolve a positional axis from a channel, its column and the kept rows.
 pub fn position_axis(
-    chart: &crate::spec::Chart,
-    index: usize,
     key: &str,
     options: &ChannelOptions,
     column: &Column,
@@ -224,14 +205,8 @@ pub fn position_axis(
         (Some(ScaleKind::Band), _, _) | (None, true, _) => ScaleKind::Band,
         (Some(kind), true, _) => {
             return Err(MarkError::at(
-                index,
                 &[key, "scale"],
-                format!(
-                    "chart \"{}\": column `{}` holds text, which a {} scale cannot place",
-                    chart.name,
-                    options.field,
-                    scale_name(kind)
-                ),
+                format!("column `{}` holds text, which a {} scale cannot place", options.field, scale_name(kind)),
                 "use scale = \"band\" for categories, or a numeric column",
             ));
         }
@@ -247,9 +222,8 @@ pub fn position_axis(
             (None, Some(e)) => e,
             (None, None) => {
                 return Err(MarkError::at(
-                    index,
                     &[key],
-                    format!("chart \"{}\": column `{}` has no finite values to plot", chart.name, options.field),
+                    format!("column `{}` has no finite values to plot", options.field),
                     "check the column's contents; non-finite cells are dropped",
                 ));
             }
@@ -274,16 +248,8 @@ pub fn position_axis(
 
 /// One axis per entry of a `columns` list over the kept rows, whole-number columns ticked per
 /// integer (parallel coordinates, daisy charts).
-pub fn column_axes(
-    chart: &crate::spec::Chart,
-    index: usize,
-    columns: &[(ChannelOptions, &Column)],
-    rows: &[u32],
-) -> Result<Vec<PositionAxis>, MarkError> {
-    columns
-        .iter()
-        .map(|(opts, col)| Ok(integer_ticks(position_axis(chart, index, "columns", opts, col, rows)?, col, rows)))
-        .collect()
+pub fn column_axes(columns: &[(ChannelOptions, &Column)], rows: &[u32]) -> Result<Vec<PositionAxis>, MarkError> {
+    columns.iter().map(|(opts, col)| Ok(integer_ticks(position_axis("columns", opts, col, rows)?, col, rows))).collect()
 }
 
 /// For a column of few distinct whole numbers (counts, codes, years) on a linear axis without a
@@ -450,12 +416,11 @@ impl ColorEncoding {
 }
 
 /// A fixed mark colour from the spec (`mark_color`), or the default.
-pub fn fixed_color(index: usize, value: Option<&str>) -> Result<Color, MarkError> {
+pub fn fixed_color(value: Option<&str>) -> Result<Color, MarkError> {
     match value {
         None => Ok(DEFAULT_MARK_COLOR),
         Some(s) => color::parse_color(s).ok_or_else(|| {
             MarkError::at(
-                index,
                 &["mark_color"],
                 format!("`{s}` is not a colour"),
                 "use a CSS colour name such as \"steelblue\" or a hex colour such as \"#1f77b4\"",
@@ -465,19 +430,18 @@ pub fn fixed_color(index: usize, value: Option<&str>) -> Result<Color, MarkError
 }
 
 /// A categorical palette by name (default Okabe–Ito), or an error listing the names.
-pub fn palette(index: usize, keys: &[&str], name: Option<&str>) -> Result<Vec<Color>, MarkError> {
+pub fn palette(keys: &[&str], name: Option<&str>) -> Result<Vec<Color>, MarkError> {
     let name = name.unwrap_or(color::DEFAULT_CATEGORICAL);
     color::categorical(name).ok_or_else(|| {
         let names = color::categorical_names();
         let hint = crate::spec::suggest::hint(name, names, "categorical schemes", false);
-        MarkError::at(index, keys, format!("unknown categorical colour scheme `{name}`"), hint)
+        MarkError::at(keys, format!("unknown categorical colour scheme `{name}`"), hint)
     })
 }
 
 /// Build the colour encoding and its legend for a colour channel over the kept rows.
 pub fn color_encoding(
     chart: &crate::spec::Chart,
-    index: usize,
     channel: Option<&ColorChannel>,
     mark_color: Option<&str>,
     table: &Table,
@@ -485,25 +449,21 @@ pub fn color_encoding(
     symbol: Symbol,
 ) -> Result<(ColorEncoding, Option<Legend>), MarkError> {
     let Some(channel) = channel else {
-        return Ok((ColorEncoding::Fixed(fixed_color(index, mark_color)?), None));
+        return Ok((ColorEncoding::Fixed(fixed_color(mark_color)?), None));
     };
     let options = channel.options();
-    let col = column(chart, index, "color", &options.field, table)?;
+    let col = column(chart, "color", &options.field, table)?;
     let title = title_with_unit(options.title.as_deref().unwrap_or(&options.field), options.unit.as_deref());
     if options.r#type == Some(ColorType::Continuous) && col.categories().is_some() {
         return Err(MarkError::at(
-            index,
             &["color", "type"],
-            format!(
-                "chart \"{}\": column `{}` holds text and cannot be coloured continuously",
-                chart.name, options.field
-            ),
+            format!("column `{}` holds text and cannot be coloured continuously", options.field),
             "remove `type = \"continuous\"` or colour by a numeric column",
         ));
     }
     if categorical::is_categorical(&options, col) {
         let categories = categorical::categories_of(col);
-        let (colors, entries) = categorical::assign(chart, index, &options, &categories, rows)?;
+        let (colors, entries) = categorical::assign(&options, &categories, rows)?;
         let legend = Legend::Categorical { title, entries, symbol };
         let legend = shown_legends(legend, &options).pop();
         return Ok((ColorEncoding::Categorical { categories, colors }, legend));
@@ -511,18 +471,14 @@ pub fn color_encoding(
     if options.domain.is_some() || options.range.is_some() {
         let key = if options.domain.is_some() { "domain" } else { "range" };
         return Err(MarkError::at(
-            index,
             &["color", key],
-            format!(
-                "chart \"{}\": `{key}` sets categorical colours, but `{}` is coloured continuously",
-                chart.name, options.field
-            ),
+            format!("`{key}` sets categorical colours, but `{}` is coloured continuously", options.field),
             "remove `type = \"continuous\"` to colour the column's values as categories, or remove `domain` and \
              `range`",
         ));
     }
     let values = col.numbers().unwrap_or(&[]).to_vec();
-    let map = continuous_map(index, &["color", "scheme"], options.scheme.as_deref())?;
+    let map = continuous_map(&["color", "scheme"], options.scheme.as_deref())?;
     let (mut lo, mut hi) = extent(&values, rows).unwrap_or((0.0, 1.0));
     if map.is_diverging() {
         let mid = options.midpoint.unwrap_or((lo + hi) / 2.0);
@@ -562,7 +518,7 @@ pub fn color_domain(map: &ContinuousMap, zmin: f64, zmax: f64, midpoint: Option<
 }
 
 /// A continuous colour map by name (default viridis), or an error at `keys` listing the names.
-pub fn continuous_map(index: usize, keys: &[&str], name: Option<&str>) -> Result<ContinuousMap, MarkError> {
+pub fn continuous_map(keys: &[&str], name: Option<&str>) -> Result<ContinuousMap, MarkError> {
     let scheme = name.unwrap_or(color::DEFAULT_SEQUENTIAL);
     color::continuous(scheme).ok_or_else(|| {
         let names = color::continuous_names();
@@ -570,7 +526,7 @@ pub fn continuous_map(index: usize, keys: &[&str], name: Option<&str>) -> Result
         if let Some(note) = crate::spec::foreign::value(scheme) {
             hint = format!("{note}; {hint}");
         }
-        MarkError::at(index, keys, format!("unknown continuous colour scheme `{scheme}`"), hint)
+        MarkError::at(keys, format!("unknown continuous colour scheme `{scheme}`"), hint)
     })
 }
 

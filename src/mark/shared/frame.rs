@@ -15,7 +15,6 @@ use crate::spec::Chart;
 /// Lay out the frame of chart `index` around its axes and legends.
 pub fn cartesian(
     chart: &Chart,
-    index: usize,
     x: PositionAxis,
     y: PositionAxis,
     legends: Vec<Legend>,
@@ -33,7 +32,7 @@ pub fn cartesian(
         theme: theme.clone(),
         equal_aspect: chart.aspect == Some(crate::spec::Aspect::Equal),
     })
-    .map_err(|e| MarkError::layout(index, &chart.name, e))?;
+    .map_err(|e| MarkError::layout(e))?;
     Ok((frame, theme))
 }
 
@@ -48,7 +47,7 @@ pub fn scene(chart: &Chart, frame: Frame, theme: &Theme, marks: Vec<Item>) -> Sc
 
 /// The warning of a chart whose point batches are too large for vector output: how many points
 /// the SVG carries as embedded rasters (see [`PointBatch::drawn_as_raster`]); `None` when none.
-pub fn raster_note(chart: &Chart, items: &[Item]) -> Option<String> {
+pub fn raster_note(items: &[Item]) -> Option<String> {
     fn count(items: &[Item]) -> usize {
         items
             .iter()
@@ -62,8 +61,7 @@ pub fn raster_note(chart: &Chart, items: &[Item]) -> Option<String> {
     let points = count(items);
     (points > 0).then(|| {
         format!(
-            "chart \"{}\": {points} points drawn as an embedded raster in the SVG (more than {} in one layer)",
-            chart.name,
+            "{points} points drawn as an embedded raster in the SVG (more than {} in one layer)",
             PointBatch::VECTOR_LIMIT
         )
     })

@@ -31,21 +31,19 @@ pub struct GridInput<'t> {
 /// Read the grid named by the x, y and z channels of chart `index`.
 pub fn load_grid<'t>(
     chart: &Chart,
-    index: usize,
     x_opts: &ChannelOptions,
     y_opts: &ChannelOptions,
     z_opts: &ColorOptions,
     table: &'t Table,
 ) -> Result<GridInput<'t>, MarkError> {
-    let x_col = encode::column(chart, index, "x", &x_opts.field, table)?;
-    let y_col = encode::column(chart, index, "y", &y_opts.field, table)?;
-    let z_col = encode::column(chart, index, "z", &z_opts.field, table)?;
+    let x_col = encode::column(chart, "x", &x_opts.field, table)?;
+    let y_col = encode::column(chart, "y", &y_opts.field, table)?;
+    let z_col = encode::column(chart, "z", &z_opts.field, table)?;
     for (key, field, col) in [("x", &x_opts.field, x_col), ("y", &y_opts.field, y_col), ("z", &z_opts.field, z_col)] {
         if !col.is_numeric() {
             return Err(MarkError::at(
-                index,
                 &[key],
-                format!("chart \"{}\": column `{field}` holds {}; a grid needs numbers", chart.name, col.type_name()),
+                format!("column `{field}` holds {}; a grid needs numbers", col.type_name()),
                 "use numeric columns for x, y and z",
             ));
         }
@@ -53,7 +51,7 @@ pub fn load_grid<'t>(
     if let Some(grid) = grid_of_axes(x_col, y_col, z_col) {
         // A grid source's own coordinates: every row is a node, every coordinate finite.
         let Some((zmin, zmax)) = grid.range() else {
-            return Err(all_missing(chart, index, z_opts));
+            return Err(all_missing(z_opts));
         };
         let rows = (0..table.rows as u32).collect();
         return Ok(GridInput { grid, rows, warnings: Vec::new(), x_col, y_col, zmin, zmax });
@@ -63,22 +61,17 @@ pub fn load_grid<'t>(
         encode::finite_rows(&chart.name, table.rows, &[(x_opts.field.as_str(), x_col), (y_opts.field.as_str(), y_col)]);
     let warnings: Vec<Warning> = warning.into_iter().collect();
     if rows.is_empty() {
-        return Err(encode::no_rows(chart, index, table, warnings.first()));
+        return Err(encode::no_rows(chart, table, warnings.first()));
     }
-    let grid = grid_from_rows(chart, index, x_col, y_col, z_col, &rows)?;
+    let grid = grid_from_rows(x_col, y_col, z_col, &rows)?;
     let Some((zmin, zmax)) = grid.range() else {
-        return Err(all_missing(chart, index, z_opts));
+        return Err(all_missing(z_opts));
     };
     Ok(GridInput { grid, rows, warnings, x_col, y_col, zmin, zmax })
 }
 
-fn all_missing(chart: &Chart, index: usize, z_opts: &ColorOptions) -> MarkError {
-    MarkError::at(
-        index,
-        &["z"],
-        format!("chart \"{}\": every value of `{}` is missing or non-finite", chart.name, z_opts.field),
-        "check the z column",
-    )
+fn all_missing(z_opts: &ColorOptions) -> MarkError {
+    MarkError::at(&["z"], format!("every value of `{}` is missing or non-finite", z_opts.field), "check the z column")
 }
 
 /// The grid of a grid source read directly: `x` and `y` are its coordinate columns
@@ -98,23 +91,15 @@ fn grid_of_axes(x_col: &Column, y_col: &Column, z_col: &Column) -> Option<Grid> 
 }
 
 /// Build the grid from long-form rows: the distinct x and y values are the grid's axes.
-pub fn grid_from_rows(
-    chart: &Chart,
-    index: usize,
-    x_col: &Column,
-    y_col: &Column,
-    z_col: &Column,
-    rows: &[u32],
-) -> Result<Grid, MarkError> {
+pub fn grid_from_rows(x_col: &Column, y_col: &Column, z_col: &Column, rows: &[u32]) -> Result<Grid, MarkError> {
     let (xv, yv, zv) = (x_col.numbers().unwrap_or(&[]), y_col.numbers().unwrap_or(&[]), z_col.numbers().unwrap_or(&[]));
     if rows.len() == xv.len()
         && let Some((xs, ys)) = row_major_axes(xv, yv)
     {
         let nodes = xs.len() * ys.len();
         if nodes <= MAX_NODES {
-            return Grid::new(xs, ys, zv[..nodes].to_vec()).map_err(|e| {
-                MarkError::at(index, &["x"], format!("chart \"{}\": {e}", chart.name), "check the grid coordinates")
-            });
+            return Grid::new(xs, ys, zv[..nodes].to_vec())
+                .map_err(|e| MarkError::at(&["x"], format!("{e}"), "check the grid coordinates"));
         }
     }
     let distinct = |v: &[f64]| {
@@ -128,24 +113,16 @@ pub fn grid_from_rows(
     let nodes = xs.len().saturating_mul(ys.len());
     if nodes > MAX_NODES {
         return Err(MarkError::at(
-            index,
             &["x"],
-            format!(
-                "chart \"{}\": the grid would have {} × {} = {nodes} nodes (at most {MAX_NODES})",
-                chart.name,
-                xs.len(),
-                ys.len()
-            ),
+            format!("the grid would have {} × {} = {nodes} nodes (at most {MAX_NODES})", xs.len(), ys.len()),
             "resample the field to a coarser grid",
         ));
     }
     if rows.len() * 2 < nodes {
         return Err(MarkError::at(
-            index,
             &["x"],
             format!(
-                "chart \"{}\": x and y do not form a regular grid: {} rows for {} distinct x × {} distinct y values",
-                chart.name,
+                "x and y do not form a regular grid: {} rows for {} distinct x × {} distinct y values",
                 rows.len(),
                 xs.len(),
                 ys.len()
@@ -164,18 +141,15 @@ pub fn grid_from_rows(
         let k = j * xs.len() + i;
         if seen.get(k).copied().unwrap_or(true) {
             return Err(MarkError::at(
-                index,
                 &["x"],
-                format!("chart \"{}\": the grid node ({x}, {y}) appears in more than one row (row {r})", chart.name),
+                format!("the grid node ({x}, {y}) appears in more than one row (row {r})"),
                 "each (x, y) pair must appear once; aggregate duplicates first",
             ));
         }
         seen[k] = true;
         values[k] = zv.get(r as usize).copied().unwrap_or(f64::NAN);
     }
-    Grid::new(xs, ys, values).map_err(|e| {
-        MarkError::at(index, &["x"], format!("chart \"{}\": {e}", chart.name), "check the grid coordinates")
-    })
+    Grid::new(xs, ys, values).map_err(|e| MarkError::at(&["x"], format!("{e}"), "check the grid coordinates"))
 }
 
 /// The axes of a table whose rows already are a grid in row-major order — x increasing fastest,
@@ -210,14 +184,10 @@ mod tests {
     /// The grid of (x, y, z) rows through the general path (sorting) and through whatever path
     /// `grid_from_rows` takes.
     fn both(xv: &[f64], yv: &[f64], zv: &[f64]) -> (Option<(Vec<f64>, Vec<f64>)>, Grid) {
-        let chart: Chart = serde_json::from_value(serde_json::json!({
-            "name": "c", "data": "d", "kind": "contour", "x": "x", "y": "y", "z": "z"
-        }))
-        .unwrap();
         let col =
             |name: &str, v: &[f64]| Column { name: name.into(), values: crate::data::ColumnValues::Number(v.to_vec()) };
         let rows: Vec<u32> = (0..xv.len() as u32).collect();
-        let grid = grid_from_rows(&chart, 0, &col("x", xv), &col("y", yv), &col("z", zv), &rows).unwrap();
+        let grid = grid_from_rows(&col("x", xv), &col("y", yv), &col("z", zv), &rows).unwrap();
         (row_major_axes(xv, yv), grid)
     }
 

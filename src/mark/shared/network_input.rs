@@ -29,7 +29,6 @@ pub const MAX_EDGE_ROWS: usize = 250_000;
 /// warning) unless `nodes.isolated` or, when the spec does not say, `keep_isolated` keeps them.
 pub fn network_of<'t>(
     chart: &Chart,
-    index: usize,
     (source, target, weight): (&str, &str, Option<&str>),
     (node_spec, keep_isolated): (Option<&NodeTable>, bool),
     edges: &Table,
@@ -37,49 +36,43 @@ pub fn network_of<'t>(
 ) -> Result<NetworkInput<'t>, MarkError> {
     if edges.rows > MAX_EDGE_ROWS {
         return Err(MarkError::at(
-            index,
             &["data"],
-            format!(
-                "chart \"{}\": the edge table has {} rows but a network chart draws at most {MAX_EDGE_ROWS}",
-                chart.name, edges.rows
-            ),
+            format!("the edge table has {} rows but a network chart draws at most {MAX_EDGE_ROWS}", edges.rows),
             "aggregate parallel edges into weights first, e.g. transform = [{ aggregate = { n = \"count()\" }, \
              groupby = [\"source\", \"target\"] }] with weight = \"n\", or filter the edges",
         ));
     }
-    let source = encode::column(chart, index, "source", source, edges)?;
-    let target = encode::column(chart, index, "target", target, edges)?;
+    let source = encode::column(chart, "source", source, edges)?;
+    let target = encode::column(chart, "target", target, edges)?;
     let weight = match weight {
         Some(w) => {
-            let col = encode::column(chart, index, "weight", w, edges)?;
-            encode::require_numeric(chart, index, "weight", col, "an edge weight", "weigh edges by a numeric column")?;
+            let col = encode::column(chart, "weight", w, edges)?;
+            encode::require_numeric("weight", col, "an edge weight", "weigh edges by a numeric column")?;
             Some(col)
         }
         None => None,
     };
     let node_ids: Option<(usize, &Column)> = match (node_spec, nodes) {
-        (Some(spec), Some(table)) => Some((table.rows, node_column(chart, index, spec, "id", &spec.id, table)?)),
+        (Some(spec), Some(table)) => Some((table.rows, node_column(spec, "id", &spec.id, table)?)),
         (Some(spec), None) => {
             return Err(MarkError::at(
-                index,
                 &["nodes", "data"],
-                format!("chart \"{}\": node data \"{}\" was not loaded", chart.name, spec.data),
+                format!("node data \"{}\" was not loaded", spec.data),
                 "check the name of the node table's data source",
             ));
         }
         _ => None,
     };
     let network = Network::from_tables(edges.rows, EdgeColumns { source, target, weight }, node_ids)
-        .map_err(|e| MarkError::at(index, &["source"], format!("chart \"{}\": {e}", chart.name), e.hint()))?;
+        .map_err(|e| MarkError::at(&["source"], format!("{e}"), e.hint()))?;
     let mut warnings = Vec::new();
-    let name = &chart.name;
     let network = match node_spec.and_then(|s| s.isolated).unwrap_or(keep_isolated) {
         true => network,
         false => {
             let (network, left_out) = network.without_isolated();
             if left_out > 0 {
                 warnings.push(Warning::from(format!(
-                    "chart \"{name}\": {left_out} nodes without a link were left out (`nodes.isolated = true` draws them)"
+                    "{left_out} nodes without a link were left out (`nodes.isolated = true` draws them)"
                 )));
             }
             network
@@ -87,22 +80,19 @@ pub fn network_of<'t>(
     };
     if network.missing_endpoints > 0 {
         warnings.push(Warning::from(format!(
-            "chart \"{name}\": {} edges without a source or target were left out",
+            "{} edges without a source or target were left out",
             network.missing_endpoints
         )));
     }
     if network.bad_weights > 0 {
-        warnings.push(Warning::from(format!(
-            "chart \"{name}\": {} edges with a missing weight were left out",
-            network.bad_weights
-        )));
+        warnings.push(Warning::from(format!("{} edges with a missing weight were left out", network.bad_weights)));
     }
     if network.self_loops > 0 {
-        warnings.push(Warning::from(format!("chart \"{name}\": {} self-loops are not drawn", network.self_loops)));
+        warnings.push(Warning::from(format!("{} self-loops are not drawn", network.self_loops)));
     }
     let labels = match (node_spec.and_then(|s| s.label.as_deref().map(|l| (s, l))), nodes) {
         (Some((spec, field)), Some(table)) => {
-            let column = node_column(chart, index, spec, "label", field, table)?;
+            let column = node_column(spec, "label", field, table)?;
             network
                 .graph
                 .node_weights()
@@ -115,17 +105,10 @@ pub fn network_of<'t>(
 }
 
 /// A column of the node table, or an error pointing at `nodes.KEY`.
-pub fn node_column<'t>(
-    chart: &Chart,
-    index: usize,
-    spec: &NodeTable,
-    key: &str,
-    field: &str,
-    table: &'t Table,
-) -> Result<&'t Column, MarkError> {
+pub fn node_column<'t>(spec: &NodeTable, key: &str, field: &str, table: &'t Table) -> Result<&'t Column, MarkError> {
     table.column(field).ok_or_else(|| {
-        let (message, hint) = encode::missing_column(&chart.name, &spec.data, field, table);
-        MarkError::at(index, &["nodes", key], message, hint)
+        let (message, hint) = encode::missing_column(&spec.data, field, table);
+        MarkError::at(&["nodes", key], message, hint)
     })
 }
 
@@ -144,8 +127,6 @@ pub struct Placement {
 
 /// Place the nodes with `layout`.
 pub fn place(
-    chart: &Chart,
-    index: usize,
     layout: GraphLayout,
     seed: u64,
     input: &NetworkInput,
@@ -154,9 +135,7 @@ pub fn place(
     let network = &input.network;
     let n = network.node_count();
     let edges = network.edge_pairs();
-    let fail = |e: &dyn std::fmt::Display| {
-        MarkError::at(index, &["layout"], format!("chart \"{}\": {e}", chart.name), "try another `layout`")
-    };
+    let fail = |e: &dyn std::fmt::Display| MarkError::at(&["layout"], format!("{e}"), "try another `layout`");
     match layout {
         GraphLayout::Force => {
             let options = force::ForceOptions { seed, ..force::ForceOptions::default() };
@@ -181,36 +160,29 @@ pub fn place(
             Ok(Placement { positions: layout.positions, paths: layout.edge_paths, uniform: false, description })
         }
         GraphLayout::Given => {
-            let positions = given_positions(chart, index, input, node_spec)?;
+            let positions = given_positions(input, node_spec)?;
             Ok(Placement { positions, paths: Vec::new(), uniform: true, description: "given positions".into() })
         }
     }
 }
 
 /// Positions from the node table's `x` and `y` columns (y up, as in maps and plots).
-fn given_positions(
-    chart: &Chart,
-    index: usize,
-    input: &NetworkInput,
-    node_spec: Option<&NodeTable>,
-) -> Result<Vec<[f64; 2]>, MarkError> {
+fn given_positions(input: &NetworkInput, node_spec: Option<&NodeTable>) -> Result<Vec<[f64; 2]>, MarkError> {
     let needs = || {
         MarkError::at(
-            index,
             &["layout"],
-            format!("chart \"{}\": `layout = \"given\"` needs a node table with `x` and `y` columns", chart.name),
+            format!("`layout = \"given\"` needs a node table with `x` and `y` columns"),
             "add `nodes = { data = \"...\", id = \"...\", x = \"lon\", y = \"lat\" }`",
         )
     };
     let (Some(spec), Some(table)) = (node_spec, input.nodes) else { return Err(needs()) };
     let (Some(xf), Some(yf)) = (spec.x.as_deref(), spec.y.as_deref()) else { return Err(needs()) };
-    let x = node_column(chart, index, spec, "x", xf, table)?;
-    let y = node_column(chart, index, spec, "y", yf, table)?;
+    let x = node_column(spec, "x", xf, table)?;
+    let y = node_column(spec, "y", yf, table)?;
     let (Some(xs), Some(ys)) = (x.numbers(), y.numbers()) else {
         return Err(MarkError::at(
-            index,
             &["nodes"],
-            format!("chart \"{}\": node positions `{xf}` and `{yf}` must be numeric", chart.name),
+            format!("node positions `{xf}` and `{yf}` must be numeric"),
             "name numeric columns in `nodes.x` and `nodes.y`",
         ));
     };
@@ -223,9 +195,8 @@ fn given_positions(
             match at {
                 Some((Some(px), Some(py))) if px.is_finite() && py.is_finite() => Ok([px, -py]),
                 _ => Err(MarkError::at(
-                    index,
                     &["nodes"],
-                    format!("chart \"{}\": node `{}` has no finite position in `{xf}`, `{yf}`", chart.name, node.id),
+                    format!("node `{}` has no finite position in `{xf}`, `{yf}`", node.id),
                     "give every node a position, or use `layout = \"force\"`",
                 )),
             }

@@ -47,25 +47,25 @@ pub struct Look<'s> {
 }
 
 /// Draw a network: place, fit, draw edges (lightest first), nodes and labels, with legends.
-pub fn draw_network(chart: &Chart, index: usize, input: NetworkInput, look: &Look) -> Result<ChartOutput, MarkError> {
-    let placement = place(chart, index, look.layout, look.seed, &input, look.nodes)?;
+pub fn draw_network(chart: &Chart, input: NetworkInput, look: &Look) -> Result<ChartOutput, MarkError> {
+    let placement = place(look.layout, look.seed, &input, look.nodes)?;
     let network = &input.network;
     let n = network.node_count();
     let node_rows: Vec<Option<u32>> = network.graph.node_weights().map(|w| w.row).collect();
     let mut legends = Vec::new();
 
     // Node colour and size from the node table.
-    let (node_color, color_legend) = node_colors(chart, index, look, &input, &node_rows)?;
+    let (node_color, color_legend) = node_colors(chart, look, &input, &node_rows)?;
     legends.extend(color_legend);
     let base_radius = look.node_radius.unwrap_or_else(|| (70.0 / (n as f64).sqrt()).clamp(2.5, 6.0));
-    let (radii, size_legend) = node_radii(chart, index, look, &input, &node_rows, base_radius)?;
+    let (radii, size_legend) = node_radii(look, &input, &node_rows, base_radius)?;
     legends.extend(size_legend);
 
     // Edge colour and width from the weight.
     let weights = network.weights();
     let weight_scale = match look.weight {
         Some((field, unit)) => {
-            let map = encode::continuous_map(index, &["scheme"], Some(look.scheme))?.starting_at(look.fade.0);
+            let map = encode::continuous_map(&["scheme"], Some(look.scheme))?.starting_at(look.fade.0);
             let (lo, hi) = encode::finite_extent(weights.iter().copied()).unwrap_or((0.0, 1.0));
             let (lo, hi) = if hi > lo { (lo, hi) } else { (lo - 0.5, hi + 0.5) };
             legends.push(Legend::ColorBar { title: title_with_unit(field, unit), map: map.clone(), domain: (lo, hi) });
@@ -83,7 +83,7 @@ pub fn draw_network(chart: &Chart, index: usize, input: NetworkInput, look: &Loo
     let rect = [m, canvas.top(), canvas.width - 2.0 * m - canvas.legend_room(), canvas.room];
     if rect[2] < 80.0 || rect[3] < 80.0 {
         let error = LayoutError::TooSmall { plot_width: rect[2], plot_height: rect[3] };
-        return Err(MarkError::layout(index, &chart.name, error));
+        return Err(MarkError::layout(error));
     }
     let inset = radii.iter().copied().fold(0.0, f64::max) + 2.0;
     let bends = placement.paths.iter().flatten().copied();
@@ -146,7 +146,7 @@ pub fn draw_network(chart: &Chart, index: usize, input: NetworkInput, look: &Loo
     let mut warnings = input.warnings;
     if hidden > 0 {
         let verb = if hidden == 1 { "was" } else { "were" };
-        let note = format!("chart \"{}\": {hidden} node {labels_word} {verb} left out to avoid overlaps", chart.name);
+        let note = format!("{hidden} node {labels_word} {verb} left out to avoid overlaps");
         warnings.push(Warning::from(note));
     }
     let scene = canvas.scene(chart, items, note.as_deref());
@@ -175,7 +175,6 @@ type NodeColor = Box<dyn Fn(usize) -> Color>;
 /// Node fill per node, with its legend.
 fn node_colors(
     chart: &Chart,
-    index: usize,
     look: &Look,
     input: &NetworkInput,
     node_rows: &[Option<u32>],
@@ -184,9 +183,9 @@ fn node_colors(
         return Ok((Box::new(|_| encode::DEFAULT_MARK_COLOR), None));
     };
     let Some(channel) = spec.color.as_ref() else { return Ok((Box::new(|_| encode::DEFAULT_MARK_COLOR), None)) };
-    node_column(chart, index, spec, "color", channel.field(), table)?;
+    node_column(spec, "color", channel.field(), table)?;
     let rows: Vec<u32> = node_rows.iter().flatten().copied().collect();
-    let (encoding, legend) = encode::color_encoding(chart, index, Some(channel), None, table, &rows, Symbol::Circle)?;
+    let (encoding, legend) = encode::color_encoding(chart, Some(channel), None, table, &rows, Symbol::Circle)?;
     let node_rows = node_rows.to_vec();
     let color = move |i: usize| match node_rows.get(i).copied().flatten() {
         Some(r) => encoding.color_of(r),
@@ -197,8 +196,6 @@ fn node_colors(
 
 /// Node radii (area proportional to the size column, else all alike), with a size key.
 fn node_radii(
-    chart: &Chart,
-    index: usize,
     look: &Look,
     input: &NetworkInput,
     node_rows: &[Option<u32>],
@@ -206,8 +203,8 @@ fn node_radii(
 ) -> Result<(Vec<f64>, Option<Legend>), MarkError> {
     let (Some(spec), Some(table)) = (look.nodes, input.nodes) else { return Ok((vec![base; node_rows.len()], None)) };
     let Some(field) = spec.size.as_deref() else { return Ok((vec![base; node_rows.len()], None)) };
-    let column = node_column(chart, index, spec, "size", field, table)?;
-    encode::require_numeric(chart, index, "nodes", column, "a node size", "size nodes by a numeric column")?;
+    let column = node_column(spec, "size", field, table)?;
+    encode::require_numeric("nodes", column, "a node size", "size nodes by a numeric column")?;
     let values = column.numbers().unwrap_or(&[]);
     let value_of =
         |r: &Option<u32>| r.and_then(|r| values.get(r as usize).copied()).filter(|v| v.is_finite() && *v > 0.0);

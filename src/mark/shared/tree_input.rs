@@ -14,51 +14,40 @@ use crate::spec::{Chart, TreeSource};
 pub const MAX_TREE_ROWS: usize = 250_000;
 
 /// The chart's tree, or an error pointing at `tree`.
-pub fn tree_of(chart: &Chart, index: usize, source: &TreeSource, table: &Table) -> Result<Tree, MarkError> {
+pub fn tree_of(chart: &Chart, source: &TreeSource, table: &Table) -> Result<Tree, MarkError> {
     if table.rows > MAX_TREE_ROWS {
         return Err(MarkError::at(
-            index,
             &["data"],
-            format!(
-                "chart \"{}\": the tree has {} rows but a tree chart draws at most {MAX_TREE_ROWS}",
-                chart.name, table.rows
-            ),
+            format!("the tree has {} rows but a tree chart draws at most {MAX_TREE_ROWS}", table.rows),
             "aggregate the leaves to a coarser level first (an `aggregate` transform grouped by the parent path), or \
              filter to one branch",
         ));
     }
     let built = match (&source.path, &source.id, &source.parent) {
         (Some(path), None, None) => {
-            let column = encode::column(chart, index, "tree", path, table)?;
+            let column = encode::column(chart, "tree", path, table)?;
             Tree::from_paths(table, column, source.separator.as_deref().unwrap_or("/"))
         }
         (None, Some(id), Some(parent)) => {
-            let id = encode::column(chart, index, "tree", id, table)?;
-            let parent = encode::column(chart, index, "tree", parent, table)?;
+            let id = encode::column(chart, "tree", id, table)?;
+            let parent = encode::column(chart, "tree", parent, table)?;
             Tree::from_parent_column(table, id, parent)
         }
         _ => {
             return Err(MarkError::at(
-                index,
                 &["tree"],
-                format!("chart \"{}\": `tree` needs `path`, or `id` with `parent`", chart.name),
+                format!("`tree` needs `path`, or `id` with `parent`"),
                 "write `tree = { id = \"id\", parent = \"parent\" }` or `tree = { path = \"path\" }`",
             ));
         }
     };
-    built.map_err(|e| MarkError::at(index, &["tree"], format!("chart \"{}\": {e}", chart.name), e.hint()))
+    built.map_err(|e| MarkError::at(&["tree"], format!("{e}"), e.hint()))
 }
 
 /// Each node's label: the `label` column at its row, else its name.
-pub fn labels_of(
-    chart: &Chart,
-    index: usize,
-    tree: &Tree,
-    label: Option<&str>,
-    table: &Table,
-) -> Result<Vec<String>, MarkError> {
+pub fn labels_of(chart: &Chart, tree: &Tree, label: Option<&str>, table: &Table) -> Result<Vec<String>, MarkError> {
     let Some(field) = label else { return Ok(tree.names.clone()) };
-    let column = encode::column(chart, index, "label", field, table)?;
+    let column = encode::column(chart, "label", field, table)?;
     Ok(tree
         .rows
         .iter()
@@ -110,9 +99,9 @@ const MAX_LEGEND_BRANCHES: usize = 12;
 
 /// The categorical palette of the branches: the named scheme, or Okabe–Ito for up to eight
 /// branches and its 12-colour extension `okabe-ito-12` above that (both pass lint rule CL003).
-pub fn branch_palette(index: usize, scheme: Option<&str>, branches: usize) -> Result<Vec<Color>, MarkError> {
+pub fn branch_palette(scheme: Option<&str>, branches: usize) -> Result<Vec<Color>, MarkError> {
     let name = scheme.or((branches > 8).then_some("okabe-ito-12"));
-    encode::palette(index, &["scheme"], name)
+    encode::palette(&["scheme"], name)
 }
 
 /// A legend naming each branch's colour (the first dozen; the rest are counted).

@@ -47,9 +47,9 @@ const TIMELINE_STEPS: usize = 4;
 const CENTRE_TOLERANCE: f64 = 1e-3;
 
 /// Draw a flow chart.
-pub fn draw(chart: &Chart, options: &FlowOptions, index: usize, table: &Table) -> Result<ChartOutput, MarkError> {
+pub fn draw(chart: &Chart, options: &FlowOptions, table: &Table) -> Result<ChartOutput, MarkError> {
     let (x_opts, y_opts) = (options.x.options(), options.y.options());
-    let input = read_field(chart, index, options, table)?;
+    let input = read_field(chart, options, table)?;
     let field = &input.field;
     let layers = options.layers.clone().unwrap_or_else(|| vec![FlowLayer::Speed, FlowLayer::Streamlines]);
     let has = |l: FlowLayer| layers.contains(&l);
@@ -57,15 +57,14 @@ pub fn draw(chart: &Chart, options: &FlowOptions, index: usize, table: &Table) -
     for l in [FlowLayer::Pathlines, FlowLayer::Streaklines, FlowLayer::Timelines] {
         if has(l) && options.t.is_none() {
             return Err(MarkError::at(
-                index,
                 &["layers"],
-                format!("chart \"{}\": particle traces need an unsteady field", chart.name),
+                format!("particle traces need an unsteady field"),
                 "name the time column with `t`, or draw `streamlines` of a steady field",
             ));
         }
     }
-    let snapshot = snapshot(field, options.time).map_err(|e| field_error(chart, index, &e))?;
-    let speed_map = encode::continuous_map(index, &["scheme"], options.scheme.as_deref())?;
+    let snapshot = snapshot(field, options.time).map_err(|e| field_error(&e))?;
+    let speed_map = encode::continuous_map(&["scheme"], options.scheme.as_deref())?;
     let max_speed = snapshot.max_speed();
     let speed_title = title_with_unit("speed", options.unit.as_deref());
     let mut legends = Vec::new();
@@ -95,8 +94,8 @@ pub fn draw(chart: &Chart, options: &FlowOptions, index: usize, table: &Table) -
     }
 
     let [x0, x1, y0, y1] = field.bounds();
-    let mut x_axis = encode::position_axis(chart, index, "x", &x_opts, input.x_col, &input.rows)?;
-    let mut y_axis = encode::position_axis(chart, index, "y", &y_opts, input.y_col, &input.rows)?;
+    let mut x_axis = encode::position_axis("x", &x_opts, input.x_col, &input.rows)?;
+    let mut y_axis = encode::position_axis("y", &y_opts, input.y_col, &input.rows)?;
     for (axis, lo, hi) in [(&mut x_axis, x0, x1), (&mut y_axis, y0, y1)] {
         axis.nice = false;
         axis.grid = false;
@@ -105,14 +104,14 @@ pub fn draw(chart: &Chart, options: &FlowOptions, index: usize, table: &Table) -
     let mut chart = chart.clone();
     chart.caption.get_or_insert_with(|| caption(options, &layers, field, options.time));
     let chart = &chart;
-    let (frame, theme) = frame::cartesian(chart, index, x_axis, y_axis, legends)?;
+    let (frame, theme) = frame::cartesian(chart, x_axis, y_axis, legends)?;
     let to_px = |p: [f64; 2]| Point::new(frame.x.map(p[0]), frame.y.map(p[1]));
 
     let mut marks = Vec::new();
     let mut derived = Traces::default();
     if has(FlowLayer::Speed) || has(FlowLayer::Lic) {
         let raster = speed_raster(&snapshot, &frame, &speed_map, has(FlowLayer::Speed), has(FlowLayer::Lic))
-            .map_err(|e| MarkError::at(index, &["layers"], format!("chart \"{}\": {e}", chart.name), ""))?;
+            .map_err(|e| MarkError::at(&["layers"], format!("{e}"), ""))?;
         marks.push(Item::new(Role::DataMark, Shape::Image(raster), Style::default()).with_rows(input.rows.clone()));
     }
     let density = options.density.unwrap_or(1.0);
@@ -128,7 +127,7 @@ pub fn draw(chart: &Chart, options: &FlowOptions, index: usize, table: &Table) -
     let mut trace_options = StreamlineOptions::for_field(field);
     trace_options.integrator = integrator(options.integrator);
     if has(FlowLayer::Streamlines) {
-        let lines = streamlines(chart, index, options, &snapshot, &trace_options, density, &budget)?;
+        let lines = streamlines(options, &snapshot, &trace_options, density, &budget)?;
         for line in &lines {
             marks.extend(polyline(&line.points, &to_px, STREAMLINE.with_opacity(0.85), 0.9));
             marks.extend(direction_mark(line, &to_px, STREAMLINE));
@@ -136,7 +135,7 @@ pub fn draw(chart: &Chart, options: &FlowOptions, index: usize, table: &Table) -
         derived.add("streamline", &lines);
     }
     if unsteady {
-        let seeds = trace_seeds(chart, index, options, field, density)?;
+        let seeds = trace_seeds(options, field, density)?;
         let end = options.time.unwrap_or(field.ts().last().copied().unwrap_or(0.0));
         let start = field.ts().first().copied().unwrap_or(0.0);
         let mut path_options = trace_options;
@@ -175,15 +174,15 @@ pub fn draw(chart: &Chart, options: &FlowOptions, index: usize, table: &Table) -
         marks.extend(arrow_key(&frame, &theme, density, max_speed, options.unit.as_deref()));
     }
     let mut warnings = input.warnings;
-    warnings.extend((budget.exhausted().then(|| budget_warning(&chart.name))).into_iter().map(Warning::from));
+    warnings.extend((budget.exhausted().then(|| budget_warning())).into_iter().map(Warning::from));
     let scene = frame::scene(chart, frame, &theme, marks);
     Ok(ChartOutput { scene, derived: derived.finish(), warnings, geojson: None, geometry: Default::default() })
 }
 
 /// The warning of a chart whose streamlines or separatrices stopped at the per-chart budget.
-fn budget_warning(chart: &str) -> String {
+fn budget_warning() -> String {
     format!(
-        "chart \"{chart}\": streamlines or particle traces stopped at the per-chart limit ({} integration steps, {} seeding \
+        "streamlines or particle traces stopped at the per-chart limit ({} integration steps, {} seeding \
          attempts, {} points examined for spacing); the lines traced so far are drawn. Resample the \
          field to a regular grid without tiny cells, lower `density`, or give fewer `seed_count` seeds",
         budget::MAX_STEPS,
@@ -201,35 +200,25 @@ struct FieldInput<'t> {
     warnings: Vec<Warning>,
 }
 
-fn field_error(chart: &Chart, index: usize, e: &dyn std::fmt::Display) -> MarkError {
-    MarkError::at(
-        index,
-        &["x"],
-        format!("chart \"{}\": {e}", chart.name),
-        "check the grid's coordinates and components",
-    )
+fn field_error(e: &dyn std::fmt::Display) -> MarkError {
+    MarkError::at(&["x"], format!("{e}"), "check the grid's coordinates and components")
 }
 
 /// Read the long-form table into a (steady or unsteady) vector field.
-fn read_field<'t>(
-    chart: &Chart,
-    index: usize,
-    options: &FlowOptions,
-    table: &'t Table,
-) -> Result<FieldInput<'t>, MarkError> {
+fn read_field<'t>(chart: &Chart, options: &FlowOptions, table: &'t Table) -> Result<FieldInput<'t>, MarkError> {
     let (x_opts, y_opts) = (options.x.options(), options.y.options());
-    let x_col = encode::column(chart, index, "x", &x_opts.field, table)?;
-    let y_col = encode::column(chart, index, "y", &y_opts.field, table)?;
-    let u_col = encode::column(chart, index, "u", &options.u, table)?;
-    let v_col = encode::column(chart, index, "v", &options.v, table)?;
-    let t_col = options.t.as_deref().map(|t| encode::column(chart, index, "t", t, table)).transpose()?;
+    let x_col = encode::column(chart, "x", &x_opts.field, table)?;
+    let y_col = encode::column(chart, "y", &y_opts.field, table)?;
+    let u_col = encode::column(chart, "u", &options.u, table)?;
+    let v_col = encode::column(chart, "v", &options.v, table)?;
+    let t_col = options.t.as_deref().map(|t| encode::column(chart, "t", t, table)).transpose()?;
     let mut numeric = vec![("x", x_opts.field.as_str(), x_col), ("y", y_opts.field.as_str(), y_col)];
     numeric.extend([("u", options.u.as_str(), u_col), ("v", options.v.as_str(), v_col)]);
     if let (Some(t), Some(col)) = (options.t.as_deref(), t_col) {
         numeric.push(("t", t, col));
     }
     for (key, field, col) in &numeric {
-        encode::require_numeric(chart, index, key, col, "a vector field", &format!("`{field}` must hold numbers"))?;
+        encode::require_numeric(key, col, "a vector field", &format!("`{field}` must hold numbers"))?;
     }
     let mut placed = vec![(x_opts.field.as_str(), x_col), (y_opts.field.as_str(), y_col)];
     if let (Some(t), Some(col)) = (options.t.as_deref(), t_col) {
@@ -237,12 +226,12 @@ fn read_field<'t>(
     }
     let (rows, warning) = encode::finite_rows(&chart.name, table.rows, &placed);
     if rows.is_empty() {
-        return Err(encode::no_rows(chart, index, table, warning.as_ref()));
+        return Err(encode::no_rows(chart, table, warning.as_ref()));
     }
     let field = match t_col.and_then(Column::numbers) {
         None => {
-            let u = grid_from_rows(chart, index, x_col, y_col, u_col, &rows)?;
-            let v = grid_from_rows(chart, index, x_col, y_col, v_col, &rows)?;
+            let u = grid_from_rows(x_col, y_col, u_col, &rows)?;
+            let v = grid_from_rows(x_col, y_col, v_col, &rows)?;
             VectorField::new(u.xs().to_vec(), u.ys().to_vec(), u.values().to_vec(), v.values().to_vec())
         }
         Some(times) => {
@@ -253,15 +242,14 @@ fn read_field<'t>(
             let mut axes: Option<(Vec<f64>, Vec<f64>)> = None;
             for &t in &ts {
                 let at: Vec<u32> = rows.iter().copied().filter(|&r| times[r as usize] == t).collect();
-                let u = grid_from_rows(chart, index, x_col, y_col, u_col, &at)?;
-                let v = grid_from_rows(chart, index, x_col, y_col, v_col, &at)?;
+                let u = grid_from_rows(x_col, y_col, u_col, &at)?;
+                let v = grid_from_rows(x_col, y_col, v_col, &at)?;
                 match &axes {
                     None => axes = Some((u.xs().to_vec(), u.ys().to_vec())),
                     Some((xs, ys)) if xs.as_slice() != u.xs() || ys.as_slice() != u.ys() => {
                         return Err(MarkError::at(
-                            index,
                             &["t"],
-                            format!("chart \"{}\": the grid at t = {t} differs from the first time's grid", chart.name),
+                            format!("the grid at t = {t} differs from the first time's grid"),
                             "every time needs the same x and y nodes",
                         ));
                     }
@@ -273,7 +261,7 @@ fn read_field<'t>(
             VectorField::unsteady(xs, ys, ts, frames)
         }
     }
-    .map_err(|e| field_error(chart, index, &e))?;
+    .map_err(|e| field_error(&e))?;
     Ok(FieldInput { field, rows, x_col, y_col, warnings: warning.into_iter().collect() })
 }
 
@@ -369,8 +357,6 @@ fn speed_raster(
 
 /// Streamlines from the chosen seeds.
 fn streamlines(
-    chart: &Chart,
-    index: usize,
     options: &FlowOptions,
     field: &VectorField,
     trace_options: &StreamlineOptions,
@@ -383,26 +369,15 @@ fn streamlines(
         evenly.streamline.integrator = trace_options.integrator;
         return Ok(evenly_spaced(field, &evenly, budget));
     }
-    let seeds = trace_seeds(chart, index, options, field, density)?;
+    let seeds = trace_seeds(options, field, density)?;
     Ok(seeds.iter().map(|&s| trace_within(field, s, trace_options, budget)).filter(|l| l.points.len() > 1).collect())
 }
 
 /// Seeds of traces: a rake, a circle or a grid (the grid also stands in for `evenly`).
-fn trace_seeds(
-    chart: &Chart,
-    index: usize,
-    options: &FlowOptions,
-    field: &VectorField,
-    density: f64,
-) -> Result<Vec<[f64; 2]>, MarkError> {
+fn trace_seeds(options: &FlowOptions, field: &VectorField, density: f64) -> Result<Vec<[f64; 2]>, MarkError> {
     let count = options.seed_count.unwrap_or(12) as usize;
     let missing = |key: &str, example: &str| {
-        MarkError::at(
-            index,
-            &["seeds"],
-            format!("chart \"{}\": `seeds = \"{key}\"` needs `{key}`", chart.name),
-            format!("add e.g. `{key} = {example}`"),
-        )
+        MarkError::at(&["seeds"], format!("`seeds = \"{key}\"` needs `{key}`"), format!("add e.g. `{key} = {example}`"))
     };
     Ok(match options.seeds.unwrap_or(SeedKind::Evenly) {
         SeedKind::Rake => {
@@ -813,7 +788,7 @@ impl Technique for FlowOptions {
     }
 
     fn draw(&self, cx: &ChartContext<'_>) -> Result<ChartOutput, MarkError> {
-        draw(&cx.chart, self, cx.index, cx.table)
+        draw(&cx.chart, self, cx.table)
     }
 
     fn cartesian_axes(&self) -> Vec<AxisSpec> {
