@@ -51,3 +51,8 @@ echo "== contour: 10 levels (lines and bands) of a 2000x2000 .npy grid to PNG, w
 hyperfine -N --warmup 2 --runs 10 --export-markdown target/bench/contour_npy.md \
   -n dataink 'target/release/dataink render benches/contour_npy.toml --format png --out target/bench/out --quiet' \
   -n np.load+contourpy 'python3 benches/peer_contourpy_npy.py benches/data/grid_2000.npy'
+
+echo "== contour: 10 levels, lines only, of the same grid to PNG, whole process (load included)"
+hyperfine -N --warmup 2 --runs 10 --export-markdown target/bench/contour_npy_lines.md \
+  -n dataink 'target/release/dataink render benches/contour_npy_lines.toml --format png --out target/bench/out --quiet' \
+  -n np.load+contourpy 'python3 benches/peer_contourpy_npy.py benches/data/grid_2000.npy --lines-only'

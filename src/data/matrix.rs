@@ -91,7 +91,7 @@ const HEADER_PREFIX: usize = 64 * 1024;
 /// Bytes of cells decoded at a time.
 const READ_CHUNK: usize = 4 * 1024 * 1024;
 
-/// What a `.npy` header says: the shape, the dtype's decoder and where the cells start.
+/// What a `.npy` header says: the shape, the dtype and where the cells start.
 struct Header {
     rows: usize,
     cols: usize,
@@ -100,7 +100,7 @@ struct Header {
     fortran: bool,
     descr: String,
     data_start: usize,
-    decode: fn(&[u8]) -> f64,
+    dtype: Dtype,
 }
 
 impl Header {
@@ -154,9 +154,11 @@ impl Header {
                 .ok_or(format!("unsupported dtype {descr}; use float or integer arrays"))?;
             (order != '>', kind, size)
         };
-        let decode = decoder(kind, size, little)
-            .ok_or_else(|| format!("unsupported dtype {descr}; use float or integer arrays"))?;
-        Ok(Header { rows, cols, cells, size, fortran, descr: descr.to_string(), data_start: start + len, decode })
+        let dtype = Dtype { kind, size, little };
+        if !dtype.is_known() {
+            return Err(format!("unsupported dtype {descr}; use float or integer arrays"));
+        }
+        Ok(Header { rows, cols, cells, size, fortran, descr: descr.to_string(), data_start: start + len, dtype })
     }
 
     /// Bytes of cell data the shape and dtype call for.
@@ -177,7 +179,7 @@ impl Header {
 
     /// Decode whole cells of `data` onto `values`.
     fn decode_into(&self, data: &[u8], values: &mut Vec<f64>) {
-        values.extend(data.chunks_exact(self.size).map(self.decode));
+        self.dtype.decode(data, values);
     }
 
     /// The matrix of the decoded cells, transposed to row-major if the file is column-major.
@@ -210,36 +212,57 @@ pub fn parse_npy(bytes: &[u8]) -> Result<Matrix, String> {
     Ok(header.finish(values))
 }
 
-/// How one cell of a dtype (kind `f`, `i` or `u`, `size` bytes, little- or big-endian) becomes a
-/// number; chosen once per file so the loop over the cells does not branch on the dtype.
-fn decoder(kind: char, size: usize, little: bool) -> Option<fn(&[u8]) -> f64> {
-    fn bytes<const N: usize>(chunk: &[u8]) -> [u8; N] {
-        let mut b = [0u8; N];
-        b.copy_from_slice(&chunk[..N]);
-        b
+/// A cell type numpy writes: kind `f`, `i` or `u`, `size` bytes, little- or big-endian.
+#[derive(Clone, Copy, Debug)]
+struct Dtype {
+    kind: char,
+    size: usize,
+    little: bool,
+}
+
+/// Expands to one monomorphic decoding loop per dtype, so the loop over the cells neither
+/// branches on the dtype nor calls through a pointer.
+macro_rules! decode_as {
+    ($dtype:expr, $data:expr, $values:expr, $(($kind:literal, $t:ty, $n:literal)),* $(,)?) => {
+        match ($dtype.kind, $dtype.size, $dtype.little) {
+            $(
+                ($kind, $n, true) => $values.extend(
+                    $data.chunks_exact($n).map(|c| <[u8; $n]>::try_from(c).map_or(f64::NAN, |b| <$t>::from_le_bytes(b) as f64)),
+                ),
+                ($kind, $n, false) => $values.extend(
+                    $data.chunks_exact($n).map(|c| <[u8; $n]>::try_from(c).map_or(f64::NAN, |b| <$t>::from_be_bytes(b) as f64)),
+                ),
+            )*
+            _ => return false,
+        }
+    };
+}
+
+impl Dtype {
+    /// Whether dataink reads this dtype.
+    fn is_known(self) -> bool {
+        self.decode(&[], &mut Vec::new())
     }
-    macro_rules! pick {
-        ($t:ty, $n:literal) => {
-            if little {
-                |c: &[u8]| <$t>::from_le_bytes(bytes::<$n>(c)) as f64
-            } else {
-                |c: &[u8]| <$t>::from_be_bytes(bytes::<$n>(c)) as f64
-            }
-        };
+
+    /// Decode whole cells of `data` onto `values`; `false` for a dtype not read.
+    fn decode(self, data: &[u8], values: &mut Vec<f64>) -> bool {
+        decode_as!(
+            self,
+            data,
+            values,
+            ('f', f64, 8),
+            ('f', f32, 4),
+            ('i', i64, 8),
+            ('i', i32, 4),
+            ('i', i16, 2),
+            ('i', i8, 1),
+            ('u', u64, 8),
+            ('u', u32, 4),
+            ('u', u16, 2),
+            ('u', u8, 1),
+        );
+        true
     }
-    Some(match (kind, size) {
-        ('f', 8) => pick!(f64, 8),
-        ('f', 4) => pick!(f32, 4),
-        ('i', 8) => pick!(i64, 8),
-        ('i', 4) => pick!(i32, 4),
-        ('i', 2) => pick!(i16, 2),
-        ('i', 1) => pick!(i8, 1),
-        ('u', 8) => pick!(u64, 8),
-        ('u', 4) => pick!(u32, 4),
-        ('u', 2) => pick!(u16, 2),
-        ('u', 1) => pick!(u8, 1),
-        _ => return None,
-    })
 }
 
 /// The text after `'key':` in a Python dict literal, up to the next top-level comma.
