@@ -2,7 +2,8 @@
 //! painter's-order hidden-surface removal, Lambert shading — with projected axes and a colour bar.
 
 use crate::data::Table;
-use crate::enrich::surface::{self, AxisLine, Light, SurfaceProjection, View};
+use crate::enrich::camera::{Light, View};
+use crate::enrich::surface::{self, AxisLine, SurfaceProjection};
 use crate::guide::Theme;
 use crate::guide::axis::title_with_unit;
 use crate::guide::format::format_ticks;
@@ -26,7 +27,7 @@ pub fn draw(chart: &Chart, options: &SurfaceOptions, index: usize, table: &Table
         gridded::load_grid(chart, index, &x_opts, &y_opts, &z_opts, table)?;
     let map = encode::continuous_map(index, &["z", "scheme"], z_opts.scheme.as_deref())?;
     let (lo, hi) = encode::color_domain(&map, zmin, zmax, z_opts.midpoint);
-    let view = View { azimuth_deg: options.azimuth.unwrap_or(-60.0), elevation_deg: options.elevation.unwrap_or(30.0) };
+    let view = View::new(options.azimuth.unwrap_or(-60.0), options.elevation.unwrap_or(30.0));
     let projection = surface::project(&grid, view, Light::default(), options.z_scale).map_err(|e| {
         MarkError::at(index, &["z"], format!("chart \"{}\": {e}", chart.name), "check the grid and the view")
     })?;
