@@ -1,6 +1,7 @@
 //! Enrichment: pure numeric functions that make new data from the loaded data before mapping —
-//! interpolation and resampling, grids, contours.
+//! interpolation and resampling, grids, contours, and the shared 3-D camera.
 
+pub mod camera;
 pub mod contour;
 pub mod distribution;
 pub mod flow;

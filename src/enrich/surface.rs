@@ -1,14 +1,15 @@
-//! Surface view of a 2D grid: the heightfield `z = f(x, y)` drawn in 3D under an orthographic
-//! projection, with hidden-surface removal by painter's order and Lambert shading.
+//! Surface view of a 2D grid: the heightfield `z = f(x, y)` drawn in 3D through the shared
+//! [`Camera`](super::camera), with a painter's order of its cells and Lambert shading.
 //!
 //! [`project`] turns a [`Grid`] into a [`SurfaceProjection`]: one [`ProjectedQuad`] per grid cell,
-//! sorted back to front, plus the twelve edges of the bounding box and three axis lines for
-//! ticks. Drawing the quads in order gives a correct picture of the surface.
+//! sorted back to front, each with the z-buffer depth of its corners, plus the twelve edges of the
+//! bounding box and three axis lines for ticks. Drawing the quads in order gives a correct picture
+//! of the surface (orthographic views); a z-buffer over the corner depths gives one in any view.
 //!
 //! Rules:
-//! - **Camera.** Orthographic (parallel) projection, so parallel lines stay parallel and
-//!   [`SurfaceProjection::project_point`] is affine. The camera sits in direction
-//!   `(cos el cos az, cos el sin az, sin el)` from the scene: azimuth is measured
+//! - **Camera.** [`super::camera`]'s: by default orthographic (parallel) projection, so parallel
+//!   lines stay parallel and [`SurfaceProjection::project_point`] is affine. The camera sits in
+//!   direction `(cos el cos az, cos el sin az, sin el)` from the scene: azimuth is measured
 //!   counter-clockwise from +x in the x-y plane, elevation up from that plane. The default
 //!   [`View`] is azimuth −60°, elevation 30° (the viewer is on the −y side, a little toward +x).
 //!   Elevation is clamped to `[MIN_ELEVATION_DEG, 90]`: the surface is always seen from above.
@@ -30,13 +31,16 @@
 //! - **Painter's order.** Cells are sorted by the depth of their centre along the horizontal
 //!   part of the view direction, farthest first. For a heightfield on a rectilinear grid seen
 //!   from above this is exact: a ray's horizontal track crosses cells in order of increasing
-//!   horizontal depth, and the surface over a cell lies within that cell's column.
-//! - **Shading.** Lambert: the cosine between the quad's normal (the cross product of its
+//!   horizontal depth, and the surface over a cell lies within that cell's column. (Under a
+//!   perspective view the order is the same and only approximate; use the corner depths.)
+//! - **Shading.** [`Light::lambert`]: the cosine between the quad's normal (the cross product of its
 //!   diagonals, taken on the drawn, exaggerated surface, pointing up) and the direction toward the
-//!   [`Light`], clamped to `[ambient, 1]`.
+//!   [`Light`], times its diffuse strength, clamped to `[ambient, 1]`.
 
 use std::fmt;
 
+use super::camera::{Camera, CameraError, cross, dot, span_ratio, sub};
+pub use super::camera::{Light, View};
 use super::grid::Grid;
 
 /// Largest number of cells drawn along each grid axis; larger grids are decimated by striding.
@@ -50,40 +54,6 @@ pub const DEFAULT_HEIGHT_RATIO: f64 = 0.5;
 
 /// Largest drawn height of the z range, as a multiple of the larger horizontal extent.
 pub const MAX_HEIGHT_RATIO: f64 = 1000.0;
-
-/// Where the surface is seen from (orthographic camera direction).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct View {
-    /// Degrees counter-clockwise from +x, in the x-y plane, toward the camera.
-    pub azimuth_deg: f64,
-    /// Degrees above the x-y plane; clamped to `[MIN_ELEVATION_DEG, 90]`.
-    pub elevation_deg: f64,
-}
-
-impl Default for View {
-    /// Azimuth −60°, elevation 30°.
-    fn default() -> Self {
-        View { azimuth_deg: -60.0, elevation_deg: 30.0 }
-    }
-}
-
-/// A directional light for Lambert shading, fixed in data space (it does not turn with the view).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Light {
-    /// Degrees counter-clockwise from +x toward the light.
-    pub azimuth_deg: f64,
-    /// Degrees above the x-y plane toward the light (90 = straight above).
-    pub elevation_deg: f64,
-    /// Smallest shade, in `[0, 1]`: faces turned away from the light get this much.
-    pub ambient: f64,
-}
-
-impl Default for Light {
-    /// Azimuth −120°, elevation 45°, ambient 0.25: from the front left of the default view.
-    fn default() -> Self {
-        Light { azimuth_deg: -120.0, elevation_deg: 45.0, ambient: 0.25 }
-    }
-}
 
 /// One of the three data axes of the surface box.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -102,6 +72,9 @@ pub struct ProjectedQuad {
     /// Screen positions of the corners at nodes `(i, j)`, `(i', j)`, `(i', j')`, `(i, j')`, where
     /// `(i', j')` is the next kept node (`i + 1`, `j + 1` unless decimated).
     pub corners: [(f64, f64); 4],
+    /// Z-buffer depth of each corner ([`Camera::depth`]: larger is nearer, linear on screen), in
+    /// the order of `corners`.
+    pub depths: [f64; 4],
     /// Horizontal depth of the cell centre in model units; larger is farther. Quads are sorted
     /// by decreasing depth.
     pub depth: f64,
@@ -184,14 +157,19 @@ pub struct SurfaceProjection {
     pub z_range: (f64, f64),
     /// Drawn height of the z range as a fraction of the larger horizontal extent.
     pub height_ratio: f64,
-    transform: Transform,
+    camera: Camera,
 }
 
 impl SurfaceProjection {
     /// Screen position of the data point `(x, y, z)` (same normalisation as the quads). Affine, so
     /// points outside the box are fine; a non-finite input gives a non-finite result.
     pub fn project_point(&self, x: f64, y: f64, z: f64) -> (f64, f64) {
-        self.transform.project(x, y, z)
+        self.camera.project([x, y, z])
+    }
+
+    /// The camera the surface was projected with.
+    pub fn camera(&self) -> &Camera {
+        &self.camera
     }
 }
 
@@ -224,6 +202,8 @@ pub enum SurfaceError {
         /// The offending value.
         value: f64,
     },
+    /// The view (zoom, field of view) or the light (diffuse, highlight) is out of range.
+    Camera(CameraError),
     /// The vertical exaggeration is not a positive finite number.
     ZScale {
         /// The offending value.
@@ -258,6 +238,7 @@ impl fmt::Display for SurfaceError {
             Self::Ambient { value } => {
                 write!(f, "the ambient light level is {value}; give a number between 0 and 1")
             }
+            Self::Camera(e) => e.fmt(f),
             Self::ZScale { value } => write!(
                 f,
                 "the z scale (vertical exaggeration) is {value}; give a positive number, or leave it \
@@ -274,60 +255,10 @@ impl fmt::Display for SurfaceError {
 
 impl std::error::Error for SurfaceError {}
 
-/// Data → model → screen mapping.
-#[derive(Debug, Clone, PartialEq)]
-struct Transform {
-    x: (f64, f64),
-    y: (f64, f64),
-    z: (f64, f64),
-    /// Model extents of x, y and z (the larger of the first two is 1; z is the height ratio).
-    extent: [f64; 3],
-    /// Screen right, screen up and toward-camera unit vectors in model space.
-    right: [f64; 3],
-    up: [f64; 3],
-    eye: [f64; 3],
-    /// Raw screen minimum, scale, and offsets centring the smaller dimension.
-    min: (f64, f64),
-    scale: f64,
-    offset: (f64, f64),
-}
-
-impl Transform {
-    /// Model coordinates of a data point: the box is centred on the origin.
-    fn model(&self, x: f64, y: f64, z: f64) -> [f64; 3] {
-        let [ex, ey, ez] = self.extent;
-        [
-            (unit(self.x.0, self.x.1, x) - 0.5) * ex,
-            (unit(self.y.0, self.y.1, y) - 0.5) * ey,
-            (unit(self.z.0, self.z.1, z) - 0.5) * ez,
-        ]
-    }
-
-    /// Raw (unnormalised) screen coordinates of a model point.
-    fn raw(&self, p: [f64; 3]) -> (f64, f64) {
-        (dot(self.right, p), dot(self.up, p))
-    }
-
-    /// Unit-square screen coordinates of a model point.
-    fn screen(&self, p: [f64; 3]) -> (f64, f64) {
-        let (sx, sy) = self.raw(p);
-        ((sx - self.min.0) * self.scale + self.offset.0, (sy - self.min.1) * self.scale + self.offset.1)
-    }
-
-    fn project(&self, x: f64, y: f64, z: f64) -> (f64, f64) {
-        self.screen(self.model(x, y, z))
-    }
-
-    /// Depth of a model point along the horizontal part of the view direction (larger = farther).
-    fn horizontal_depth(&self, p: [f64; 3]) -> f64 {
-        -(self.eye[0] * p[0] + self.eye[1] * p[1])
-    }
-
-    /// Full 3D depth of a data point along the view direction (larger = farther).
-    #[cfg(test)]
-    fn view_depth(&self, x: f64, y: f64, z: f64) -> f64 {
-        -dot(self.eye, self.model(x, y, z))
-    }
+/// Depth of a model point along the horizontal part of the view direction (larger = farther).
+fn horizontal_depth(camera: &Camera, p: [f64; 3]) -> f64 {
+    let eye = camera.toward_camera();
+    -(eye[0] * p[0] + eye[1] * p[1])
 }
 
 /// Projects the heightfield of `grid` as seen from `view`, shaded by `light`; see the module docs
@@ -386,50 +317,22 @@ pub fn project(grid: &Grid, view: View, light: Light, z_scale: Option<f64>) -> R
         }
     };
 
-    let az = view.azimuth_deg.to_radians();
-    let el = view.elevation_deg.clamp(MIN_ELEVATION_DEG, 90.0).to_radians();
-    let (sa, ca, se, ce) = (az.sin(), az.cos(), el.sin(), el.cos());
-    let mut t = Transform {
-        x: (x0, x1),
-        y: (y0, y1),
-        z: z_range,
-        extent: [ex, ey, height_ratio],
-        right: [-sa, ca, 0.0],
-        up: [-se * ca, -se * sa, ce],
-        eye: [ce * ca, ce * sa, se],
-        min: (0.0, 0.0),
-        scale: 1.0,
-        offset: (0.0, 0.0),
-    };
-
-    // Fit the projected box into the unit square.
-    let corners = box_corners(&t);
-    let (mut lo, mut hi) = ((f64::INFINITY, f64::INFINITY), (f64::NEG_INFINITY, f64::NEG_INFINITY));
-    for &p in &corners {
-        let (sx, sy) = t.raw(p);
-        lo = (lo.0.min(sx), lo.1.min(sy));
-        hi = (hi.0.max(sx), hi.1.max(sy));
-    }
-    let (w, h) = (hi.0 - lo.0, hi.1 - lo.1);
-    let big = w.max(h);
-    t.min = lo;
-    t.scale = if big > 0.0 && big.is_finite() { 1.0 / big } else { 1.0 };
-    t.offset = (0.5 * (1.0 - w * t.scale), 0.5 * (1.0 - h * t.scale));
-    let size = (w * t.scale, h * t.scale);
+    let view = View { elevation_deg: view.elevation_deg.clamp(MIN_ELEVATION_DEG, 90.0), ..view };
+    light.check().map_err(SurfaceError::Camera)?;
+    let camera =
+        Camera::new([(x0, x1), (y0, y1), z_range], [ex, ey, height_ratio], view).map_err(SurfaceError::Camera)?;
+    let corners = camera.corners();
+    let size = camera.size();
 
     // Decimate, then build one quad per complete cell.
     let (ii, sx) = strided(nx);
     let (jj, sy) = strided(ny);
-    let light_dir = {
-        let (la, le) = (light.azimuth_deg.to_radians(), light.elevation_deg.to_radians());
-        [le.cos() * la.cos(), le.cos() * la.sin(), le.sin()]
-    };
     let mut quads = Vec::with_capacity(ii.len().saturating_sub(1).saturating_mul(jj.len().saturating_sub(1)));
     for jw in jj.windows(2) {
         let &[j0, j1] = jw else { continue };
         for iw in ii.windows(2) {
             let &[i0, i1] = iw else { continue };
-            if let Some(quad) = make_quad(grid, &t, light_dir, ambient, (i0, i1), (j0, j1)) {
+            if let Some(quad) = make_quad(grid, &camera, &light, (i0, i1), (j0, j1)) {
                 quads.push(quad);
             }
         }
@@ -439,8 +342,8 @@ pub fn project(grid: &Grid, view: View, light: Light, z_scale: Option<f64>) -> R
     }
     quads.sort_by(|a, b| b.depth.total_cmp(&a.depth).then(a.cell.1.cmp(&b.cell.1)).then(a.cell.0.cmp(&b.cell.0)));
 
-    let box_edges = box_edges(&t, &corners);
-    let axes = axis_lines(&t);
+    let box_edges = box_edges(&camera, &corners);
+    let axes = axis_lines(&camera);
     Ok(SurfaceProjection {
         quads,
         box_edges,
@@ -451,16 +354,15 @@ pub fn project(grid: &Grid, view: View, light: Light, z_scale: Option<f64>) -> R
         y_range: (y0, y1),
         z_range,
         height_ratio,
-        transform: t,
+        camera,
     })
 }
 
 /// The quad of the cell with corner nodes `i0, i1` × `j0, j1`, or `None` when a corner is missing.
 fn make_quad(
     grid: &Grid,
-    t: &Transform,
-    light: [f64; 3],
-    ambient: f64,
+    camera: &Camera,
+    light: &Light,
     (i0, i1): (usize, usize),
     (j0, j1): (usize, usize),
 ) -> Option<ProjectedQuad> {
@@ -470,44 +372,33 @@ fn make_quad(
     if z.iter().any(|v| v.is_nan()) {
         return None;
     }
-    let p = [t.model(xa, ya, z[0]), t.model(xb, ya, z[1]), t.model(xb, yb, z[2]), t.model(xa, yb, z[3])];
-    let d1 = sub(p[2], p[0]);
-    let d2 = sub(p[3], p[1]);
-    let n = cross(d1, d2);
-    let len = dot(n, n).sqrt();
-    let lambert = dot(n, light) / len;
-    let shade = if lambert.is_nan() { ambient } else { lambert.max(ambient).min(1.0) };
+    let p = [
+        camera.model([xa, ya, z[0]]),
+        camera.model([xb, ya, z[1]]),
+        camera.model([xb, yb, z[2]]),
+        camera.model([xa, yb, z[3]]),
+    ];
+    let n = cross(sub(p[2], p[0]), sub(p[3], p[1]));
     let centre = [0.25 * (p[0][0] + p[1][0] + p[2][0] + p[3][0]), 0.25 * (p[0][1] + p[1][1] + p[2][1] + p[3][1]), 0.0];
     Some(ProjectedQuad {
-        corners: [t.screen(p[0]), t.screen(p[1]), t.screen(p[2]), t.screen(p[3])],
-        depth: t.horizontal_depth(centre),
-        shade,
+        corners: p.map(|m| camera.screen(m)),
+        depths: p.map(|m| camera.depth(m)),
+        depth: horizontal_depth(camera, centre),
+        shade: light.lambert(n),
         value: 0.25 * z[0] + 0.25 * z[1] + 0.25 * z[2] + 0.25 * z[3],
         cell: (i0, j0),
     })
 }
 
-/// The eight corners of the model box; bit 0 of the index picks the x side, bit 1 y, bit 2 z.
-fn box_corners(t: &Transform) -> [[f64; 3]; 8] {
-    let mut corners = [[0.0; 3]; 8];
-    for (c, corner) in corners.iter_mut().enumerate() {
-        for (k, coord) in corner.iter_mut().enumerate() {
-            let side = if c >> k & 1 == 1 { 0.5 } else { -0.5 };
-            *coord = side * t.extent.get(k).copied().unwrap_or(0.0);
-        }
-    }
-    corners
-}
-
 /// Whether the box face on `side` (0 = low, 1 = high) of model axis `k` faces the camera.
-fn faces_camera(t: &Transform, k: usize, side: usize) -> bool {
-    let e = t.eye.get(k).copied().unwrap_or(0.0);
+fn faces_camera(camera: &Camera, k: usize, side: usize) -> bool {
+    let e = camera.toward_camera().get(k).copied().unwrap_or(0.0);
     let outward = if side == 1 { e } else { -e };
     outward > 1e-12
 }
 
 /// The twelve box edges, each flagged hidden when neither adjacent face faces the camera.
-fn box_edges(t: &Transform, corners: &[[f64; 3]; 8]) -> Vec<BoxEdge> {
+fn box_edges(t: &Camera, corners: &[[f64; 3]; 8]) -> Vec<BoxEdge> {
     const AXES: [SurfaceAxis; 3] = [SurfaceAxis::X, SurfaceAxis::Y, SurfaceAxis::Z];
     let mut edges = Vec::with_capacity(12);
     for (c, &a) in corners.iter().enumerate() {
@@ -524,29 +415,29 @@ fn box_edges(t: &Transform, corners: &[[f64; 3]; 8]) -> Vec<BoxEdge> {
 }
 
 /// Screen direction of the model direction `d`, normalised; `fallback` when it is edge-on.
-fn screen_direction(t: &Transform, d: [f64; 3], fallback: (f64, f64)) -> (f64, f64) {
-    let (sx, sy) = (dot(t.right, d), dot(t.up, d));
+fn screen_direction(t: &Camera, d: [f64; 3], fallback: (f64, f64)) -> (f64, f64) {
+    let (right, up) = t.screen_axes();
+    let (sx, sy) = (dot(right, d), dot(up, d));
     let len = sx.hypot(sy);
     if len > 1e-9 { (sx / len, sy / len) } else { fallback }
 }
 
 /// Tick lines: x and y along the bottom edges nearest the camera, z along the leftmost vertical
 /// edge.
-fn axis_lines(t: &Transform) -> [AxisLine; 3] {
-    let (x0, x1) = t.x;
-    let (y0, y1) = t.y;
-    let (z0, z1) = t.z;
+fn axis_lines(t: &Camera) -> [AxisLine; 3] {
+    let [(x0, x1), (y0, y1), (z0, z1)] = t.ranges();
+    let eye = t.toward_camera();
     let line = |axis, from: [f64; 3], to: [f64; 3], outward| AxisLine {
         axis,
         from,
         to,
-        start: t.project(from[0], from[1], from[2]),
-        end: t.project(to[0], to[1], to[2]),
+        start: t.project(from),
+        end: t.project(to),
         outward,
     };
     // The camera is on the high side of an axis when the eye vector points that way.
-    let near_y_high = t.eye[1] > 0.0;
-    let near_x_high = t.eye[0] > 0.0;
+    let near_y_high = eye[1] > 0.0;
+    let near_x_high = eye[0] > 0.0;
     let y_near = if near_y_high { y1 } else { y0 };
     let x_near = if near_x_high { x1 } else { x0 };
     let x_out = screen_direction(t, [0.0, if near_y_high { 1.0 } else { -1.0 }, 0.0], (0.0, -1.0));
@@ -555,7 +446,7 @@ fn axis_lines(t: &Transform) -> [AxisLine; 3] {
     let mut best = (x0, y0);
     let mut best_sx = f64::INFINITY;
     for (x, y) in [(x0, y0), (x1, y0), (x0, y1), (x1, y1)] {
-        let (sx, _) = t.project(x, y, z0);
+        let (sx, _) = t.project([x, y, z0]);
         if sx < best_sx {
             best_sx = sx;
             best = (x, y);
@@ -580,44 +471,16 @@ fn strided(n: usize) -> (Vec<usize>, usize) {
     (kept, stride)
 }
 
-/// Position of `v` on the range `[a, b]` as a fraction (0 at `a`, 1 at `b`, unclamped) without
-/// overflow for huge spans; 0.5 when `a == b`.
-fn unit(a: f64, b: f64, v: f64) -> f64 {
-    if a == b {
-        return 0.5;
-    }
-    let (num, den) = (v - a, b - a);
-    if num.is_finite() && den.is_finite() { num / den } else { (0.5 * v - 0.5 * a) / (0.5 * b - 0.5 * a) }
-}
-
-/// Length of the range `a` over that of `b`, without overflow for huge spans.
-fn span_ratio(a: (f64, f64), b: (f64, f64)) -> f64 {
-    let (num, den) = (a.1 - a.0, b.1 - b.0);
-    if num.is_finite() && den.is_finite() { num / den } else { (0.5 * a.1 - 0.5 * a.0) / (0.5 * b.1 - 0.5 * b.0) }
-}
-
-fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
-fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-
-fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
 
     fn view(azimuth_deg: f64, elevation_deg: f64) -> View {
-        View { azimuth_deg, elevation_deg }
+        View::new(azimuth_deg, elevation_deg)
     }
 
     fn overhead(ambient: f64) -> Light {
-        Light { azimuth_deg: 0.0, elevation_deg: 90.0, ambient }
+        Light { azimuth_deg: 0.0, elevation_deg: 90.0, ambient, ..Light::default() }
     }
 
     fn lin(n: usize, h: f64) -> Vec<f64> {
@@ -697,7 +560,7 @@ mod tests {
         for az in [-60.0, 0.0, 37.0, 90.0, 135.0, 180.0, 250.0, -10.0] {
             for el in [10.0, 35.0, 70.0] {
                 let p = project(&g, view(az, el), Light::default(), None).unwrap();
-                let depth = |i: usize, j: usize| p.transform.view_depth(xs[i], ys[j], g.value(i, j));
+                let depth = |i: usize, j: usize| p.camera.distance(p.camera.model([xs[i], ys[j], g.value(i, j)]));
                 for _ in 0..300 {
                     let q = (rng(&mut seed), rng(&mut seed));
                     let mut hits = Vec::new();
@@ -757,7 +620,7 @@ mod tests {
         let flat = Grid::new(lin(3, 1.0), lin(3, 1.0), vec![2.0; 9]).unwrap();
         let p = project(&flat, View::default(), overhead(0.2), None).unwrap();
         assert!(p.quads.iter().all(|q| (q.shade - 1.0).abs() < 1e-12));
-        let low = Light { azimuth_deg: 10.0, elevation_deg: 30.0, ambient: 0.2 };
+        let low = Light { azimuth_deg: 10.0, elevation_deg: 30.0, ambient: 0.2, ..Light::default() };
         let p = project(&flat, View::default(), low, None).unwrap();
         assert!(p.quads.iter().all(|q| (q.shade - 0.5).abs() < 1e-12), "{:?}", p.quads[0].shade);
 
@@ -771,9 +634,9 @@ mod tests {
         };
         assert!((shade(overhead(0.2)) - 0.5).abs() < 1e-12);
         assert!((shade(overhead(0.7)) - 0.7).abs() < 1e-12, "ambient floor");
-        let facing = Light { azimuth_deg: 180.0, elevation_deg: 30.0, ambient: 0.1 };
+        let facing = Light { azimuth_deg: 180.0, elevation_deg: 30.0, ambient: 0.1, ..Light::default() };
         assert!((shade(facing) - 1.0).abs() < 1e-12);
-        let behind = Light { azimuth_deg: 0.0, elevation_deg: 30.0, ambient: 0.1 };
+        let behind = Light { azimuth_deg: 0.0, elevation_deg: 30.0, ambient: 0.1, ..Light::default() };
         assert!((shade(behind) - 0.1).abs() < 1e-12);
     }
 

@@ -9,6 +9,7 @@
 #[cfg(feature = "explore")]
 pub mod egui;
 mod lines;
+pub mod mesh;
 pub mod png;
 mod points;
 pub mod svg;

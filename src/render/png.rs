@@ -4,7 +4,7 @@
 //! outlines from [`crate::text`], images are drawn with nearest or bilinear filtering, point
 //! batches go through a dedicated stamp blitter (`points.rs`) fast enough for millions of points,
 //! and line batches through a direct anti-aliased line rasterizer (`lines.rs`) fast enough for
-//! tens of thousands of polylines.
+//! tens of thousands of polylines, and triangle meshes through a z-buffer (`mesh.rs`).
 //! The canvas is checked against [`MAX_CANVAS_PIXELS`] before anything is allocated.
 
 use std::fmt;
@@ -334,6 +334,7 @@ impl Painter {
             Shape::Lines(batch) => {
                 super::lines::draw_batch(&mut self.pixmap, batch, self.scale, clip);
             }
+            Shape::Mesh(mesh) => super::mesh::draw_mesh(&mut self.pixmap, mesh, self.scale, clip),
             Shape::Group { items, clip: group_clip } => match group_clip {
                 None => {
                     for child in items {

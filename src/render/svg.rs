@@ -9,7 +9,7 @@
 use std::fmt::Write as _;
 
 use crate::scene::{
-    Anchor, Color, Item, LineBatch, PathCmd, PerPoint, Point, PointBatch, Raster, Scene, Shape, Style, Text,
+    Anchor, Color, Item, LineBatch, Mesh, PathCmd, PerPoint, Point, PointBatch, Raster, Scene, Shape, Style, Text,
 };
 use crate::text::{FONT_FAMILY, FONT_WEIGHT, baseline_shift, sanitize};
 
@@ -124,6 +124,7 @@ impl Writer {
             Shape::Image(raster) => self.image(&common, raster),
             Shape::Points(batch) => self.points(item, &common, batch),
             Shape::Lines(batch) => self.lines(item, &common, batch),
+            Shape::Mesh(mesh) => self.mesh(item, &common, mesh),
             Shape::Group { items, clip } => {
                 let clip = match clip {
                     Some(c) => match normalized_rect(*c) {
@@ -332,6 +333,61 @@ impl Writer {
         }
         self.out.push_str("</g>\n");
     }
+}
+
+impl Writer {
+    /// Writes a mesh as one `<g>` of triangles back to front (by mean depth, ties in mesh order),
+    /// each a `<path>` filled and outlined with a hairline in the mean colour of its vertices (the
+    /// outline closes anti-aliasing seams between neighbours); or, above
+    /// [`Mesh::VECTOR_LIMIT`] triangles, as one embedded image drawn by the PNG renderer's
+    /// z-buffer.
+    fn mesh(&mut self, item: &Item, common: &str, mesh: &Mesh) {
+        if mesh.drawn_as_raster() {
+            let points = mesh.positions.iter().map(|p| Point::new(f64::from(p[0]), f64::from(p[1])));
+            if let Some(raster) = self.raster_around(item, points, 0.0) {
+                self.image(common, &raster);
+                return;
+            }
+        }
+        let mut tris: Vec<(f64, [[f32; 3]; 3], Color)> = (0..mesh.indices.len())
+            .filter_map(|i| mesh.triangle(i))
+            .map(|(p, c)| {
+                let depth = (f64::from(p[0][2]) + f64::from(p[1][2]) + f64::from(p[2][2])) / 3.0;
+                (depth, p, mean_colour(c))
+            })
+            .collect();
+        // Larger depth is nearer: ascending depth is back to front (the sort is stable).
+        tris.sort_by(|a, b| a.0.total_cmp(&b.0));
+        let _ = writeln!(self.out, "<g{common} stroke-width=\"{}\" stroke-linejoin=\"round\">", num(MESH_SEAM_WIDTH));
+        for (_, p, c) in &tris {
+            if c.a == 0 {
+                continue;
+            }
+            let [a, b, d] = p.map(|q| (num(f64::from(q[0])), num(f64::from(q[1]))));
+            let stroke = stroke_color_attrs(*c);
+            let _ = writeln!(
+                self.out,
+                "<path d=\"M{} {}L{} {}L{} {}Z\"{}{stroke}/>",
+                a.0,
+                a.1,
+                b.0,
+                b.1,
+                d.0,
+                d.1,
+                fill_attrs(Some(*c))
+            );
+        }
+        self.out.push_str("</g>\n");
+    }
+}
+
+/// Width of the outline a mesh triangle gets in SVG, in canvas units.
+const MESH_SEAM_WIDTH: f64 = 0.5;
+
+/// The mean of three colours, channel by channel.
+fn mean_colour(c: [Color; 3]) -> Color {
+    let mean = |f: fn(&Color) -> u8| ((c.iter().map(|x| u32::from(f(x))).sum::<u32>() + 1) / 3) as u8;
+    Color { r: mean(|c| c.r), g: mean(|c| c.g), b: mean(|c| c.b), a: mean(|c| c.a) }
 }
 
 /// `data-role`, `data-row` (single-row items) and `data-label` attributes.
@@ -609,6 +665,25 @@ pub(crate) mod tests {
                     Style::default(),
                 )
                 .with_rows(vec![4, 5]),
+                Item::new(
+                    Role::DataMark,
+                    Shape::Mesh(Mesh {
+                        positions: Arc::new(vec![
+                            [120.0, 200.0, 0.0],
+                            [180.0, 210.0, 1.0],
+                            [140.0, 260.0, 0.5],
+                            [f32::NAN, 0.0, 0.0],
+                        ]),
+                        indices: Arc::new(vec![[0, 1, 2], [0, 1, 3], [0, 2, 9]]),
+                        colors: Arc::new(vec![
+                            Color::rgb(200, 30, 30),
+                            Color::rgb(30, 200, 30),
+                            Color::rgb(30, 30, 200),
+                        ]),
+                        normals: None,
+                    }),
+                    Style::default(),
+                ),
                 Item::text(Role::Title, t(Point::new(200.0, 10.0), hostile, Anchor::Middle, Baseline::Top, 0.0)),
                 Item::text(
                     Role::AxisTitle,
@@ -727,6 +802,73 @@ pub(crate) mod tests {
         let raster = path(crate::scene::PATH_VECTOR_LIMIT + 1);
         assert_eq!((raster.matches("<path").count(), raster.matches("<image").count()), (0, 1));
         assert!(raster.contains("x=\"17\" y=\"27\" width=\"26\" height=\"26\""), "{}", &raster[..600]);
+    }
+
+    /// A 200 × 100 white scene of one item.
+    fn scene(item: Item) -> Scene {
+        Scene { width: 200.0, height: 100.0, background: Color::WHITE, title: None, items: vec![item] }
+    }
+
+    /// A mesh of `n` flat triangles, triangle `k` at depth `depths[k % depths.len()]` in colour
+    /// `(k % 256, 0, 0)`, all over one spot.
+    fn stacked_mesh(n: usize, depths: &[f32]) -> Mesh {
+        let mut positions = Vec::new();
+        let mut colors = Vec::new();
+        for k in 0..n {
+            let z = depths[k % depths.len()];
+            let dx = (k % 7) as f32;
+            positions.extend([[10.0 + dx, 10.0, z], [40.0 + dx, 12.0, z], [20.0, 40.0 + dx, z]]);
+            colors.extend([Color::rgb((k % 256) as u8, 0, 0); 3]);
+        }
+        let indices = (0..n as u32).map(|t| [3 * t, 3 * t + 1, 3 * t + 2]).collect();
+        Mesh { positions: Arc::new(positions), indices: Arc::new(indices), colors: Arc::new(colors), normals: None }
+    }
+
+    #[test]
+    fn mesh_triangles_are_written_back_to_front() {
+        // Given near first: the far triangles must come first in the file.
+        let m = stacked_mesh(4, &[3.0, 1.0, 2.0, 0.0]);
+        let svg = to_svg(&scene(Item::new(Role::DataMark, Shape::Mesh(m), Style::default()).labelled("f")));
+        assert!(usvg::Tree::from_str(&svg, &usvg::Options::default()).is_ok(), "{svg}");
+        let fills: Vec<&str> = svg
+            .match_indices("<path d=")
+            .map(|(i, _)| &svg[i..])
+            .filter_map(|s| s.split("fill=\"").nth(1))
+            .map(|s| &s[..7])
+            .collect();
+        // Depths 0, 1, 2, 3 are triangles 3, 1, 2, 0.
+        assert_eq!(fills, ["#030000", "#010000", "#020000", "#000000"]);
+        assert!(svg.contains("<g data-role=\"data-mark\" data-label=\"f\""), "{svg}");
+        // Colours are the mean of the vertices'; broken triangles are left out.
+        let m = Mesh {
+            positions: Arc::new(vec![[10.0, 10.0, 0.0], [40.0, 10.0, 0.0], [10.0, 40.0, f32::INFINITY]]),
+            indices: Arc::new(vec![[0, 1, 2], [0, 1, 7]]),
+            colors: Arc::new(vec![Color::rgb(255, 0, 0), Color::rgb(0, 255, 0), Color::rgb(0, 0, 255)]),
+            normals: None,
+        };
+        let svg = to_svg(&scene(Item::new(Role::DataMark, Shape::Mesh(m), Style::default())));
+        assert_eq!(svg.matches("<path").count(), 0, "{svg}");
+        let m = Mesh {
+            positions: Arc::new(vec![[10.0, 10.0, 0.0], [40.0, 10.0, 0.0], [10.0, 40.0, 0.0]]),
+            indices: Arc::new(vec![[0, 1, 2]]),
+            colors: Arc::new(vec![Color::rgb(255, 0, 0), Color::rgb(0, 255, 0), Color::rgb(0, 0, 255)]),
+            normals: None,
+        };
+        let svg = to_svg(&scene(Item::new(Role::DataMark, Shape::Mesh(m), Style::default())));
+        assert!(svg.contains("<path d=\"M10 10L40 10L10 40Z\" fill=\"#555555\" stroke=\"#555555\"/>"), "{svg}");
+    }
+
+    #[test]
+    fn a_mesh_over_the_cap_becomes_one_image() {
+        let at_cap = stacked_mesh(Mesh::VECTOR_LIMIT, &[0.0]);
+        let svg = to_svg(&scene(Item::new(Role::DataMark, Shape::Mesh(at_cap), Style::default())));
+        assert_eq!((svg.matches("<path").count(), svg.matches("<image").count()), (Mesh::VECTOR_LIMIT, 0));
+        let over = stacked_mesh(Mesh::VECTOR_LIMIT + 1, &[0.0, 1.0]);
+        let svg = to_svg(&scene(Item::new(Role::DataMark, Shape::Mesh(over), Style::default())));
+        assert_eq!((svg.matches("<path").count(), svg.matches("<image").count()), (0, 1));
+        assert!(usvg::Tree::from_str(&svg, &usvg::Options::default()).is_ok());
+        // The image covers the mesh's vertices (x 10..46, y 10..46) plus a pixel around.
+        assert!(svg.contains("x=\"9\" y=\"9\" width=\"38\" height=\"38\""), "{}", &svg[..600]);
     }
 
     #[test]

@@ -297,6 +297,11 @@ fn item_bounds(item: &Item) -> Option<Rect> {
             let w = if batch.width.is_finite() { batch.width } else { 0.0 };
             return b.rect(w + MARGIN);
         }
+        Shape::Mesh(mesh) => {
+            let r = mesh.bounds()?;
+            b.add(r.x, r.y);
+            b.add(r.right(), r.bottom());
+        }
         Shape::Group { .. } => return None,
     }
     b.rect(MARGIN)
@@ -357,7 +362,8 @@ mod tests {
     use super::*;
     use crate::scene::{PerPoint, Point, PointBatch, Role, Style, Text};
 
-    /// A small scene: a grid rect, a clipped point batch, a stroked path and a label.
+    /// A small scene: a grid rect, a clipped point batch, a stroked path, a mesh of two
+    /// intersecting triangles and a label.
     fn scene() -> Scene {
         let batch = PointBatch {
             centers: (0..40).map(|i| Point::new(20.0 + 3.0 * i as f64, 30.0 + (i % 7) as f64 * 9.0)).collect(),
@@ -385,6 +391,28 @@ mod tests {
                         PathCmd::LineTo(Point::new(140.0, 95.0)),
                     ]),
                     Style::stroke(Color::BLACK, 1.0),
+                ),
+                Item::new(
+                    Role::DataMark,
+                    Shape::Mesh(crate::scene::Mesh {
+                        positions: std::sync::Arc::new(vec![
+                            [100.3, 20.7, 0.0],
+                            [150.9, 30.2, 1.0],
+                            [120.4, 70.6, 0.5],
+                            [101.1, 30.3, 1.0],
+                            [149.2, 22.8, 0.0],
+                            [130.7, 68.1, 0.5],
+                        ]),
+                        indices: std::sync::Arc::new(vec![[0, 1, 2], [3, 4, 5]]),
+                        colors: std::sync::Arc::new(
+                            vec![Color::rgb(20, 120, 60); 3]
+                                .into_iter()
+                                .chain(vec![Color::rgb(90, 30, 160); 3])
+                                .collect(),
+                        ),
+                        normals: None,
+                    }),
+                    Style::default(),
                 ),
                 Item::text(
                     Role::Title,

@@ -1,4 +1,5 @@
-//! Scene: the immutable tree of geometry that every renderer draws and every lint rule reads.
+//! Scene: the immutable tree of geometry that every renderer draws and every lint rule reads
+//! (shapes, text, rasters, point and line batches, and depth-tested triangle [`Mesh`]es).
 //!
 //! Coordinates are floats in canvas units (CSS pixels at scale 1), origin top-left, y down.
 //! Every item carries a [`Role`] and, for data marks, the source rows it was drawn from, so that
@@ -346,6 +347,75 @@ pub struct Raster {
     pub smooth: bool,
 }
 
+/// Indexed triangles in 3-D with one colour per vertex, drawn depth-correctly: surfaces and,
+/// later, isosurfaces. Vertices are already projected and lit by their maker (the 3-D kinds use
+/// `enrich::camera`): x and y are canvas units, z is a depth where **larger is nearer**,
+/// varying linearly across the canvas within each triangle (what a z-buffer interpolates).
+///
+/// The raster backend keeps, at every pixel, the nearest triangle (z-buffer) with its colour
+/// interpolated from the vertices (Gouraud), so intersecting or unsorted triangles come out
+/// right; the vector backend writes triangles back to front by mean depth (painter's order), each
+/// in the mean colour of its vertices, or embeds the raster above [`Mesh::VECTOR_LIMIT`]
+/// triangles. A triangle with an index out of range or a non-finite vertex is skipped, and so is
+/// one with no area.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Mesh {
+    /// Vertex positions `[x, y, depth]`: canvas units, depth larger = nearer.
+    pub positions: Arc<Vec<[f32; 3]>>,
+    /// Triangles as indices into `positions` (and `colors`, `normals`).
+    pub indices: Arc<Vec<[u32; 3]>>,
+    /// Colour of each vertex, already shaded (alpha included; overlapping triangles of one mesh
+    /// do not blend: the nearest wins). A vertex without a colour is drawn transparent.
+    pub colors: Arc<Vec<Color>>,
+    /// Optional unit normal of each vertex in model space, for makers that relight a mesh;
+    /// renderers do not read it.
+    pub normals: Option<Arc<Vec<[f32; 3]>>>,
+}
+
+impl Mesh {
+    /// Vector backends (SVG) embed a mesh of more triangles than this as a raster: one `<path>`
+    /// per triangle makes a file of megabytes that viewers draw slowly.
+    pub const VECTOR_LIMIT: usize = 20_000;
+
+    /// Whether vector backends embed this mesh as a raster (more than [`Self::VECTOR_LIMIT`]
+    /// triangles).
+    pub fn drawn_as_raster(&self) -> bool {
+        self.indices.len() > Self::VECTOR_LIMIT
+    }
+
+    /// The three vertices (`[x, y, depth]`) and colours of triangle `i`, or `None` when it is
+    /// past the end, an index is out of range, a coordinate is not finite or it has no area.
+    pub fn triangle(&self, i: usize) -> Option<([[f32; 3]; 3], [Color; 3])> {
+        let tri = self.indices.get(i)?;
+        let v = |k: usize| self.positions.get(*tri.get(k)? as usize).copied();
+        let p = [v(0)?, v(1)?, v(2)?];
+        if p.iter().flatten().any(|c| !c.is_finite()) {
+            return None;
+        }
+        let [a, b, c] = p.map(|q| [f64::from(q[0]), f64::from(q[1])]);
+        let area = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
+        if area == 0.0 || !area.is_finite() {
+            return None;
+        }
+        let colour =
+            |k: usize| tri.get(k).and_then(|&j| self.colors.get(j as usize)).copied().unwrap_or(Color::TRANSPARENT);
+        Some((p, [colour(0), colour(1), colour(2)]))
+    }
+
+    /// The rectangle covering every finite vertex (`None` when there is none).
+    pub fn bounds(&self) -> Option<Rect> {
+        let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+        for p in self.positions.iter() {
+            let (x, y) = (f64::from(p[0]), f64::from(p[1]));
+            if x.is_finite() && y.is_finite() {
+                (lo[0], lo[1]) = (lo[0].min(x), lo[1].min(y));
+                (hi[0], hi[1]) = (hi[0].max(x), hi[1].max(y));
+            }
+        }
+        (lo[0] <= hi[0]).then(|| Rect::new(lo[0], lo[1], hi[0] - lo[0], hi[1] - lo[1]))
+    }
+}
+
 /// The geometry of one item.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Shape {
@@ -368,6 +438,8 @@ pub enum Shape {
     Points(PointBatch),
     /// Many polylines at once.
     Lines(LineBatch),
+    /// Triangles drawn with hidden surfaces removed.
+    Mesh(Mesh),
     /// A group of items, optionally clipped to a rectangle.
     Group {
         /// Children, drawn in order.
@@ -502,11 +574,50 @@ impl Item {
                 }
                 Shape::Lines(b)
             }
+            Shape::Mesh(mut m) => {
+                let (dx, dy) = (dx as f32, dy as f32);
+                m.positions = Arc::new(m.positions.iter().map(|p| [p[0] + dx, p[1] + dy, p[2]]).collect());
+                Shape::Mesh(m)
+            }
             Shape::Group { items, clip } => Shape::Group {
                 items: items.into_iter().map(|i| i.translated(dx, dy)).collect(),
                 clip: clip.map(|r| r.offset(dx, dy)),
             },
         };
         self
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn mesh_triangles_bounds_and_moves() {
+        let m = Mesh {
+            positions: Arc::new(vec![
+                [0.0, 0.0, 1.0],
+                [10.0, 0.0, 2.0],
+                [0.0, 5.0, 3.0],
+                [f32::NAN, 1.0, 0.0],
+                [4.0, 0.0, 0.0],
+            ]),
+            indices: Arc::new(vec![[0, 1, 2], [0, 1, 3], [0, 1, 4], [0, 1, 5]]),
+            colors: Arc::new(vec![Color::BLACK, Color::WHITE]),
+            normals: None,
+        };
+        let Some((p, c)) = m.triangle(0) else { panic!("triangle 0 is whole") };
+        assert_eq!(p[2], [0.0, 5.0, 3.0]);
+        assert_eq!(c, [Color::BLACK, Color::WHITE, Color::TRANSPARENT], "a vertex without a colour is transparent");
+        assert!(m.triangle(1).is_none(), "non-finite vertex");
+        assert!(m.triangle(2).is_none(), "no area");
+        assert!(m.triangle(3).is_none(), "index out of range");
+        assert!(m.triangle(4).is_none(), "past the end");
+        assert_eq!(m.bounds(), Some(Rect::new(0.0, 0.0, 10.0, 5.0)));
+        assert!(!m.drawn_as_raster());
+        let moved = Item::new(Role::DataMark, Shape::Mesh(m), Style::default()).translated(2.0, -1.0);
+        let Shape::Mesh(moved) = moved.shape else { panic!("still a mesh") };
+        assert_eq!(moved.bounds(), Some(Rect::new(2.0, -1.0, 10.0, 5.0)));
+        assert_eq!(moved.positions[2], [2.0, 4.0, 3.0], "depth unchanged");
     }
 }

@@ -411,3 +411,44 @@ y = {{ field = "hi", title = "High", unit = "°C" }}
     );
     assert_eq!(axis_titles(&scatter), ["Mass (g)", "High (°C)"]);
 }
+
+#[test]
+fn a_surface_is_one_mesh_whose_spike_hides_what_is_behind_it() {
+    // A 4 × 4 grid, flat but for a spike at (1, 1), seen from the −y side (azimuth −90): the spike
+    // stands in front of the far cells, so the PNG shows its colour where it covers them.
+    let mut values = Vec::new();
+    for y in 0..4 {
+        for x in 0..4 {
+            let z = if (x, y) == (1, 1) { 10 } else { 0 };
+            values.push(format!("{{ x = {x}, y = {y}, z = {z} }}"));
+        }
+    }
+    let spec = format!(
+        "[data.g]\nvalues = [{}]\n[[chart]]\nname = \"s\"\nkind = \"surface\"\ndata = \"g\"\nx = \"x\"\ny = \"y\"\nz = \"z\"\nazimuth = -90\nelevation = 20\n",
+        values.join(", ")
+    );
+    let out = Fixture::new(&spec, &[]).draw().unwrap_or_else(|e| panic!("{e}")).remove(0);
+    let mut meshes = Vec::new();
+    out.scene.walk(|item| {
+        if let dataink::scene::Shape::Mesh(m) = &item.shape {
+            meshes.push((m.clone(), item.rows.len()));
+        }
+    });
+    let [(mesh, rows)] = meshes.as_slice() else { panic!("one mesh, got {}", meshes.len()) };
+    assert_eq!((mesh.indices.len(), mesh.positions.len(), *rows), (2 * 9, 4 * 9, 16), "two triangles per cell");
+    // Nothing in the mesh is broken.
+    assert!((0..mesh.indices.len()).all(|i| mesh.triangle(i).is_some()));
+    // In the PNG, the pixel just below the spike's top vertex shows the spike (its near faces),
+    // not one of the flat cells behind it.
+    let top = mesh.positions.iter().copied().min_by(|a, b| a[1].total_cmp(&b[1])).unwrap_or_default();
+    let pixmap = dataink::render::to_pixmap(&out.scene, 1.0).unwrap_or_else(|e| panic!("{e}"));
+    let below = pixmap.pixel(top[0] as u32, top[1] as u32 + 6).map(|c| [c.red(), c.green(), c.blue()]);
+    let below = below.unwrap_or_default();
+    let flat: Vec<[u8; 3]> = (0..mesh.indices.len())
+        .filter_map(|i| mesh.triangle(i))
+        .filter(|(p, _)| p.iter().all(|v| v != &top))
+        .map(|(_, c)| [c[0].r, c[0].g, c[0].b])
+        .filter(|c| c.iter().zip(below).all(|(a, b)| a.abs_diff(b) <= 8))
+        .collect();
+    assert!(flat.is_empty(), "{below:?} is the colour of a cell behind the spike: {flat:?}");
+}

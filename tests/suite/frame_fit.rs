@@ -87,6 +87,12 @@ fn data_coverage(out: &ChartOutput) -> f64 {
                     }
                 }
             }
+            Shape::Mesh(mesh) => {
+                if let Some(r) = mesh.bounds() {
+                    add(Point::new(r.x, r.y));
+                    add(Point::new(r.right(), r.bottom()));
+                }
+            }
             _ => {}
         }
     });

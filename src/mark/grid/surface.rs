@@ -1,8 +1,10 @@
-//! `surface`: a gridded field drawn as a shaded 3D heightfield — orthographic projection,
-//! painter's-order hidden-surface removal, Lambert shading — with projected axes and a colour bar.
+//! `surface`: a gridded field drawn as a shaded 3D heightfield — the shared orthographic camera,
+//! Lambert shading, the cells as one triangle [`Mesh`] whose hidden parts the renderers remove (a
+//! z-buffer in rasters) — with projected axes and a colour bar.
 
 use crate::data::Table;
-use crate::enrich::surface::{self, AxisLine, Light, SurfaceProjection, View};
+use crate::enrich::camera::{Light, Shade, View};
+use crate::enrich::surface::{self, AxisLine, SurfaceProjection};
 use crate::guide::Theme;
 use crate::guide::axis::title_with_unit;
 use crate::guide::format::format_ticks;
@@ -12,7 +14,7 @@ use crate::mark::derived::Derived;
 use crate::mark::gridded::{self, GridInput};
 use crate::mark::registry::{ChartContext, ColourSpec, KindInfo, Technique};
 use crate::mark::{ChartOutput, MarkError, encode, frame};
-use crate::scene::{Anchor, Baseline, Color, Item, PathCmd, Point, Rect, Role, Shape, Stroke, Style, Text};
+use crate::scene::{Anchor, Baseline, Color, Item, Mesh, PathCmd, Point, Rect, Role, Shape, Style, Text};
 use crate::spec::defaults;
 use crate::spec::{Chart, SurfaceOptions};
 use crate::text::measure;
@@ -26,7 +28,7 @@ pub fn draw(chart: &Chart, options: &SurfaceOptions, table: &Table) -> Result<Ch
         gridded::load_grid(chart, &x_opts, &y_opts, &z_opts, table)?;
     let map = encode::continuous_map(&["z", "scheme"], z_opts.scheme.as_deref())?;
     let (lo, hi) = encode::color_domain(&map, zmin, zmax, z_opts.midpoint);
-    let view = View { azimuth_deg: options.azimuth.unwrap_or(-60.0), elevation_deg: options.elevation.unwrap_or(30.0) };
+    let view = View::new(options.azimuth.unwrap_or(-60.0), options.elevation.unwrap_or(30.0));
     let projection = surface::project(&grid, view, Light::default(), options.z_scale)
         .map_err(|e| MarkError::at(&["z"], format!("{e}"), "check the grid and the view"))?;
 
@@ -69,28 +71,12 @@ pub fn draw(chart: &Chart, options: &SurfaceOptions, table: &Table) -> Result<Ch
     for e in projection.box_edges.iter().filter(|e| e.hidden) {
         items.push(edge(e, theme.grid));
     }
-    let mut quads = Vec::with_capacity(projection.quads.len());
-    for q in &projection.quads {
-        let base = map.at((q.value - lo) / (hi - lo));
-        let shade = |c: u8| (c as f64 * q.shade).round().clamp(0.0, 255.0) as u8;
-        let color = Color::rgb(shade(base.r), shade(base.g), shade(base.b));
-        let [a, b, c, d] = q.corners;
-        let mut style = Style::fill(color);
-        // A hairline of the fill colour closes anti-aliasing seams between neighbouring quads.
-        style.stroke = Some(Stroke::solid(color, 0.6));
-        quads.push(Item::new(
-            Role::DataMark,
-            Shape::Path(vec![
-                PathCmd::MoveTo(to_px(a)),
-                PathCmd::LineTo(to_px(b)),
-                PathCmd::LineTo(to_px(c)),
-                PathCmd::LineTo(to_px(d)),
-                PathCmd::Close,
-            ]),
-            style,
-        ));
-    }
-    items.push(Item::group(Role::DataMark, quads, None).with_rows(rows.clone()).labelled(z_opts.field.clone()));
+    let mesh = cell_mesh(&projection, |value| map.at((value - lo) / (hi - lo)), &to_px);
+    items.push(
+        Item::new(Role::DataMark, Shape::Mesh(mesh), Style::default())
+            .with_rows(rows.clone())
+            .labelled(z_opts.field.clone()),
+    );
     for e in projection.box_edges.iter().filter(|e| !e.hidden) {
         items.push(edge(e, theme.axis));
     }
@@ -107,6 +93,32 @@ pub fn draw(chart: &Chart, options: &SurfaceOptions, table: &Table) -> Result<Ch
 
     let derived = Derived::of_rows(rows, &[&x_opts.field, &y_opts.field, &z_opts.field]);
     Ok(ChartOutput { scene, derived, warnings, geojson: None, geometry: Default::default() })
+}
+
+/// The projected cells as one mesh: four vertices per cell in its flat shaded colour (its base
+/// colour from `colour` of its mean value, times its Lambert shade), two triangles, in painter's
+/// order, each vertex with its z-buffer depth.
+fn cell_mesh(
+    projection: &SurfaceProjection,
+    colour: impl Fn(f64) -> Color,
+    to_px: &impl Fn((f64, f64)) -> Point,
+) -> Mesh {
+    let n = projection.quads.len();
+    let (mut positions, mut colors, mut indices) =
+        (Vec::with_capacity(4 * n), Vec::with_capacity(4 * n), Vec::with_capacity(2 * n));
+    for q in &projection.quads {
+        let base = colour(q.value);
+        let [r, g, b] = Shade { diffuse: q.shade, specular: 0.0 }.apply([base.r, base.g, base.b]);
+        let first = positions.len() as u32;
+        for (corner, depth) in q.corners.iter().zip(q.depths) {
+            let p = to_px(*corner);
+            positions.push([p.x as f32, p.y as f32, depth as f32]);
+            colors.push(Color::rgb(r, g, b));
+        }
+        indices.push([first, first + 1, first + 2]);
+        indices.push([first, first + 2, first + 3]);
+    }
+    Mesh { positions: positions.into(), indices: indices.into(), colors: colors.into(), normals: None }
 }
 
 /// The scene labels of the projected axes' items, in the order x, y, z.
