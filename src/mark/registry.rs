@@ -210,6 +210,22 @@ pub trait Technique: Sync {
     }
 }
 
+/// The two [`Technique`] methods of a kind whose options have a `color: Option<ColorChannel>`
+/// key: its colour encoding (for lint) and its spec-wide categories (for shared colours). Used
+/// inside the kind's `impl Technique`.
+macro_rules! color_key {
+    () => {
+        fn colour_encodings(&self) -> Vec<$crate::mark::registry::ColourSpec> {
+            $crate::mark::registry::ColourSpec::color(&self.color)
+        }
+
+        fn color_channel_mut(&mut self) -> Option<(&mut $crate::spec::ColorChannel, Option<String>)> {
+            self.color.as_mut().map(|c| (c, None))
+        }
+    };
+}
+pub(crate) use color_key;
+
 /// Lists every kind once: its `ChartKind` variant and its module. Generates [`KINDS`],
 /// [`technique`] and [`technique_mut`].
 macro_rules! registry {

@@ -14,7 +14,7 @@ use crate::guide::scale::{BandScale, Scale};
 use crate::guide::time::format_timestamp;
 use crate::mark::derived::{Derived, DerivedColumn};
 use crate::mark::encode::{self, MISSING_LABEL};
-use crate::mark::registry::{AxisSpec, ChartContext, ColourSpec, KindInfo, Technique};
+use crate::mark::registry::{AxisSpec, ChartContext, KindInfo, Technique};
 use crate::mark::warning::Warning;
 use crate::mark::{ChartOutput, MarkError, frame};
 use crate::scene::{Color, Item, PathCmd, Point, Rect, Role, Shape, Style};
@@ -405,13 +405,7 @@ impl Technique for BarOptions {
         axes
     }
 
-    fn colour_encodings(&self) -> Vec<ColourSpec> {
-        ColourSpec::color(&self.color)
-    }
-
-    fn color_channel_mut(&mut self) -> Option<(&mut crate::spec::ColorChannel, Option<String>)> {
-        self.color.as_mut().map(|c| (c, None))
-    }
+    crate::mark::registry::color_key!();
 }
 
 #[cfg(test)]

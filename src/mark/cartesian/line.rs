@@ -6,7 +6,7 @@ use crate::guide::layout::Domain;
 use crate::guide::legend::{Legend, Symbol};
 use crate::mark::derived::{Derived, DerivedColumn};
 use crate::mark::encode;
-use crate::mark::registry::{AxisSpec, ChartContext, ColourSpec, KindInfo, Technique};
+use crate::mark::registry::{AxisSpec, ChartContext, KindInfo, Technique};
 use crate::mark::warning::Warning;
 use crate::mark::{ChartOutput, MarkError, frame};
 use crate::scene::{Color, Item, PathCmd, PerPoint, Point, PointBatch, Role, Shape, Stroke, Style};
@@ -340,17 +340,11 @@ impl Technique for LineOptions {
         self.y.as_slice().first().map_or_else(Vec::new, |y| AxisSpec::pair(&self.x, y))
     }
 
-    fn colour_encodings(&self) -> Vec<ColourSpec> {
-        ColourSpec::color(&self.color)
-    }
-
     fn scheme(&self) -> Option<&str> {
         self.scheme.as_deref()
     }
 
-    fn color_channel_mut(&mut self) -> Option<(&mut crate::spec::ColorChannel, Option<String>)> {
-        self.color.as_mut().map(|c| (c, None))
-    }
+    crate::mark::registry::color_key!();
 }
 
 #[cfg(test)]

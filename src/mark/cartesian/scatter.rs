@@ -6,7 +6,7 @@ use crate::mark::derived::{Derived, DerivedColumn};
 use crate::mark::encode::{self};
 use crate::mark::geometry::{Geometry, Plot, PlotScale};
 use crate::mark::overplot::{point_opacity, point_radius};
-use crate::mark::registry::{AxisSpec, ChartContext, ColourSpec, KindInfo, Technique};
+use crate::mark::registry::{AxisSpec, ChartContext, KindInfo, Technique};
 use crate::mark::size::{mapped_radius, size_legend_mapped};
 use crate::mark::warning::Warning;
 use crate::mark::{ChartOutput, MarkError, frame, highlight};
@@ -181,11 +181,5 @@ impl Technique for ScatterOptions {
         AxisSpec::pair(&self.x, &self.y)
     }
 
-    fn colour_encodings(&self) -> Vec<ColourSpec> {
-        ColourSpec::color(&self.color)
-    }
-
-    fn color_channel_mut(&mut self) -> Option<(&mut crate::spec::ColorChannel, Option<String>)> {
-        self.color.as_mut().map(|c| (c, None))
-    }
+    crate::mark::registry::color_key!();
 }

@@ -12,7 +12,7 @@ use crate::layout::hyperbolic::{HyperbolicLayout, HyperbolicOptions, Mobius, geo
 use crate::mark::derived::DerivedColumn;
 use crate::mark::geometry::{Disk, DiskNode, Geometry};
 use crate::mark::node_link::place_labels;
-use crate::mark::registry::{ChartContext, ColourSpec, KindInfo, Technique};
+use crate::mark::registry::{ChartContext, KindInfo, Technique};
 use crate::mark::tree_input::{Branches, branch_legend, branch_palette, labels_of, node_rows, tree_of};
 use crate::mark::{ChartOutput, MarkError, encode, frame, with_default_size};
 use crate::scene::{Color, Item, PathCmd, Point, Role, Shape, Stroke, Style};
@@ -201,15 +201,9 @@ impl Technique for HypertreeOptions {
         draw(&cx.chart, self, cx.table, cx.view.unwrap_or(&Mobius::identity()))
     }
 
-    fn colour_encodings(&self) -> Vec<ColourSpec> {
-        ColourSpec::color(&self.color)
-    }
-
     fn scheme(&self) -> Option<&str> {
         self.scheme.as_deref()
     }
 
-    fn color_channel_mut(&mut self) -> Option<(&mut crate::spec::ColorChannel, Option<String>)> {
-        self.color.as_mut().map(|c| (c, None))
-    }
+    crate::mark::registry::color_key!();
 }

@@ -11,7 +11,7 @@ use crate::guide::layout::LayoutError;
 use crate::guide::legend::{Legend, Symbol, truncate_to_width};
 use crate::layout::treemap::{self as tiling, Rect as Cell, TreemapOptions as TilingOptions};
 use crate::mark::derived::{Derived, DerivedColumn};
-use crate::mark::registry::{ChartContext, ColourSpec, KindInfo, Technique};
+use crate::mark::registry::{ChartContext, KindInfo, Technique};
 use crate::mark::tree_input::{Branches, branch_legend, branch_palette, labels_of, node_rows, tree_of};
 use crate::mark::warning::Warning;
 use crate::mark::{ChartOutput, MarkError, encode, frame, with_default_size};
@@ -366,15 +366,9 @@ impl Technique for TreemapOptions {
         draw(&cx.chart, self, cx.table)
     }
 
-    fn colour_encodings(&self) -> Vec<ColourSpec> {
-        ColourSpec::color(&self.color)
-    }
-
     fn scheme(&self) -> Option<&str> {
         self.scheme.as_deref()
     }
 
-    fn color_channel_mut(&mut self) -> Option<(&mut crate::spec::ColorChannel, Option<String>)> {
-        self.color.as_mut().map(|c| (c, None))
-    }
+    crate::mark::registry::color_key!();
 }

@@ -12,7 +12,7 @@ use crate::guide::scale::Scale;
 use crate::mark::derived::{Derived, DerivedColumn};
 use crate::mark::encode::{self, Positioner};
 use crate::mark::frame::{self, polar, polylines};
-use crate::mark::registry::{ChartContext, ColourSpec, KindInfo, Technique};
+use crate::mark::registry::{ChartContext, KindInfo, Technique};
 use crate::mark::{ChartOutput, MarkError, highlight, with_default_size};
 use crate::scene::{Anchor, Baseline, Item, PathCmd, Point, Role, Shape, Stroke, Style, Text};
 use crate::selection::Highlight;
@@ -345,13 +345,7 @@ impl Technique for DaisyOptions {
         draw(&cx.chart, self, cx.table, cx.highlight)
     }
 
-    fn colour_encodings(&self) -> Vec<ColourSpec> {
-        ColourSpec::color(&self.color)
-    }
-
-    fn color_channel_mut(&mut self) -> Option<(&mut crate::spec::ColorChannel, Option<String>)> {
-        self.color.as_mut().map(|c| (c, None))
-    }
+    crate::mark::registry::color_key!();
 }
 
 #[cfg(test)]

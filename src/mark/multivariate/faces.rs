@@ -9,7 +9,7 @@ use crate::guide::legend::{Legend, Symbol, truncate_to_width};
 use crate::mark::derived::{Derived, DerivedColumn};
 use crate::mark::encode::{self, ColorEncoding};
 use crate::mark::frame;
-use crate::mark::registry::{ChartContext, ColourSpec, KindInfo, Technique};
+use crate::mark::registry::{ChartContext, KindInfo, Technique};
 use crate::mark::warning::Warning;
 use crate::mark::{ChartOutput, MarkError, highlight, with_default_size};
 use crate::scene::{Anchor, Baseline, Color, Item, Point, Role, Text};
@@ -266,11 +266,5 @@ impl Technique for FacesOptions {
         draw(&cx.chart, self, cx.table, cx.highlight)
     }
 
-    fn colour_encodings(&self) -> Vec<ColourSpec> {
-        ColourSpec::color(&self.color)
-    }
-
-    fn color_channel_mut(&mut self) -> Option<(&mut crate::spec::ColorChannel, Option<String>)> {
-        self.color.as_mut().map(|c| (c, None))
-    }
+    crate::mark::registry::color_key!();
 }

@@ -12,7 +12,7 @@ use crate::mark::encode::{self, Positioner};
 use crate::mark::frame::{self, polylines};
 use crate::mark::geometry::{Geometry, ParallelAxis};
 use crate::mark::overplot::line_opacity;
-use crate::mark::registry::{ChartContext, ColourSpec, KindInfo, Technique};
+use crate::mark::registry::{ChartContext, KindInfo, Technique};
 use crate::mark::{ChartOutput, MarkError, highlight, with_default_size};
 use crate::scene::{Anchor, Baseline, Item, PathCmd, Point, Rect, Role, Shape, Style, Text};
 use crate::selection::Highlight;
@@ -337,13 +337,7 @@ impl Technique for ParallelOptions {
         draw(&cx.chart, self, cx.table, cx.highlight)
     }
 
-    fn colour_encodings(&self) -> Vec<ColourSpec> {
-        ColourSpec::color(&self.color)
-    }
-
-    fn color_channel_mut(&mut self) -> Option<(&mut crate::spec::ColorChannel, Option<String>)> {
-        self.color.as_mut().map(|c| (c, None))
-    }
+    crate::mark::registry::color_key!();
 }
 
 #[cfg(test)]

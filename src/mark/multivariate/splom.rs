@@ -16,7 +16,7 @@ use crate::mark::derived::{Derived, DerivedColumn};
 use crate::mark::encode::{self, ColorEncoding};
 use crate::mark::geometry::{Geometry, Plot, PlotScale, RedrawnCells};
 use crate::mark::overplot::{point_opacity, point_radius};
-use crate::mark::registry::{ChartContext, ColourSpec, KindInfo, Technique};
+use crate::mark::registry::{ChartContext, KindInfo, Technique};
 use crate::mark::warning::Warning;
 use crate::mark::{ChartOutput, MarkError, frame, highlight, with_default_size};
 use crate::scene::{
@@ -655,11 +655,5 @@ impl Technique for SplomOptions {
         draw(&cx.chart, self, cx.table, cx.highlight)
     }
 
-    fn colour_encodings(&self) -> Vec<ColourSpec> {
-        ColourSpec::color(&self.color)
-    }
-
-    fn color_channel_mut(&mut self) -> Option<(&mut crate::spec::ColorChannel, Option<String>)> {
-        self.color.as_mut().map(|c| (c, None))
-    }
+    crate::mark::registry::color_key!();
 }
