@@ -5,12 +5,10 @@
 //! Column `j` of the matrix lies at x index `j` and row `i` at y index `i` (y grows with the row
 //! index); `extent = [x_first, x_last, y_first, y_last]` maps the indices linearly to coordinates.
 
-use std::io::Read;
 use std::path::Path;
 
 use super::load::LoadError;
 use super::table::{Column, ColumnValues, GridAxis, Table};
-use crate::spec::DataFormat;
 
 /// Largest matrix accepted (cells), checked before allocating.
 pub const MAX_CELLS: usize = 50_000_000;
@@ -50,235 +48,23 @@ impl Matrix {
     }
 }
 
-fn npy_error(path: &Path, message: impl Into<String>) -> LoadError {
-    LoadError::Parse { origin: format!("`{}`", path.display()), format: DataFormat::Npy, message: message.into() }
-}
+/// How a grid is read from a `.npy` file.
+const GRID: super::npy::Shape = super::npy::Shape { dims: 2, max_cells: MAX_CELLS, what: "a grid" };
 
-/// Read a 2-D `.npy` array of integers or floats (any byte order, C or Fortran order; the file
-/// may be gzip- or zstd-compressed). An uncompressed file is decoded as it is read, a few
-/// megabytes at a time, into the one vector of values: no copy of the whole file is held.
+/// Read a 2-D `.npy` array of integers or floats as a matrix (any byte order, C or Fortran
+/// order; the file may be gzip- or zstd-compressed).
 pub fn read_npy(path: &Path) -> Result<Matrix, LoadError> {
-    if super::compressed::Compression::of(path).is_some() {
-        let bytes = super::compressed::read_bytes(path)?;
-        return parse_npy(&bytes).map_err(|m| npy_error(path, m));
-    }
-    let mut file = super::regular_file::open(path).map_err(|e| LoadError::from_io(path, e))?;
-    let file_len = file.metadata().map_err(|e| LoadError::from_io(path, e))?.len();
-    let mut head = vec![0u8; HEADER_PREFIX.min(usize::try_from(file_len).unwrap_or(HEADER_PREFIX))];
-    file.read_exact(&mut head).map_err(|e| LoadError::from_io(path, e))?;
-    let header = Header::parse(&head).map_err(|m| npy_error(path, m))?;
-    let wanted = header.data_bytes();
-    let available = file_len.saturating_sub(header.data_start as u64);
-    if available < wanted as u64 {
-        return Err(npy_error(path, header.short_data(available)));
-    }
-    // The cells read with the header, then the rest of the file, in chunks of whole cells.
-    let mut cells = head.get(header.data_start..).unwrap_or(&[]).chain(file).take(wanted as u64);
-    let mut values = Vec::with_capacity(header.cells);
-    let mut chunk = vec![0u8; (READ_CHUNK / header.size).max(1) * header.size];
-    let mut left = wanted;
-    while left > 0 {
-        let take = chunk.len().min(left);
-        cells.read_exact(&mut chunk[..take]).map_err(|e| LoadError::from_io(path, e))?;
-        header.decode_into(&chunk[..take], &mut values);
-        left -= take;
-    }
-    Ok(header.finish(values))
-}
-
-/// Bytes read for the header before its length is known (the cells after it are kept).
-const HEADER_PREFIX: usize = 64 * 1024;
-/// Bytes of cells decoded at a time.
-const READ_CHUNK: usize = 4 * 1024 * 1024;
-
-/// What a `.npy` header says: the shape, the dtype and where the cells start.
-struct Header {
-    rows: usize,
-    cols: usize,
-    cells: usize,
-    size: usize,
-    fortran: bool,
-    descr: String,
-    data_start: usize,
-    dtype: Dtype,
-}
-
-impl Header {
-    /// Parse the magic bytes, version and header dict at the start of `bytes`.
-    fn parse(bytes: &[u8]) -> Result<Header, String> {
-        if bytes.get(..6) != Some(b"\x93NUMPY") {
-            return Err("not a NumPy .npy file (bad magic bytes)".into());
-        }
-        let major = *bytes.get(6).ok_or("truncated header")?;
-        let (len, start) = match major {
-            1 => (
-                u16::from_le_bytes([*bytes.get(8).ok_or("truncated header")?, *bytes.get(9).ok_or("truncated header")?])
-                    as usize,
-                10,
-            ),
-            2 | 3 => {
-                let b = bytes.get(8..12).ok_or("truncated header")?;
-                (u32::from_le_bytes([b[0], b[1], b[2], b[3]]) as usize, 12)
-            }
-            v => return Err(format!("unsupported .npy version {v}")),
-        };
-        let header = std::str::from_utf8(bytes.get(start..start + len).ok_or("truncated header")?)
-            .map_err(|_| "header is not text".to_string())?;
-        let descr = dict_value(header, "descr").ok_or("header has no 'descr'")?;
-        let descr = descr.trim_matches(|c| c == '\'' || c == '"');
-        let fortran = dict_value(header, "fortran_order").map(|v| v.starts_with("True")).unwrap_or(false);
-        let shape = dict_value(header, "shape").ok_or("header has no 'shape'")?;
-        let dims: Vec<usize> = shape
-            .trim_matches(|c| c == '(' || c == ')')
-            .split(',')
-            .map(str::trim)
-            .filter(|s| !s.is_empty())
-            .map(|s| s.parse::<usize>().map_err(|_| format!("bad shape {shape}")))
-            .collect::<Result<_, _>>()?;
-        let [rows, cols] = dims[..] else {
-            return Err(format!("the array has shape {shape}; a grid needs a 2-D array"));
-        };
-        let cells = rows
-            .checked_mul(cols)
-            .filter(|&n| n <= MAX_CELLS)
-            .ok_or(format!("the array has {rows} × {cols} cells, more than {MAX_CELLS}"))?;
-        let (little, kind, size) = {
-            let mut chars = descr.chars();
-            let order = chars.next().ok_or("empty dtype")?;
-            let kind = chars.next().ok_or("bad dtype")?;
-            let size: usize = chars
-                .as_str()
-                .parse()
-                .ok()
-                .filter(|s| [1, 2, 4, 8].contains(s))
-                .ok_or(format!("unsupported dtype {descr}; use float or integer arrays"))?;
-            (order != '>', kind, size)
-        };
-        let dtype = Dtype { kind, size, little };
-        if !dtype.is_known() {
-            return Err(format!("unsupported dtype {descr}; use float or integer arrays"));
-        }
-        Ok(Header { rows, cols, cells, size, fortran, descr: descr.to_string(), data_start: start + len, dtype })
-    }
-
-    /// Bytes of cell data the shape and dtype call for.
-    fn data_bytes(&self) -> usize {
-        self.cells * self.size
-    }
-
-    /// The error for a file with only `available` bytes of cells.
-    fn short_data(&self, available: u64) -> String {
-        format!(
-            "the data has {available} bytes, {} expected for {} × {} {}",
-            self.data_bytes(),
-            self.rows,
-            self.cols,
-            self.descr
-        )
-    }
-
-    /// Decode whole cells of `data` onto `values`.
-    fn decode_into(&self, data: &[u8], values: &mut Vec<f64>) {
-        self.dtype.decode(data, values);
-    }
-
-    /// The matrix of the decoded cells, transposed to row-major if the file is column-major.
-    fn finish(&self, mut values: Vec<f64>) -> Matrix {
-        let (rows, cols) = (self.rows, self.cols);
-        if self.fortran {
-            let mut t = vec![0.0; self.cells];
-            for j in 0..cols {
-                for i in 0..rows {
-                    if let (Some(dst), Some(&src)) = (t.get_mut(i * cols + j), values.get(j * rows + i)) {
-                        *dst = src;
-                    }
-                }
-            }
-            values = t;
-        }
-        Matrix { rows, cols, values }
-    }
+    super::npy::read(path, GRID).map(matrix_of)
 }
 
 /// Parse `.npy` bytes into a matrix; the error is a message for the user.
 pub fn parse_npy(bytes: &[u8]) -> Result<Matrix, String> {
-    let header = Header::parse(bytes)?;
-    let data = bytes.get(header.data_start..).ok_or("truncated data")?;
-    if data.len() < header.data_bytes() {
-        return Err(header.short_data(data.len() as u64));
-    }
-    let mut values = Vec::with_capacity(header.cells);
-    header.decode_into(&data[..header.data_bytes()], &mut values);
-    Ok(header.finish(values))
+    super::npy::parse(bytes, GRID).map(matrix_of)
 }
 
-/// A cell type numpy writes: kind `f`, `i` or `u`, `size` bytes, little- or big-endian.
-#[derive(Clone, Copy, Debug)]
-struct Dtype {
-    kind: char,
-    size: usize,
-    little: bool,
-}
-
-/// Expands to one monomorphic decoding loop per dtype, so the loop over the cells neither
-/// branches on the dtype nor calls through a pointer.
-macro_rules! decode_as {
-    ($dtype:expr, $data:expr, $values:expr, $(($kind:literal, $t:ty, $n:literal)),* $(,)?) => {
-        match ($dtype.kind, $dtype.size, $dtype.little) {
-            $(
-                ($kind, $n, true) => $values.extend(
-                    $data.chunks_exact($n).map(|c| <[u8; $n]>::try_from(c).map_or(f64::NAN, |b| <$t>::from_le_bytes(b) as f64)),
-                ),
-                ($kind, $n, false) => $values.extend(
-                    $data.chunks_exact($n).map(|c| <[u8; $n]>::try_from(c).map_or(f64::NAN, |b| <$t>::from_be_bytes(b) as f64)),
-                ),
-            )*
-            _ => return false,
-        }
-    };
-}
-
-impl Dtype {
-    /// Whether dataink reads this dtype.
-    fn is_known(self) -> bool {
-        self.decode(&[], &mut Vec::new())
-    }
-
-    /// Decode whole cells of `data` onto `values`; `false` for a dtype not read.
-    fn decode(self, data: &[u8], values: &mut Vec<f64>) -> bool {
-        decode_as!(
-            self,
-            data,
-            values,
-            ('f', f64, 8),
-            ('f', f32, 4),
-            ('i', i64, 8),
-            ('i', i32, 4),
-            ('i', i16, 2),
-            ('i', i8, 1),
-            ('u', u64, 8),
-            ('u', u32, 4),
-            ('u', u16, 2),
-            ('u', u8, 1),
-        );
-        true
-    }
-}
-
-/// The text after `'key':` in a Python dict literal, up to the next top-level comma.
-fn dict_value<'a>(header: &'a str, key: &str) -> Option<&'a str> {
-    let at = header.find(&format!("'{key}'"))? + key.len() + 2;
-    let rest = header.get(at..)?.trim_start().strip_prefix(':')?.trim_start();
-    let mut depth = 0i32;
-    for (i, c) in rest.char_indices() {
-        match c {
-            '(' | '[' => depth += 1,
-            ')' | ']' => depth -= 1,
-            ',' | '}' if depth == 0 => return Some(rest[..i].trim()),
-            _ => {}
-        }
-    }
-    Some(rest.trim())
+fn matrix_of(array: super::npy::NpyArray) -> Matrix {
+    let (rows, cols) = (array.dims.first().copied().unwrap_or(0), array.dims.get(1).copied().unwrap_or(0));
+    Matrix { rows, cols, values: array.values }
 }
 
 #[cfg(test)]

@@ -24,6 +24,7 @@ pub mod matrix;
 pub mod missing;
 pub mod nested;
 pub mod network;
+pub mod npy;
 pub mod parquet_bounds;
 pub mod parse;
 pub mod paths;
@@ -32,6 +33,7 @@ pub mod table;
 pub mod time;
 pub mod transform;
 pub mod tree;
+pub mod volume;
 
 pub use load::{LoadError, SourceData, load_source, load_source_with_warnings};
 pub use paths::{PathError, PathPolicy, resolve_data_path};
