@@ -73,21 +73,8 @@ mod tests {
 
     /// A version-1 .npy file of little-endian f8 values.
     fn npy(shape: &str, fortran: bool, values: &[f64]) -> Vec<u8> {
-        let mut header = format!(
-            "{{'descr': '<f8', 'fortran_order': {}, 'shape': {shape}, }}",
-            if fortran { "True" } else { "False" }
-        );
-        while (10 + header.len() + 1) % 64 != 0 {
-            header.push(' ');
-        }
-        header.push('\n');
-        let mut out = b"\x93NUMPY\x01\x00".to_vec();
-        out.extend_from_slice(&(header.len() as u16).to_le_bytes());
-        out.extend_from_slice(header.as_bytes());
-        for v in values {
-            out.extend_from_slice(&v.to_le_bytes());
-        }
-        out
+        let data: Vec<u8> = values.iter().flat_map(|v| v.to_le_bytes()).collect();
+        crate::data::npy::test_file("<f8", fortran, shape, &data)
     }
 
     #[test]

@@ -268,3 +268,22 @@ fn dict_value<'a>(header: &'a str, key: &str) -> Option<&'a str> {
     }
     Some(rest.trim())
 }
+
+/// A version-1 `.npy` file of `descr` cells (`<f8`, `>u2`, ...) with the given raw cell bytes, for
+/// tests.
+#[cfg(test)]
+pub(crate) fn test_file(descr: &str, fortran: bool, shape: &str, data: &[u8]) -> Vec<u8> {
+    let mut header = format!(
+        "{{'descr': '{descr}', 'fortran_order': {}, 'shape': {shape}, }}",
+        if fortran { "True" } else { "False" }
+    );
+    while (10 + header.len() + 1) % 64 != 0 {
+        header.push(' ');
+    }
+    header.push('\n');
+    let mut out = b"\x93NUMPY\x01\x00".to_vec();
+    out.extend_from_slice(&(header.len() as u16).to_le_bytes());
+    out.extend_from_slice(header.as_bytes());
+    out.extend_from_slice(data);
+    out
+}

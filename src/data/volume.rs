@@ -85,22 +85,7 @@ fn volume_of(array: NpyArray, spacing: [f64; 3]) -> Volume {
 mod tests {
     use super::*;
 
-    /// A version-1 `.npy` file of `descr` cells with the given raw bytes.
-    fn npy(descr: &str, fortran: bool, shape: &str, data: &[u8]) -> Vec<u8> {
-        let mut header = format!(
-            "{{'descr': '{descr}', 'fortran_order': {}, 'shape': {shape}, }}",
-            if fortran { "True" } else { "False" }
-        );
-        while (10 + header.len() + 1) % 64 != 0 {
-            header.push(' ');
-        }
-        header.push('\n');
-        let mut out = b"\x93NUMPY\x01\x00".to_vec();
-        out.extend_from_slice(&(header.len() as u16).to_le_bytes());
-        out.extend_from_slice(header.as_bytes());
-        out.extend_from_slice(data);
-        out
-    }
+    use crate::data::npy::test_file as npy;
 
     /// f(i, j, k) = i + 10 j + 100 k on a 4 × 3 × 2 (x, y, z) volume.
     fn f(i: usize, j: usize, k: usize) -> f64 {
