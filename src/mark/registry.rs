@@ -12,7 +12,7 @@ use crate::data::Table;
 use crate::layout::hyperbolic::Mobius;
 use crate::selection::Highlight;
 use crate::spec::defaults::Convention;
-use crate::spec::{Channel, ChannelOptions, Chart, ChartKind, ColorChannel, ColorOptions, ScaleKind};
+use crate::spec::{Channel, ChannelOptions, Chart, ColorChannel, ColorOptions, ScaleKind};
 
 /// What is known of a kind before its options are read: enough for the spec checks, the
 /// conventional defaults and the column reads that run on the raw spec.
@@ -226,10 +226,24 @@ macro_rules! color_key {
 }
 pub(crate) use color_key;
 
-/// Lists every kind once: its `ChartKind` variant and its module. Generates [`KINDS`],
-/// [`technique`] and [`technique_mut`].
+/// Lists every kind once: its doc line (its description in the JSON Schema), its `ChartKind`
+/// variant with the options type its module defines, and its module. Generates [`ChartKind`],
+/// [`options`] (every options type, re-exported by `spec`), [`KINDS`], [`technique`] and
+/// [`technique_mut`].
 macro_rules! registry {
-    ($($variant:ident => $($module:ident)::+),* $(,)?) => {
+    ($($(#[$doc:meta])* $variant:ident($options:ident) => $($module:ident)::+),* $(,)?) => {
+        /// The chart kinds. Each kind has its own options.
+        #[derive(Clone, Debug, serde::Deserialize, serde::Serialize, schemars::JsonSchema, PartialEq)]
+        #[serde(tag = "kind", rename_all = "lowercase")]
+        pub enum ChartKind {
+            $($(#[$doc])* $variant(super::$($module)::+::$options),)*
+        }
+
+        /// Every kind's options type, where the spec's types re-export them from.
+        pub mod options {
+            $(pub use super::super::$($module)::+::$options;)*
+        }
+
         /// Every kind's facts, in the order of the spec's `ChartKind` variants.
         pub static KINDS: &[&KindInfo] = &[$(&super::$($module)::+::KIND),*];
 
@@ -249,27 +263,58 @@ macro_rules! registry {
     };
 }
 
+impl ChartKind {
+    /// The kind's name as written in the spec (from its entry in the registry).
+    pub fn name(&self) -> &'static str {
+        technique(self).info().name
+    }
+}
+
 registry! {
-    Scatter => cartesian::scatter,
-    Line => cartesian::line,
-    Bar => cartesian::bar,
-    Interp1d => cartesian::interp1d,
-    Contour => grid::contour,
-    Image => grid::image,
-    Section => grid::section,
-    Scattered => grid::scattered,
-    Surface => grid::surface,
-    Hyperslice => grid::hyperslice,
-    Splom => multivariate::splom,
-    Parallel => multivariate::parallel,
-    Daisy => multivariate::daisy,
-    Faces => multivariate::faces,
-    Segments => multivariate::segments,
-    Treemap => hierarchy::treemap,
-    Hypertree => hierarchy::hypertree,
-    Graph => network::graph,
-    Linkmap => network::linkmap,
-    Flow => vector::flow,
+    /// Points at (x, y), optionally coloured and sized by columns.
+    Scatter(ScatterOptions) => cartesian::scatter,
+    /// One or more series drawn as lines through (x, y).
+    Line(LineOptions) => cartesian::line,
+    /// Vertical bars from zero: one per category of `x` (grouped side by side by `color`), rows
+    /// of the same category summed.
+    Bar(BarOptions) => cartesian::bar,
+    /// Sample points and the curves of one or more 1D interpolation methods through them.
+    Interp1d(Interp1dOptions) => cartesian::interp1d,
+    /// Contour lines and filled bands of a scalar field on a regular grid.
+    Contour(ContourOptions) => grid::contour,
+    /// A scalar field on a regular grid as a colour image (heatmap) with a colour bar.
+    Image(ImageOptions) => grid::image,
+    /// Cross-sections of a gridded field: z along x at chosen y values (or along y at chosen x).
+    Section(SectionOptions) => grid::section,
+    /// Scattered points: Delaunay triangulation, linear interpolation in the triangles, contours
+    /// on the triangulation, and Voronoi tiles.
+    Scattered(ScatteredOptions) => grid::scattered,
+    /// A gridded field as a shaded 3D surface (orthographic, hidden surfaces removed).
+    Surface(SurfaceOptions) => grid::surface,
+    /// A matrix of 2D slices through gridded data of more than two dimensions, around a focus point.
+    Hyperslice(HypersliceOptions) => grid::hyperslice,
+    /// Scatter-plot matrix: every pair of columns, sharing one scale per column.
+    Splom(SplomOptions) => multivariate::splom,
+    /// Parallel coordinates: one vertical axis per column, one polyline per row.
+    Parallel(ParallelOptions) => multivariate::parallel,
+    /// Daisy chart: columns on arcs around a circle, each row a closed curve through its values.
+    Daisy(DaisyOptions) => multivariate::daisy,
+    /// Chernoff faces: one face per row, columns driving facial features.
+    Faces(FacesOptions) => multivariate::faces,
+    /// Circle segments: one wedge per column, rows as pixels from the centre outward.
+    Segments(SegmentsOptions) => multivariate::segments,
+    /// Treemap: a hierarchy as nested rectangles whose areas are the leaves' values.
+    Treemap(TreemapOptions) => hierarchy::treemap,
+    /// Hyperbolic tree: a hierarchy laid out in the Poincaré disk around a focus node.
+    Hypertree(HypertreeOptions) => hierarchy::hypertree,
+    /// Node-link diagram of a network: force-directed, circular or layered layout.
+    Graph(GraphOptions) => network::graph,
+    /// SeeNet-style link view: links drawn thin to thick by their statistic, or an
+    /// adjacency matrix for dense networks.
+    Linkmap(LinkmapOptions) => network::linkmap,
+    /// A 2-D vector field: speed image, arrows, streamlines, particle traces, line integral
+    /// convolution and vector field topology, as layers.
+    Flow(FlowOptions) => vector::flow,
 }
 
 /// The facts of the kind named `name` in a spec, if there is one.

@@ -25,8 +25,9 @@ use std::collections::HashMap;
 use crate::layout::quality::edge_crossings;
 use crate::layout::split_mix::SplitMix64;
 use crate::lint::{Category, Issue, Rule, Severity, Subject};
+use crate::mark::network::linkmap::LinkMode;
 use crate::scene::{PathCmd, Role, Shape};
-use crate::spec::{ChartKind, LinkMode};
+use crate::spec::ChartKind;
 
 /// The rule fires above this many crossings per drawn edge.
 pub const MAX_PER_EDGE: f64 = 10.0;

@@ -14,8 +14,9 @@
 
 use crate::lint::{Category, Issue, Rule, Severity, Subject};
 use crate::mark::DerivedColumn;
+use crate::mark::vector::flow::FlowLayer;
 use crate::scene::{Role, Shape};
-use crate::spec::{ChartKind, FlowLayer};
+use crate::spec::ChartKind;
 
 /// The rule.
 pub static RULE: Rule = Rule {

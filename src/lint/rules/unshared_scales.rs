@@ -9,8 +9,9 @@
 //! are slices of one grid under one colour scale.
 
 use crate::lint::{Category, Issue, Rule, Severity, Subject};
+use crate::mark::grid::section::SectionLayout;
 use crate::scene::{PathCmd, Role, Scene, Shape};
-use crate::spec::{ChartKind, SectionLayout};
+use crate::spec::ChartKind;
 
 /// The rule.
 pub static RULE: Rule = Rule {

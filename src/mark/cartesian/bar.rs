@@ -18,7 +18,29 @@ use crate::mark::registry::{AxisSpec, ChartContext, KindInfo, Technique};
 use crate::mark::warning::Warning;
 use crate::mark::{ChartOutput, MarkError, frame};
 use crate::scene::{Color, Item, PathCmd, Point, Rect, Role, Shape, Style};
-use crate::spec::{BarOptions, Chart, ColorChannel, ColorOptions, ColorType, ScaleKind};
+use crate::spec::{Channel, Chart, ColorChannel, ColorOptions, ColorType, ScaleKind};
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
+
+/// Options of `kind = "bar"`.
+#[derive(Clone, Debug, Deserialize, Serialize, JsonSchema, PartialEq)]
+pub struct BarOptions {
+    /// The categories along the horizontal axis: a text column, or numbers treated as categories
+    /// (one band each, in ascending order).
+    #[schemars(example = &"state")]
+    pub x: Channel,
+    /// The bar length: a numeric column; rows with the same `x` (and `color`) are summed. Bars
+    /// start at zero unless `zero = false` or a `domain` leaves zero out (lint rule DI001).
+    #[schemars(example = &"flights")]
+    pub y: Channel,
+    /// Group bars side by side within each category by a categorical column, with a legend.
+    #[serde(default)]
+    #[schemars(example = &"origin")]
+    pub color: Option<ColorChannel>,
+    /// Bar colour when `color` is not given (CSS name or `#rrggbb`).
+    #[serde(default)]
+    pub mark_color: Option<String>,
+}
 
 /// Gap between the bars of one group, as a fraction of a bar's step.
 const GROUP_PADDING: f64 = 0.1;

@@ -11,7 +11,57 @@ use crate::mark::registry::{AxisSpec, ChartContext, KindInfo, Technique};
 use crate::mark::warning::Warning;
 use crate::mark::{ChartOutput, MarkError, encode, frame};
 use crate::scene::{Color, Item, PathCmd, PerPoint, Point, PointBatch, Role, Shape, Stroke, Style};
-use crate::spec::{Chart, Interp1dOptions, InterpMethod};
+use crate::spec::{Channel, Chart};
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
+
+/// Options of `kind = "interp1d"`.
+#[derive(Clone, Debug, Deserialize, Serialize, JsonSchema, PartialEq)]
+pub struct Interp1dOptions {
+    /// The knots' positions: a numeric column (rows are sorted by it; values must be distinct).
+    pub x: Channel,
+    /// The knots' values: a numeric column.
+    pub y: Channel,
+    /// Interpolation methods to overlay (default `["pchip"]`).
+    #[serde(default)]
+    pub methods: Option<Vec<InterpMethod>>,
+    /// Column of slopes dy/dx at the knots, used by the `hermite` method.
+    #[serde(default)]
+    pub slopes: Option<String>,
+    /// Keep `hermite` and `hermite-mean` curves within the range of neighbouring data.
+    #[serde(default)]
+    pub bounded: Option<bool>,
+    /// Points per curve in the derived CSV and on non-linear scales (default 512).
+    #[serde(default)]
+    #[schemars(range(min = 2, max = 100000))]
+    pub samples: Option<u32>,
+    /// Draw the knots as points (default true).
+    #[serde(default)]
+    pub knots: Option<bool>,
+    /// Line width in pixels, at most 100 (default 2).
+    #[serde(default)]
+    #[schemars(range(min = 0.0, max = 100))]
+    pub stroke_width: Option<f64>,
+    /// Categorical colour scheme for the methods (default `okabe-ito`).
+    #[serde(default)]
+    pub scheme: Option<String>,
+}
+
+/// 1D interpolation methods.
+#[derive(Clone, Copy, Debug, Deserialize, Serialize, JsonSchema, PartialEq, Eq)]
+#[serde(rename_all = "kebab-case")]
+pub enum InterpMethod {
+    /// Nearest neighbour: steps at the midpoints between knots.
+    Nearest,
+    /// Straight lines between knots.
+    Linear,
+    /// Cubic Hermite with the slopes given by the `slopes` column.
+    Hermite,
+    /// Cubic Hermite with slopes from the arithmetic mean of the adjacent chord slopes.
+    HermiteMean,
+    /// Cubic Hermite with harmonic-mean slopes (monotone; matches SciPy's PchipInterpolator).
+    Pchip,
+}
 
 /// Default number of samples per curve.
 pub const DEFAULT_SAMPLES: usize = 512;

@@ -10,7 +10,52 @@ use crate::mark::registry::{AxisSpec, ChartContext, KindInfo, Technique};
 use crate::mark::warning::Warning;
 use crate::mark::{ChartOutput, MarkError, frame};
 use crate::scene::{Color, Item, PathCmd, PerPoint, Point, PointBatch, Role, Shape, Stroke, Style};
-use crate::spec::{Chart, ColorType, LineOptions};
+use crate::spec::{Channel, Chart, ColorChannel, ColorType, OneOrMany};
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
+
+/// Options of `kind = "line"`.
+#[derive(Clone, Debug, Deserialize, Serialize, JsonSchema, PartialEq)]
+pub struct LineOptions {
+    /// Horizontal position: a column name or a table with `field`, `title`, `unit`, `scale`, ...
+    #[schemars(example = &"date")]
+    pub x: Channel,
+    /// Vertical position: one column (long form, split by `series`) or several (one series each).
+    #[schemars(example = &"price")]
+    pub y: OneOrMany<Channel>,
+    /// Column whose values split the rows into series (long-form data).
+    #[serde(default)]
+    pub series: Option<String>,
+    /// Split the rows into series by a column's categories, one colour each, as `series` does
+    /// (how Vega-Lite and ggplot write it); a table adds the colour options (`scheme`, `domain`,
+    /// `range`, `title`, `legend`), and a category has the same colour as in the spec's other
+    /// charts colouring by that column. Give this or `series`, not both.
+    #[serde(default)]
+    pub color: Option<ColorChannel>,
+    /// Title of the y axis when several y columns are drawn (their own titles name the series).
+    #[serde(default)]
+    pub y_title: Option<String>,
+    /// Draw a marker at every data point.
+    #[serde(default)]
+    pub markers: Option<bool>,
+    /// Line width in pixels, at most 100 (default 2).
+    #[serde(default)]
+    #[schemars(extend("exclusiveMinimum" = 0, "maximum" = 100), example = 2)]
+    pub stroke_width: Option<f64>,
+    /// Categorical colour scheme for the series (default `okabe-ito`).
+    #[serde(default)]
+    pub scheme: Option<String>,
+    /// Line colour when there is a single series (CSS name or `#rrggbb`).
+    #[serde(default)]
+    pub mark_color: Option<String>,
+}
+
+impl LineOptions {
+    /// The column splitting the rows into series: `series`, else the `color` encoding's field.
+    pub fn split_field(&self) -> Option<&str> {
+        self.series.as_deref().or(self.color.as_ref().map(ColorChannel::field))
+    }
+}
 
 /// One series: its name, colour, the rows it draws (sorted by x) and all rows that belong to it
 /// (drawn or dropped), so that only its own missing values break its line.

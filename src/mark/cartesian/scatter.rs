@@ -12,7 +12,39 @@ use crate::mark::warning::Warning;
 use crate::mark::{ChartOutput, MarkError, frame, highlight};
 use crate::scene::{Color, Item, PerPoint, PointBatch, Role, Shape, Stroke, Style};
 use crate::selection::Highlight;
-use crate::spec::{Chart, ScatterOptions};
+use crate::spec::{Channel, Chart, ColorChannel, SizeChannel};
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
+
+/// Options of `kind = "scatter"`.
+#[derive(Clone, Debug, Deserialize, Serialize, JsonSchema, PartialEq)]
+pub struct ScatterOptions {
+    /// Horizontal position: a column name or a table with `field`, `title`, `unit`, `scale`, ...
+    #[schemars(example = &"sepal_length")]
+    pub x: Channel,
+    /// Vertical position: a column name or a table with `field`, `title`, `unit`, `scale`, ...
+    #[schemars(example = &"petal_length")]
+    pub y: Channel,
+    /// Colour by a column (categorical columns get a legend, numeric ones a colour bar).
+    #[serde(default)]
+    #[schemars(example = &"species")]
+    pub color: Option<ColorChannel>,
+    /// Marker area proportional to a numeric column.
+    #[serde(default)]
+    #[schemars(example = &"population")]
+    pub point_size: Option<SizeChannel>,
+    /// Marker radius in pixels, at most 100, when `point_size` is not given (default: 3, smaller for many points).
+    #[serde(default)]
+    #[schemars(extend("exclusiveMinimum" = 0, "maximum" = 100), example = 3)]
+    pub radius: Option<f64>,
+    /// Marker colour when `color` is not given (CSS name or `#rrggbb`).
+    #[serde(default)]
+    pub mark_color: Option<String>,
+    /// Marker opacity in 0..=1 (default: 0.8, lower for many points).
+    #[serde(default)]
+    #[schemars(range(min = 0, max = 1), example = 0.5)]
+    pub opacity: Option<f64>,
+}
 
 /// Draw a scatter chart.
 /// Also returns the interactive geometry (for brushing and zooming).

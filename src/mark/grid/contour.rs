@@ -12,8 +12,47 @@ use crate::mark::level_labels::level_labels;
 use crate::mark::registry::{AxisSpec, ChartContext, ColourSpec, KindInfo, Technique};
 use crate::mark::{ChartOutput, MarkError, encode, frame};
 use crate::scene::{Color, Item, PathCmd, Point, Role, Shape, Style};
-use crate::spec::defaults;
-use crate::spec::{Chart, ContourOptions, Levels, SaddleRule};
+use crate::spec::{Channel, Chart, ColorChannel, Levels, defaults};
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
+
+/// Options of `kind = "contour"`.
+#[derive(Clone, Debug, Deserialize, Serialize, JsonSchema, PartialEq)]
+pub struct ContourOptions {
+    /// Grid x coordinate: a numeric column of a long-form table (one row per grid node).
+    pub x: Channel,
+    /// Grid y coordinate: a numeric column of a long-form table (one row per grid node).
+    pub y: Channel,
+    /// The field's value at each node: a column name, or `{ field, title, unit, scheme, midpoint }`
+    /// (the colour map of the filled bands, default `viridis`).
+    pub z: ColorChannel,
+    /// A number of levels (nice round values are chosen; default 10) or the levels themselves.
+    #[serde(default)]
+    pub levels: Option<Levels>,
+    /// How saddle cells are resolved: `asymptotic` (default, the bilinear patch's true topology)
+    /// or `center` (the mean of the four corners).
+    #[serde(default)]
+    pub saddle: Option<SaddleRule>,
+    /// Fill the bands between levels (default true).
+    #[serde(default)]
+    pub fill: Option<bool>,
+    /// Draw the contour lines (default true).
+    #[serde(default)]
+    pub lines: Option<bool>,
+    /// Write each level's value on its longest line (default true).
+    #[serde(default)]
+    pub labels: Option<bool>,
+}
+
+/// Saddle-cell rules for contouring.
+#[derive(Clone, Copy, Debug, Deserialize, Serialize, JsonSchema, PartialEq, Eq)]
+#[serde(rename_all = "lowercase")]
+pub enum SaddleRule {
+    /// Compare the level with the bilinear saddle value (f00·f11 − f01·f10)/(f00 + f11 − f01 − f10).
+    Asymptotic,
+    /// Compare the level with the mean of the cell's four corners.
+    Center,
+}
 
 /// Default number of levels.
 pub const DEFAULT_LEVELS: u32 = 10;

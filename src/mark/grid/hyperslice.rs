@@ -14,8 +14,23 @@ use crate::mark::registry::{ChartContext, ColourSpec, KindInfo, Technique};
 use crate::mark::warning::Warning;
 use crate::mark::{ChartOutput, MarkError, encode, frame};
 use crate::scene::{Color, Item, PathCmd, Point, Rect, Role, Shape, Stroke, Style};
-use crate::spec::defaults;
-use crate::spec::{Chart, HypersliceOptions, Resample};
+use crate::spec::{Chart, ColorChannel, Resample, defaults};
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
+
+/// Options of `kind = "hyperslice"`.
+#[derive(Clone, Debug, Deserialize, Serialize, JsonSchema, PartialEq)]
+pub struct HypersliceOptions {
+    /// The grid's coordinate columns, one per dimension (2 to 16), in a long-form table with one
+    /// row per grid node.
+    pub axes: Vec<String>,
+    /// The value: a column name, or `{ field, title, unit, scheme, midpoint }`.
+    pub z: ColorChannel,
+    /// The focus point, one coordinate per axis (default: the middle node of each axis); each
+    /// slice holds the other axes at the grid node nearest the focus.
+    #[serde(default)]
+    pub focus: Option<Vec<f64>>,
+}
 
 /// Draw a hyperslice matrix.
 pub fn draw(chart: &Chart, options: &HypersliceOptions, table: &Table) -> Result<ChartOutput, MarkError> {

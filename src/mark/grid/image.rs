@@ -15,8 +15,26 @@ use crate::mark::raster::{MAX_RASTER_SIDE, NAN_COLOR, image_extent, raster};
 use crate::mark::registry::{AxisSpec, ChartContext, ColourSpec, KindInfo, Technique};
 use crate::mark::{ChartOutput, MarkError, encode, frame};
 use crate::scene::{Item, Raster, Role, Shape, Style};
-use crate::spec::defaults;
-use crate::spec::{Chart, ImageOptions, Resample};
+use crate::spec::{Channel, Chart, ColorChannel, Resample, defaults};
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
+
+/// Options of `kind = "image"`.
+#[derive(Clone, Debug, Deserialize, Serialize, JsonSchema, PartialEq)]
+pub struct ImageOptions {
+    /// Grid x coordinate: a numeric column of a long-form table (one row per grid node).
+    pub x: Channel,
+    /// Grid y coordinate: a numeric column of a long-form table (one row per grid node).
+    pub y: Channel,
+    /// The field's value: a column name, or `{ field, title, unit, scheme, midpoint }`.
+    pub z: ColorChannel,
+    /// `nearest` (default: each node colours the cell around it) or `bilinear` (smooth).
+    #[serde(default)]
+    pub resample: Option<Resample>,
+    /// Colour of missing cells (default light grey, `#d9d9d9`).
+    #[serde(default)]
+    pub nan_color: Option<String>,
+}
 
 /// Draw an image chart.
 pub fn draw(chart: &Chart, options: &ImageOptions, table: &Table) -> Result<ChartOutput, MarkError> {

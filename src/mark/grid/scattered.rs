@@ -16,8 +16,36 @@ use crate::mark::registry::{AxisSpec, ChartContext, ColourSpec, KindInfo, Techni
 use crate::mark::warning::Warning;
 use crate::mark::{ChartOutput, MarkError, encode, frame};
 use crate::scene::{Color, Item, PathCmd, PerPoint, Point, PointBatch, Raster, Rect, Role, Shape, Stroke, Style};
-use crate::spec::defaults;
-use crate::spec::{Chart, Levels, ScatteredOptions};
+use crate::spec::{Channel, Chart, ColorChannel, Levels, defaults};
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
+
+/// Options of `kind = "scattered"`.
+#[derive(Clone, Debug, Deserialize, Serialize, JsonSchema, PartialEq)]
+pub struct ScatteredOptions {
+    /// Point x coordinate (numeric).
+    pub x: Channel,
+    /// Point y coordinate (numeric).
+    pub y: Channel,
+    /// The value at each point: a column name, or `{ field, title, unit, scheme, midpoint }`.
+    pub z: ColorChannel,
+    /// Fill the triangulation with the linear interpolant of z (default true).
+    #[serde(default)]
+    pub fill: Option<bool>,
+    /// Draw the edges of the Delaunay triangles (default true).
+    #[serde(default)]
+    pub mesh: Option<bool>,
+    /// Overlay the Voronoi (Dirichlet) tiles of the points (default false).
+    #[serde(default)]
+    pub voronoi: Option<bool>,
+    /// Contour lines on the triangulation: a number of nice levels or the levels themselves
+    /// (default: none).
+    #[serde(default)]
+    pub levels: Option<Levels>,
+    /// Draw the points on top (default true).
+    #[serde(default)]
+    pub points: Option<bool>,
+}
 
 /// Marker radius of the points.
 const POINT_RADIUS: f64 = 3.0;

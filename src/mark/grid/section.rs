@@ -13,8 +13,52 @@ use crate::mark::gridded::{self, GridInput};
 use crate::mark::registry::{ChartContext, KindInfo, Technique};
 use crate::mark::{ChartOutput, FRAME_SIZE, MarkError, encode, frame};
 use crate::scene::{Color, Item, PathCmd, Point, Rect, Role, Scene, Shape, Style};
-use crate::spec::defaults;
-use crate::spec::{Chart, ScaleKind, SectionLayout, SectionOptions};
+use crate::spec::{Channel, Chart, ColorChannel, ScaleKind, defaults};
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
+
+/// Options of `kind = "section"`.
+#[derive(Clone, Debug, Deserialize, Serialize, JsonSchema, PartialEq)]
+pub struct SectionOptions {
+    /// Grid x coordinate: a numeric column of a long-form table (one row per grid node).
+    pub x: Channel,
+    /// Grid y coordinate: a numeric column of a long-form table (one row per grid node).
+    pub y: Channel,
+    /// The field's value: a column name, or `{ field, title, unit }`.
+    pub z: ColorChannel,
+    /// Sections along x at these y values (give this or `at_x`).
+    #[serde(default)]
+    pub at_y: Option<Vec<f64>>,
+    /// Sections along y at these x values (give this or `at_y`).
+    #[serde(default)]
+    pub at_x: Option<Vec<f64>>,
+    /// `overlay` (default: one plot, a line per section) or `multiples` (one panel per
+    /// section, stacked, sharing both scales).
+    #[serde(default)]
+    pub layout: Option<SectionLayout>,
+    /// With `layout = "multiples"`: give every panel the same value scale (default true), or
+    /// `false` for a scale per panel fitted to its own section (for sections of very different
+    /// magnitude; the panels can then no longer be compared by height, and lint rule CM001 says so).
+    #[serde(default)]
+    pub shared_scale: Option<bool>,
+    /// Line width in pixels, at most 100 (default 2).
+    #[serde(default)]
+    #[schemars(range(min = 0.0, max = 100))]
+    pub stroke_width: Option<f64>,
+    /// Categorical colour scheme for the sections (default `okabe-ito`).
+    #[serde(default)]
+    pub scheme: Option<String>,
+}
+
+/// How sections are arranged.
+#[derive(Clone, Copy, Debug, Deserialize, Serialize, JsonSchema, PartialEq, Eq)]
+#[serde(rename_all = "lowercase")]
+pub enum SectionLayout {
+    /// All sections in one plot.
+    Overlay,
+    /// One panel per section, sharing scales.
+    Multiples,
+}
 
 /// One cross-section: where it is cut and its (position, z) samples at the grid's nodes.
 struct Cut {

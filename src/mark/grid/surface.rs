@@ -15,9 +15,32 @@ use crate::mark::gridded::{self, GridInput};
 use crate::mark::registry::{ChartContext, ColourSpec, KindInfo, Technique};
 use crate::mark::{ChartOutput, MarkError, encode, frame};
 use crate::scene::{Anchor, Baseline, Color, Item, Mesh, PathCmd, Point, Rect, Role, Shape, Style, Text};
-use crate::spec::defaults;
-use crate::spec::{Chart, SurfaceOptions};
+use crate::spec::{Channel, Chart, ColorChannel, defaults};
 use crate::text::measure;
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
+
+/// Options of `kind = "surface"`.
+#[derive(Clone, Debug, Deserialize, Serialize, JsonSchema, PartialEq)]
+pub struct SurfaceOptions {
+    /// Grid x coordinate: a numeric column of a long-form table (one row per grid node).
+    pub x: Channel,
+    /// Grid y coordinate: a numeric column of a long-form table (one row per grid node).
+    pub y: Channel,
+    /// The height: a column name, or `{ field, title, unit, scheme, midpoint }` (surface colours).
+    pub z: ColorChannel,
+    /// Viewing direction in degrees, counter-clockwise from +x (default −60).
+    #[serde(default)]
+    pub azimuth: Option<f64>,
+    /// Height of the eye above the xy plane in degrees, 1 to 90 (default 30).
+    #[serde(default)]
+    #[schemars(range(min = 1.0, max = 90.0))]
+    pub elevation: Option<f64>,
+    /// Drawn z length per x/y unit (default: the z range drawn at half the larger horizontal extent).
+    #[serde(default)]
+    #[schemars(range(min = 0.0))]
+    pub z_scale: Option<f64>,
+}
 
 /// Draw a surface chart.
 pub fn draw(chart: &Chart, options: &SurfaceOptions, table: &Table) -> Result<ChartOutput, MarkError> {

@@ -16,8 +16,35 @@ use crate::mark::registry::{ChartContext, KindInfo, Technique};
 use crate::mark::tree_input::{Branches, branch_legend, branch_palette, labels_of, node_rows, tree_of};
 use crate::mark::{ChartOutput, MarkError, encode, frame, with_default_size};
 use crate::scene::{Color, Item, PathCmd, Point, Role, Shape, Stroke, Style};
-use crate::spec::defaults;
-use crate::spec::{Chart, HypertreeOptions};
+use crate::spec::{Chart, ColorChannel, TreeSource, defaults};
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
+
+/// Options of `kind = "hypertree"`.
+#[derive(Clone, Debug, Deserialize, Serialize, JsonSchema, PartialEq)]
+pub struct HypertreeOptions {
+    /// The tree's columns: `{ id = "id", parent = "parent" }` or `{ path = "path" }`.
+    pub tree: TreeSource,
+    /// Column of node labels (default: the id, or the last path segment).
+    #[serde(default)]
+    pub label: Option<String>,
+    /// Node brought to the centre: its id (its full path for path trees), or a label only one
+    /// node has (default: the root).
+    #[serde(default)]
+    #[schemars(example = &"flare/vis")]
+    pub focus: Option<String>,
+    /// Colour nodes by a column (default: one hue per top-level branch).
+    #[serde(default)]
+    pub color: Option<ColorChannel>,
+    /// Categorical scheme of the branch colours.
+    #[serde(default)]
+    pub scheme: Option<String>,
+    /// Hyperbolic distance between a parent and its children (default 1.2; larger spreads the
+    /// tree out and pushes deep levels to the rim).
+    #[serde(default)]
+    #[schemars(range(min = 0.2, max = 5))]
+    pub spacing: Option<f64>,
+}
 
 /// Canvas size when the spec gives none.
 pub(super) const DEFAULT_SIZE: [f64; 2] = [760.0, 680.0];

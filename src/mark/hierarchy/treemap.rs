@@ -16,9 +16,78 @@ use crate::mark::tree_input::{Branches, branch_legend, branch_palette, labels_of
 use crate::mark::warning::Warning;
 use crate::mark::{ChartOutput, MarkError, encode, frame, with_default_size};
 use crate::scene::{Anchor, Baseline, Color, Item, Point, Rect, Role, Shape, Style, Text};
-use crate::spec::defaults;
-use crate::spec::{Chart, Tiling, TreemapColor, TreemapOptions};
+use crate::spec::{Chart, ColorChannel, TreeSource, defaults};
 use crate::text::measure;
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
+
+/// Options of `kind = "treemap"`.
+#[derive(Clone, Debug, Deserialize, Serialize, JsonSchema, PartialEq)]
+pub struct TreemapOptions {
+    /// The tree's columns: `{ id = "id", parent = "parent" }` or `{ path = "path" }`.
+    pub tree: TreeSource,
+    /// Numeric column of leaf sizes (default: every leaf counts 1). Inner nodes are the sum of
+    /// their leaves; negative and missing values count as 0, with a warning.
+    #[serde(default)]
+    #[schemars(example = &"size")]
+    pub value: Option<String>,
+    /// Unit of `value`, shown in labels and the caption.
+    #[serde(default)]
+    pub unit: Option<String>,
+    /// Column of node labels (default: the id, or the last path segment).
+    #[serde(default)]
+    pub label: Option<String>,
+    /// Colour leaves by a column (text: categories; numbers: a colour map).
+    #[serde(default)]
+    pub color: Option<ColorChannel>,
+    /// Without `color`: `branch` (default: one hue per top-level branch), `depth`, or `value`
+    /// (a colour map of each leaf's value).
+    #[serde(default)]
+    pub color_by: Option<TreemapColor>,
+    /// Colour scheme: categorical for `branch`, continuous for `depth` and `value`.
+    #[serde(default)]
+    pub scheme: Option<String>,
+    /// `squarified` (default; Bruls et al.), `slice-dice` (alternating by depth) or `strip`
+    /// (ordered rows keeping the data order).
+    #[serde(default)]
+    pub tiling: Option<Tiling>,
+    /// Gap in pixels between siblings and inside each parent's border (default 2).
+    #[serde(default)]
+    #[schemars(range(min = 0, max = 50))]
+    pub padding: Option<f64>,
+    /// Draw a header band with its name over each inner node (default true).
+    #[serde(default)]
+    pub headers: Option<bool>,
+    /// Deepest level drawn below the root (default: all); deeper nodes fold into their
+    /// ancestor at that level.
+    #[serde(default)]
+    #[schemars(range(min = 1, max = 64))]
+    pub depth: Option<u32>,
+}
+
+/// What colours a treemap without a `color` column.
+#[derive(Clone, Copy, Debug, Deserialize, Serialize, JsonSchema, PartialEq, Eq)]
+#[serde(rename_all = "lowercase")]
+pub enum TreemapColor {
+    /// One hue per child of the root; everything below it shares that hue.
+    Branch,
+    /// A colour map of each node's depth.
+    Depth,
+    /// A colour map of each leaf's value.
+    Value,
+}
+
+/// How a treemap splits a rectangle among children.
+#[derive(Clone, Copy, Debug, Deserialize, Serialize, JsonSchema, PartialEq, Eq)]
+#[serde(rename_all = "kebab-case")]
+pub enum Tiling {
+    /// Rows of near-square rectangles, largest first (Bruls, Huizing & van Wijk 2000).
+    Squarified,
+    /// Slices across, alternating horizontal and vertical by depth (Shneiderman 1992).
+    SliceDice,
+    /// Ordered strips that keep the data order (Bederson, Shneiderman & Wattenberg 2002).
+    Strip,
+}
 
 /// Canvas size when the spec gives none.
 pub(super) const DEFAULT_SIZE: [f64; 2] = [820.0, 560.0];

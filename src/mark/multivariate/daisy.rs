@@ -16,7 +16,31 @@ use crate::mark::registry::{ChartContext, KindInfo, Technique};
 use crate::mark::{ChartOutput, MarkError, highlight, with_default_size};
 use crate::scene::{Anchor, Baseline, Item, PathCmd, Point, Role, Shape, Stroke, Style, Text};
 use crate::selection::Highlight;
-use crate::spec::{ChannelOptions, Chart, DaisyOptions};
+use crate::spec::{Channel, ChannelOptions, Chart, ColorChannel};
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
+
+/// Options of `kind = "daisy"`.
+#[derive(Clone, Debug, Deserialize, Serialize, JsonSchema, PartialEq)]
+pub struct DaisyOptions {
+    /// The columns, 3 to 24, placed clockwise from the top, each on its own arc and scale.
+    #[schemars(length(min = 3, max = 24), example = crate::spec::types::example_columns())]
+    pub columns: Vec<Channel>,
+    /// Colour curves by a column (categories get a legend, numbers a colour bar).
+    #[serde(default)]
+    pub color: Option<ColorChannel>,
+    /// Curve opacity in 0..=1 (default: from the row count).
+    #[serde(default)]
+    #[schemars(range(min = 0, max = 1))]
+    pub opacity: Option<f64>,
+    /// Curve width in pixels, at most 100 (default: from the row count).
+    #[serde(default)]
+    #[schemars(extend("exclusiveMinimum" = 0, "maximum" = 100))]
+    pub stroke_width: Option<f64>,
+    /// Curve colour when `color` is not given (CSS name or `#rrggbb`).
+    #[serde(default)]
+    pub mark_color: Option<String>,
+}
 
 /// Canvas size when the spec gives none.
 pub(super) const DEFAULT_SIZE: [f64; 2] = [800.0, 600.0];

@@ -14,7 +14,91 @@ use crate::mark::warning::Warning;
 use crate::mark::{ChartOutput, MarkError, highlight, with_default_size};
 use crate::scene::{Anchor, Baseline, Color, Item, Point, Role, Text};
 use crate::selection::Highlight;
-use crate::spec::{Chart, FacesOptions};
+use crate::spec::{Chart, ColorChannel};
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
+
+/// Options of `kind = "faces"`.
+#[derive(Clone, Debug, Deserialize, Serialize, JsonSchema, PartialEq)]
+pub struct FacesOptions {
+    /// Up to 15 numeric columns, assigned to features in the order face width, face height,
+    /// face shape, eye size, eye spacing, eye slant, pupil position, brow slant, brow height,
+    /// nose length, nose width, mouth curvature, mouth width, mouth openness, ear size
+    /// (give this or `features`).
+    #[serde(default)]
+    #[schemars(example = crate::spec::types::example_columns())]
+    pub columns: Option<Vec<String>>,
+    /// Columns by feature, e.g. `{ mouth_curvature = "mpg", hair = "hp" }` (up to 15).
+    #[serde(default)]
+    pub features: Option<FaceFeatures>,
+    /// Column whose values label the faces (default: the row number).
+    #[serde(default)]
+    pub label: Option<String>,
+    /// Colour the faces by a column (categories get a legend).
+    #[serde(default)]
+    pub color: Option<ColorChannel>,
+    /// Faces per row of the grid (default: from the canvas' aspect ratio).
+    #[serde(default)]
+    #[schemars(range(min = 1, max = 100))]
+    pub per_row: Option<u32>,
+    /// Draw the feature key saying which column drives which feature (default true). Without it
+    /// the faces cannot be read; lint rule TQ005 reports that.
+    #[serde(default)]
+    pub key: Option<bool>,
+}
+
+/// Columns driving facial features; a feature without a column stays neutral.
+#[derive(Clone, Debug, Default, Deserialize, Serialize, JsonSchema, PartialEq)]
+pub struct FaceFeatures {
+    /// Narrow to wide face.
+    #[serde(default)]
+    pub face_width: Option<String>,
+    /// Short to tall face.
+    #[serde(default)]
+    pub face_height: Option<String>,
+    /// Round to pointed chin.
+    #[serde(default)]
+    pub face_shape: Option<String>,
+    /// Small to large eyes.
+    #[serde(default)]
+    pub eye_size: Option<String>,
+    /// Close-set to wide-set eyes.
+    #[serde(default)]
+    pub eye_spacing: Option<String>,
+    /// Eyes slanting down to up at the outer corners.
+    #[serde(default)]
+    pub eye_slant: Option<String>,
+    /// Pupils looking left to right.
+    #[serde(default)]
+    pub pupil_position: Option<String>,
+    /// Brows slanting down to up at the outer ends.
+    #[serde(default)]
+    pub brow_slant: Option<String>,
+    /// Low to high brows.
+    #[serde(default)]
+    pub brow_height: Option<String>,
+    /// Short to long nose.
+    #[serde(default)]
+    pub nose_length: Option<String>,
+    /// Narrow to wide nose.
+    #[serde(default)]
+    pub nose_width: Option<String>,
+    /// Frown to smile.
+    #[serde(default)]
+    pub mouth_curvature: Option<String>,
+    /// Narrow to wide mouth.
+    #[serde(default)]
+    pub mouth_width: Option<String>,
+    /// Closed to open mouth.
+    #[serde(default)]
+    pub mouth_openness: Option<String>,
+    /// Small to large ears.
+    #[serde(default)]
+    pub ear_size: Option<String>,
+    /// No hair to full hair.
+    #[serde(default)]
+    pub hair: Option<String>,
+}
 
 /// Canvas size when the spec gives none.
 pub(super) const DEFAULT_SIZE: [f64; 2] = [900.0, 620.0];

@@ -16,8 +16,54 @@ use crate::mark::registry::{ChartContext, KindInfo, Technique};
 use crate::mark::{ChartOutput, MarkError, highlight, with_default_size};
 use crate::scene::{Anchor, Baseline, Item, PathCmd, Point, Rect, Role, Shape, Style, Text};
 use crate::selection::Highlight;
-use crate::spec::{AxisOrder, ChannelOptions, Chart, ParallelOptions};
+use crate::spec::{Channel, ChannelOptions, Chart, ColorChannel};
 use crate::text::measure;
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
+
+/// Options of `kind = "parallel"`.
+#[derive(Clone, Debug, Deserialize, Serialize, JsonSchema, PartialEq)]
+pub struct ParallelOptions {
+    /// The axes' columns, 2 to 64: numeric columns get nice-ticked scales, text columns one
+    /// position per category.
+    #[schemars(length(min = 2, max = 64), example = crate::spec::types::example_columns())]
+    pub columns: Vec<Channel>,
+    /// Colour lines by a column (categories get a legend, numbers a colour bar).
+    #[serde(default)]
+    pub color: Option<ColorChannel>,
+    /// `given` (default: as listed) or `correlation` (neighbouring axes strongly correlated,
+    /// starting from the first column).
+    #[serde(default)]
+    pub order: Option<AxisOrder>,
+    /// Columns whose axes run top to bottom (high values at the bottom).
+    #[serde(default)]
+    pub invert: Option<Vec<String>>,
+    /// One scale shared by every numeric axis (default false: each axis its own).
+    #[serde(default)]
+    pub shared_scale: Option<bool>,
+    /// Line opacity in 0..=1 (default: from the row count).
+    #[serde(default)]
+    #[schemars(range(min = 0, max = 1))]
+    pub opacity: Option<f64>,
+    /// Line width in pixels, at most 100 (default: from the row count).
+    #[serde(default)]
+    #[schemars(extend("exclusiveMinimum" = 0, "maximum" = 100))]
+    pub stroke_width: Option<f64>,
+    /// Line colour when `color` is not given (CSS name or `#rrggbb`).
+    #[serde(default)]
+    pub mark_color: Option<String>,
+}
+
+/// How the axes of parallel coordinates are ordered.
+#[derive(Clone, Copy, Debug, Deserialize, Serialize, JsonSchema, PartialEq, Eq)]
+#[serde(rename_all = "lowercase")]
+pub enum AxisOrder {
+    /// As listed in `columns`.
+    Given,
+    /// Greedy: each next axis is the remaining column most correlated (|Pearson r|) with the
+    /// previous one.
+    Correlation,
+}
 
 /// Canvas size when the spec gives none.
 pub(super) const DEFAULT_SIZE: [f64; 2] = [820.0, 440.0];

@@ -22,8 +22,45 @@ use crate::mark::warning::Warning;
 use crate::mark::{ChartOutput, MarkError, highlight, with_default_size};
 use crate::scene::{Anchor, Baseline, Color, Item, PathCmd, Point, Raster, Rect, Role, Shape, Style, Text};
 use crate::selection::Highlight;
-use crate::spec::{Chart, SegmentScale, SegmentsOptions};
+use crate::spec::{Channel, Chart};
 use crate::text::measure;
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
+
+/// Options of `kind = "segments"`.
+#[derive(Clone, Debug, Deserialize, Serialize, JsonSchema, PartialEq)]
+pub struct SegmentsOptions {
+    /// The numeric columns, 2 to 64, one segment each, clockwise from the top.
+    #[schemars(length(min = 2, max = 64), example = crate::spec::types::example_columns())]
+    pub columns: Vec<Channel>,
+    /// Column the rows are sorted by before they are laid out from the centre outward
+    /// (default: the rows' order in the data).
+    #[serde(default)]
+    pub order_by: Option<String>,
+    /// Sort `order_by` from high to low (default false).
+    #[serde(default)]
+    pub descending: Option<bool>,
+    /// Continuous colour map (default `viridis`; append `_r` to reverse).
+    #[serde(default)]
+    pub scheme: Option<String>,
+    /// `column` (default: each column scaled from its own minimum to maximum) or `shared` (one
+    /// scale over all columns, for columns in the same unit).
+    #[serde(default)]
+    pub scale: Option<SegmentScale>,
+    /// Colour of pixels whose rows are all missing (default light grey, `#d9d9d9`).
+    #[serde(default)]
+    pub nan_color: Option<String>,
+}
+
+/// How circle-segment colours are scaled.
+#[derive(Clone, Copy, Debug, Deserialize, Serialize, JsonSchema, PartialEq, Eq)]
+#[serde(rename_all = "lowercase")]
+pub enum SegmentScale {
+    /// Each column from its own minimum (bottom of the colour bar) to its maximum (top).
+    Column,
+    /// One domain over all columns.
+    Shared,
+}
 
 /// Canvas size when the spec gives none.
 pub(super) const DEFAULT_SIZE: [f64; 2] = [760.0, 640.0];

@@ -23,7 +23,81 @@ use crate::scene::{
     Anchor, Baseline, Color, Item, PathCmd, PerPoint, Point, PointBatch, Raster, Rect, Role, Shape, Stroke, Style, Text,
 };
 use crate::selection::Highlight;
-use crate::spec::{ChannelOptions, Chart, Diagonal, MatrixLayout, ScaleKind, SplomMode, SplomOptions};
+use crate::spec::{Channel, ChannelOptions, Chart, ColorChannel, ScaleKind};
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
+
+/// Options of `kind = "splom"`.
+#[derive(Clone, Debug, Deserialize, Serialize, JsonSchema, PartialEq)]
+pub struct SplomOptions {
+    /// The columns, 2 to 12: names, or tables with `field`, `title`, `unit`, `scale`, `domain`, ...
+    #[schemars(length(min = 2, max = 12), example = crate::spec::types::example_columns())]
+    pub columns: Vec<Channel>,
+    /// Colour points by a column (categories get a legend, numbers a colour bar).
+    #[serde(default)]
+    pub color: Option<ColorChannel>,
+    /// Which cells to draw: `full` (default), `lower` or `upper` triangle.
+    #[serde(default)]
+    pub layout: Option<MatrixLayout>,
+    /// The diagonal cells: `histogram` (default), `density` (kernel density) or `label`.
+    #[serde(default)]
+    pub diagonal: Option<Diagonal>,
+    /// Histogram bins on the diagonal, 2 to 200 (default: Freedman–Diaconis, at most 50).
+    #[serde(default)]
+    #[schemars(range(min = 2, max = 200))]
+    pub bins: Option<u32>,
+    /// `points` (one marker per row), `density` (counts per small bin, for large tables) or
+    /// `auto` (default: density above 200,000 rows).
+    #[serde(default)]
+    pub mode: Option<SplomMode>,
+    /// Marker radius in pixels, at most 100 (default: from the row count).
+    #[serde(default)]
+    #[schemars(extend("exclusiveMinimum" = 0, "maximum" = 100))]
+    pub radius: Option<f64>,
+    /// Marker opacity in 0..=1 (default: from the row count).
+    #[serde(default)]
+    #[schemars(range(min = 0, max = 1))]
+    pub opacity: Option<f64>,
+    /// Marker colour when `color` is not given (CSS name or `#rrggbb`).
+    #[serde(default)]
+    pub mark_color: Option<String>,
+}
+
+/// Which cells of a matrix are drawn.
+#[derive(Clone, Copy, Debug, Deserialize, Serialize, JsonSchema, PartialEq, Eq)]
+#[serde(rename_all = "lowercase")]
+pub enum MatrixLayout {
+    /// Every cell.
+    Full,
+    /// The diagonal and the cells below it.
+    Lower,
+    /// The diagonal and the cells above it.
+    Upper,
+}
+
+/// What the diagonal cells of a scatter-plot matrix show.
+#[derive(Clone, Copy, Debug, Deserialize, Serialize, JsonSchema, PartialEq, Eq)]
+#[serde(rename_all = "lowercase")]
+pub enum Diagonal {
+    /// A histogram of the column.
+    Histogram,
+    /// A Gaussian kernel density estimate of the column (Silverman's bandwidth).
+    Density,
+    /// The column's name only.
+    Label,
+}
+
+/// How a scatter-plot matrix draws its rows.
+#[derive(Clone, Copy, Debug, Deserialize, Serialize, JsonSchema, PartialEq, Eq)]
+#[serde(rename_all = "lowercase")]
+pub enum SplomMode {
+    /// One marker per row.
+    Points,
+    /// Rows counted in small bins, drawn as a shaded raster.
+    Density,
+    /// Points up to 200,000 rows, density above.
+    Auto,
+}
 
 /// Canvas size when the spec gives none.
 pub(super) const DEFAULT_SIZE: [f64; 2] = [760.0, 720.0];

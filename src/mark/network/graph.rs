@@ -10,8 +10,45 @@ use crate::mark::network_input::network_of;
 use crate::mark::node_link::{Look, draw_network};
 use crate::mark::registry::{ChartContext, KindInfo, Technique};
 use crate::mark::{ChartOutput, MarkError, with_default_size};
-use crate::spec::defaults;
-use crate::spec::{Chart, GraphLayout, GraphOptions};
+use crate::spec::{Chart, GraphLayout, NodeTable, defaults};
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
+
+/// Options of `kind = "graph"`.
+#[derive(Clone, Debug, Deserialize, Serialize, JsonSchema, PartialEq)]
+pub struct GraphOptions {
+    /// Column of edge sources (node ids).
+    #[schemars(example = &"from")]
+    pub source: String,
+    /// Column of edge targets (node ids).
+    #[schemars(example = &"to")]
+    pub target: String,
+    /// Numeric column of edge weights: edge width and colour (default: all edges alike).
+    #[serde(default)]
+    pub weight: Option<String>,
+    /// Node table with ids and attributes (default: nodes are the edges' endpoints).
+    #[serde(default)]
+    pub nodes: Option<NodeTable>,
+    /// `force` (default), `circular`, `layered` or `given`.
+    #[serde(default)]
+    pub layout: Option<GraphLayout>,
+    /// Seed of the force layout (default 1): the same seed gives the same picture.
+    #[serde(default)]
+    pub seed: Option<u64>,
+    /// Draw arrowheads (default: true for `layered`, false otherwise).
+    #[serde(default)]
+    pub directed: Option<bool>,
+    /// Label nodes (default: when there are at most 150); labels that would overlap are left out.
+    #[serde(default)]
+    pub labels: Option<bool>,
+    /// Node radius in pixels, at most 200, without a size column (default from the node count).
+    #[serde(default)]
+    #[schemars(extend("exclusiveMinimum" = 0, "maximum" = 200))]
+    pub node_radius: Option<f64>,
+    /// Continuous scheme of edge colours by weight (default `greys`).
+    #[serde(default)]
+    pub scheme: Option<String>,
+}
 
 /// Canvas size when the spec gives none.
 pub(super) const DEFAULT_SIZE: [f64; 2] = [760.0, 620.0];

@@ -15,9 +15,55 @@ use crate::mark::node_link::{Look, draw_network};
 use crate::mark::registry::{ChartContext, KindInfo, Technique};
 use crate::mark::{ChartOutput, MarkError, encode, frame, with_default_size};
 use crate::scene::{Anchor, Baseline, Color, Item, Point, Rect, Role, Shape, Style, Text};
-use crate::spec::defaults;
-use crate::spec::{Chart, GraphLayout, LinkMode, LinkmapOptions};
+use crate::spec::{Chart, GraphLayout, NodeTable, defaults};
 use crate::text::measure;
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
+
+/// Options of `kind = "linkmap"`.
+#[derive(Clone, Debug, Deserialize, Serialize, JsonSchema, PartialEq)]
+pub struct LinkmapOptions {
+    /// Column of link sources (node ids).
+    #[schemars(example = &"from")]
+    pub source: String,
+    /// Column of link targets (node ids).
+    #[schemars(example = &"to")]
+    pub target: String,
+    /// Numeric column of the link statistic (traffic, calls, flow): width and colour.
+    #[schemars(example = &"traffic")]
+    pub weight: String,
+    /// Unit of `weight`, shown in the legend.
+    #[serde(default)]
+    pub unit: Option<String>,
+    /// Node table with ids and attributes, or given positions (`x`, `y`).
+    #[serde(default)]
+    pub nodes: Option<NodeTable>,
+    /// `links` (default) or `matrix`.
+    #[serde(default)]
+    pub mode: Option<LinkMode>,
+    /// Node placement in `links` mode: `force` (default), `circular`, `layered` or `given`.
+    #[serde(default)]
+    pub layout: Option<GraphLayout>,
+    /// Seed of the force layout (default 1).
+    #[serde(default)]
+    pub seed: Option<u64>,
+    /// Continuous scheme of the link statistic (default `viridis_r`: low values light, high dark).
+    #[serde(default)]
+    pub scheme: Option<String>,
+    /// Label nodes (default: when there are at most 150).
+    #[serde(default)]
+    pub labels: Option<bool>,
+}
+
+/// How a link view shows the network.
+#[derive(Clone, Copy, Debug, Deserialize, Serialize, JsonSchema, PartialEq, Eq)]
+#[serde(rename_all = "lowercase")]
+pub enum LinkMode {
+    /// Nodes and links, links drawn thin to thick in order of their statistic.
+    Links,
+    /// An adjacency matrix with rows and columns ordered by clustering.
+    Matrix,
+}
 
 /// Canvas size when the spec gives none.
 pub(super) const DEFAULT_SIZE: [f64; 2] = [760.0, 640.0];
@@ -181,6 +227,6 @@ impl Technique for LinkmapOptions {
     }
 
     fn default_size(&self) -> [f64; 2] {
-        if self.mode == Some(crate::spec::LinkMode::Matrix) { MATRIX_SIZE } else { DEFAULT_SIZE }
+        if self.mode == Some(LinkMode::Matrix) { MATRIX_SIZE } else { DEFAULT_SIZE }
     }
 }

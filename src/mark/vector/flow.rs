@@ -26,8 +26,115 @@ use crate::mark::registry::{AxisSpec, ChartContext, KindInfo, Technique};
 use crate::mark::warning::Warning;
 use crate::mark::{ChartOutput, MarkError, encode, frame};
 use crate::scene::{Anchor, Baseline, Color, Item, PathCmd, Point, Raster, Rect, Role, Shape, Stroke, Style, Text};
-use crate::spec::defaults;
-use crate::spec::{Chart, FlowLayer, FlowOptions, IntegratorKind, SeedKind};
+use crate::spec::{Channel, Chart, defaults};
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
+
+/// Options of `kind = "flow"`.
+#[derive(Clone, Debug, Deserialize, Serialize, JsonSchema, PartialEq)]
+pub struct FlowOptions {
+    /// Grid x coordinate: a numeric column of a long-form table (one row per grid node and time).
+    pub x: Channel,
+    /// Grid y coordinate.
+    pub y: Channel,
+    /// Column of the velocity's x component.
+    #[schemars(example = &"u")]
+    pub u: String,
+    /// Column of the velocity's y component.
+    #[schemars(example = &"v")]
+    pub v: String,
+    /// Column of the time, for unsteady fields (one grid per distinct time).
+    #[serde(default)]
+    pub t: Option<String>,
+    /// Unit of the speed, shown in the colour bar and the arrow key.
+    #[serde(default)]
+    pub unit: Option<String>,
+    /// Layers drawn, bottom to top: `speed`, `lic`, `arrows`, `streamlines`, `pathlines`,
+    /// `streaklines`, `timelines`, `topology` (default `["speed", "streamlines"]`).
+    #[serde(default)]
+    pub layers: Option<Vec<FlowLayer>>,
+    /// Where streamlines and particle traces start: `evenly` (default for streamlines; Jobard–Lefer
+    /// evenly spaced lines), `grid`, `rake` (along `rake`) or `circle` (around `circle`).
+    #[serde(default)]
+    pub seeds: Option<SeedKind>,
+    /// Two end points `[[x0, y0], [x1, y1]]` of the seed rake.
+    #[serde(default)]
+    pub rake: Option<[[f64; 2]; 2]>,
+    /// Centre and radius `[x, y, r]` of the seed circle.
+    #[serde(default)]
+    pub circle: Option<[f64; 3]>,
+    /// Number of seeds on a rake or circle (default 12).
+    #[serde(default)]
+    #[schemars(range(min = 1, max = 10000))]
+    pub seed_count: Option<u32>,
+    /// Line and arrow density, like matplotlib's `density` (default 1): evenly spaced lines are
+    /// 1/30 of the plot's width apart at density 1, and a grid has 30 seeds or arrows a side.
+    #[serde(default)]
+    #[schemars(range(min = 0.1, max = 10))]
+    pub density: Option<f64>,
+    /// Integrator: `euler`, `rk2`, `rk4` (default) or `rk45` (adaptive with error control; slower).
+    #[serde(default)]
+    pub integrator: Option<IntegratorKind>,
+    /// Continuous scheme of speed (default `viridis`).
+    #[serde(default)]
+    pub scheme: Option<String>,
+    /// Time of the snapshot for steady layers and the end of particle traces, for unsteady
+    /// fields (default: the first time for snapshots, the last for traces).
+    #[serde(default)]
+    pub time: Option<f64>,
+}
+
+/// A layer of a flow chart.
+#[derive(Clone, Copy, Debug, Deserialize, Serialize, JsonSchema, PartialEq, Eq)]
+#[serde(rename_all = "lowercase")]
+pub enum FlowLayer {
+    /// Speed as a colour image with a colour bar.
+    Speed,
+    /// Line integral convolution of white noise along the flow (tinted by speed when `speed` is
+    /// also drawn).
+    Lic,
+    /// Arrows on a regular grid, length proportional to speed, with a key arrow.
+    Arrows,
+    /// Streamlines of the (first or chosen) snapshot, with direction arrows.
+    Streamlines,
+    /// Paths of particles released at the seeds at the first time (unsteady fields).
+    Pathlines,
+    /// Where particles released continuously at the seeds are at the end time (unsteady fields).
+    Streaklines,
+    /// A line of particles released together along the seeds, drawn at several times.
+    Timelines,
+    /// Critical points classified by the Jacobian's eigenvalues, separatrices from saddles, and
+    /// attachment and detachment points on the boundary.
+    Topology,
+}
+
+/// Where traces start.
+#[derive(Clone, Copy, Debug, Deserialize, Serialize, JsonSchema, PartialEq, Eq)]
+#[serde(rename_all = "lowercase")]
+pub enum SeedKind {
+    /// Evenly spaced streamlines (Jobard & Lefer 1997).
+    Evenly,
+    /// A regular grid of seeds.
+    Grid,
+    /// Seeds along the line `rake`.
+    Rake,
+    /// Seeds around the circle `circle`.
+    Circle,
+}
+
+/// A numerical integrator for traces.
+#[derive(Clone, Copy, Debug, Deserialize, Serialize, JsonSchema, PartialEq, Eq)]
+#[serde(rename_all = "lowercase")]
+pub enum IntegratorKind {
+    /// Forward Euler (first order).
+    Euler,
+    /// Midpoint rule (second order).
+    Rk2,
+    /// Classic Runge–Kutta (fourth order).
+    Rk4,
+    /// Dormand–Prince 5(4) with step-size control.
+    Rk45,
+}
 
 /// Largest raster side for the speed image and LIC, in pixels.
 const MAX_RASTER: usize = 2048;
