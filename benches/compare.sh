@@ -14,6 +14,11 @@ hyperfine --warmup 2 --runs 10 --export-markdown target/bench/scatter_1m.md \
   -n pandas+matplotlib 'python3 benches/peer_matplotlib.py benches/data/points.csv target/bench/out/peer.png'
 python3 benches/peer_matplotlib.py benches/data/points.csv target/bench/out/peer.png
 
+echo "== histogram of 1M values (auto bins) to an 800x500 PNG, whole process (CSV read included)"
+hyperfine --warmup 2 --runs 10 --export-markdown target/bench/histogram_1m.md \
+  -n dataink 'target/release/dataink render benches/histogram_1m.toml --format png --out target/bench/out --quiet' \
+  -n pandas+matplotlib-hist 'python3 benches/peer_matplotlib_hist.py benches/data/points.csv target/bench/out/peer_hist.png'
+
 echo "== small line chart to SVG + PNG, whole cold process"
 hyperfine -N --warmup 5 --runs 50 --export-markdown target/bench/line_small.md \
   -n dataink 'target/release/dataink render benches/line_small.toml --format svg,png --out target/bench/out --quiet'

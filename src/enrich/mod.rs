@@ -6,6 +6,7 @@ pub mod contour;
 pub mod distribution;
 pub mod flow;
 pub mod grid;
+pub mod histogram;
 pub mod hyperslice;
 pub mod interp1d;
 pub mod scattered;

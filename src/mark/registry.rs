@@ -275,6 +275,9 @@ registry! {
     Scatter(ScatterOptions) => cartesian::scatter,
     /// One or more series drawn as lines through (x, y).
     Line(LineOptions) => cartesian::line,
+    /// The distribution of a numeric column as bars over equal-width bins: counts, percentages
+    /// or densities, optionally cumulative, grouped by colour (stacked, layered or side by side).
+    Histogram(HistogramOptions) => cartesian::histogram,
     /// Vertical bars from zero: one per category of `x` (grouped side by side by `color`), rows
     /// of the same category summed.
     Bar(BarOptions) => cartesian::bar,

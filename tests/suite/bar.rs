@@ -1,7 +1,7 @@
 //! The `bar` kind against hand-computed geometry: band positions, lengths from zero, grouping,
 //! sums, the non-finite policy, negative values and bad input.
 
-use crate::common::Fixture;
+use crate::common::{Fixture, bars, derived_column, plot, tick_labels};
 use dataink::mark::{ChartOutput, DerivedColumn};
 use dataink::scene::{Item, Rect, Role, Shape};
 
@@ -25,48 +25,6 @@ fn draw_err(csv: &str, extra: &str) -> String {
         Ok(_) => panic!("expected an error"),
         Err(e) => e,
     }
-}
-
-/// The drawn bars: (label, rectangle, source rows), in drawing order.
-fn bars(out: &ChartOutput) -> Vec<(String, Rect, Vec<u32>)> {
-    let mut found = Vec::new();
-    out.scene.walk(|item: &Item| {
-        if item.role == Role::DataMark
-            && let Shape::Rect(r) = &item.shape
-        {
-            found.push((item.label.clone().unwrap_or_default(), *r, item.rows.clone()));
-        }
-    });
-    found
-}
-
-/// The plot area: the clip of the data-mark group.
-fn plot(out: &ChartOutput) -> Rect {
-    let mut plot = None;
-    out.scene.walk(|item: &Item| {
-        if let (Role::DataMark, Shape::Group { clip: Some(c), .. }) = (&item.role, &item.shape) {
-            plot = Some(*c);
-        }
-    });
-    plot.expect("a clipped data group")
-}
-
-/// Tick label texts of one axis.
-fn tick_labels(out: &ChartOutput, axis: &str) -> Vec<String> {
-    let mut labels = Vec::new();
-    out.scene.walk(|item: &Item| {
-        if item.role == Role::TickLabel
-            && item.label.as_deref() == Some(axis)
-            && let Shape::Text(t) = &item.shape
-        {
-            labels.push(t.content.clone());
-        }
-    });
-    labels
-}
-
-fn derived_column<'a>(out: &'a ChartOutput, name: &str) -> &'a DerivedColumn {
-    &out.derived.columns.iter().find(|(n, _)| n == name).unwrap_or_else(|| panic!("no column {name}")).1
 }
 
 fn close(a: f64, b: f64) -> bool {

@@ -6,8 +6,9 @@ use std::path::{Path, PathBuf};
 
 use dataink::data::PathPolicy;
 use dataink::lint::{ChartLint, Finding};
-use dataink::mark::ChartOutput;
+use dataink::mark::{ChartOutput, DerivedColumn};
 use dataink::pipeline::{self, Loaded};
+use dataink::scene::{Item, Rect, Role, Shape};
 
 /// A temporary folder holding a spec file and its data files.
 pub struct Fixture {
@@ -145,4 +146,46 @@ pub fn npy_f8(rows: usize, cols: usize, values: &[f64]) -> Vec<u8> {
         out.extend_from_slice(&v.to_le_bytes());
     }
     out
+}
+
+/// The drawn bars (rectangular data marks): (label, rectangle, source rows), in drawing order.
+pub fn bars(out: &ChartOutput) -> Vec<(String, Rect, Vec<u32>)> {
+    let mut found = Vec::new();
+    out.scene.walk(|item: &Item| {
+        if item.role == Role::DataMark
+            && let Shape::Rect(r) = &item.shape
+        {
+            found.push((item.label.clone().unwrap_or_default(), *r, item.rows.clone()));
+        }
+    });
+    found
+}
+
+/// The plot area: the clip of the data-mark group.
+pub fn plot(out: &ChartOutput) -> Rect {
+    let mut plot = None;
+    out.scene.walk(|item: &Item| {
+        if let (Role::DataMark, Shape::Group { clip: Some(c), .. }) = (&item.role, &item.shape) {
+            plot = Some(*c);
+        }
+    });
+    plot.expect("a clipped data group")
+}
+
+/// Tick label texts of one axis.
+pub fn tick_labels(out: &ChartOutput, axis: &str) -> Vec<String> {
+    let mut labels = Vec::new();
+    out.scene.walk(|item: &Item| {
+        if item.role == Role::TickLabel
+            && item.label.as_deref() == Some(axis)
+            && let Shape::Text(t) = &item.shape
+        {
+            labels.push(t.content.clone());
+        }
+    });
+    labels
+}
+
+pub fn derived_column<'a>(out: &'a ChartOutput, name: &str) -> &'a DerivedColumn {
+    &out.derived.columns.iter().find(|(n, _)| n == name).unwrap_or_else(|| panic!("no column {name}")).1
 }

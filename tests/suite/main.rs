@@ -16,6 +16,7 @@ mod explore;
 mod flow;
 mod frame_fit;
 mod golden;
+mod histogram;
 mod hostile_inputs;
 mod hostile_work;
 mod layout;

@@ -18,7 +18,7 @@ use crate::mark::registry::{AxisSpec, ChartContext, KindInfo, Technique};
 use crate::mark::warning::Warning;
 use crate::mark::{ChartOutput, MarkError, frame};
 use crate::scene::{Color, Item, PathCmd, Point, Rect, Role, Shape, Style};
-use crate::spec::{Channel, Chart, ColorChannel, ColorOptions, ColorType, ScaleKind};
+use crate::spec::{Channel, Chart, ColorChannel, ScaleKind};
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
@@ -74,7 +74,7 @@ pub fn draw(chart: &Chart, options: &BarOptions, table: &Table) -> Result<ChartO
         return Err(encode::no_rows(chart, table, None));
     }
     check_scales(options, y_col)?;
-    let color = grouping_channel(chart, options.color.as_ref(), table)?;
+    let color = crate::mark::categorical::grouping_channel(chart, options.color.as_ref(), table, "bars")?;
     let color_col = match &color {
         Some(c) => Some(encode::column(chart, "color", c.field(), table)?),
         None => None,
@@ -299,26 +299,6 @@ fn check_scales(options: &BarOptions, y_col: &Column) -> Result<(), MarkError> {
             "remove `scale` from y (bars need a linear scale); for values spanning decades use a scatter or line chart on a log scale",
         )),
     }
-}
-
-/// The colour channel read as categories: a numeric column without `type` is grouped by its
-/// distinct values; `type = "continuous"` is an error, since groups need categories.
-fn grouping_channel(
-    chart: &Chart,
-    channel: Option<&ColorChannel>,
-    table: &Table,
-) -> Result<Option<ColorChannel>, MarkError> {
-    let Some(channel) = channel else { return Ok(None) };
-    let options = channel.options();
-    if options.r#type == Some(ColorType::Continuous) {
-        return Err(MarkError::at(
-            &["color", "type"],
-            format!("bars are grouped by colour, which needs categories, not a continuous scale"),
-            "remove `type = \"continuous\"`: a numeric column is then grouped by its distinct values",
-        ));
-    }
-    encode::column(chart, "color", &options.field, table)?;
-    Ok(Some(ColorChannel::Detailed(ColorOptions { r#type: Some(ColorType::Categorical), ..options })))
 }
 
 /// The value axis over the bars' sums: zero included unless `zero = false`; a fixed `domain`

@@ -1,0 +1,220 @@
+//! The `histogram` kind against known answers: bin counts (numpy's edges), counts summing to the
+//! rows, densities integrating to one, cumulative ends, stacked and grouped bars, the domain,
+//! the selection, and bad input.
+
+use crate::common::{Fixture, bars, derived_column, plot};
+use dataink::mark::{ChartOutput, DerivedColumn};
+
+/// A histogram of `d.csv` (written from `csv`) with extra chart keys.
+fn spec(extra: &str) -> String {
+    format!(
+        "[data.d]\npath = \"d.csv\"\n\n[[chart]]\nname = \"h\"\nkind = \"histogram\"\ndata = \"d\"\nsize = [600, 400]\n{extra}"
+    )
+}
+
+fn draw(csv: &str, extra: &str) -> Result<ChartOutput, String> {
+    Fixture::new(&spec(extra), &[("d.csv", csv.as_bytes())]).draw().map(|mut v| v.remove(0))
+}
+
+fn draw_ok(csv: &str, extra: &str) -> ChartOutput {
+    draw(csv, extra).unwrap_or_else(|e| panic!("{e}"))
+}
+
+fn draw_err(csv: &str, extra: &str) -> String {
+    match draw(csv, extra) {
+        Ok(_) => panic!("expected an error"),
+        Err(e) => e,
+    }
+}
+
+fn numbers<'a>(out: &'a ChartOutput, name: &str) -> &'a [f64] {
+    match derived_column(out, name) {
+        DerivedColumn::Number(v) => v,
+        other => panic!("column {name} is not numeric: {other:?}"),
+    }
+}
+
+fn texts<'a>(out: &'a ChartOutput, name: &str) -> &'a [String] {
+    match derived_column(out, name) {
+        DerivedColumn::Text(v) => v,
+        other => panic!("column {name} is not text: {other:?}"),
+    }
+}
+
+fn close(a: f64, b: f64) -> bool {
+    (a - b).abs() < 1e-9
+}
+
+/// The iris sepal lengths (examples/data/iris.csv) as a one-column CSV.
+fn sepal_lengths() -> String {
+    let iris = std::fs::read_to_string(crate::common::root().join("examples/data/iris.csv")).unwrap();
+    let mut csv = String::from("x,species\n");
+    for line in iris.lines().skip(1) {
+        let cells: Vec<&str> = line.split(',').collect();
+        csv.push_str(&format!("{},{}\n", cells[0], cells[4]));
+    }
+    csv
+}
+
+#[test]
+fn exact_bins_count_as_numpy_histogram_does() {
+    // np.histogram(sepal_length, bins="fd") and bins=10 (scripts/histogram_reference.py).
+    let csv = sepal_lengths();
+    let fd = draw_ok(&csv, "x = \"x\"\nbins = \"fd\"\nnice = false");
+    assert_eq!(numbers(&fd, "count"), [11.0, 30.0, 24.0, 24.0, 31.0, 17.0, 7.0, 6.0]);
+    assert!(close(numbers(&fd, "bin_start")[0], 4.3));
+    assert!(close(*numbers(&fd, "bin_end").last().unwrap(), 7.9));
+    let ten = draw_ok(&csv, "x = \"x\"\nbins = 10\nnice = false");
+    assert_eq!(numbers(&ten, "count"), [9.0, 23.0, 14.0, 27.0, 16.0, 26.0, 18.0, 6.0, 5.0, 6.0]);
+}
+
+#[test]
+fn counts_sum_to_the_rows_and_bars_are_proportional_to_them() {
+    let csv = sepal_lengths();
+    let out = draw_ok(&csv, "x = \"x\"");
+    let counts = numbers(&out, "count");
+    assert_eq!(counts.iter().sum::<f64>(), 150.0);
+    // Nice edges: round numbers one step apart, covering 4.3 .. 7.9.
+    let (start, end) = (numbers(&out, "bin_start"), numbers(&out, "bin_end"));
+    let step = end[0] - start[0];
+    assert!(start[0] <= 4.3 && *end.last().unwrap() >= 7.9);
+    assert!(start.iter().zip(end).all(|(s, e)| close(e - s, step)));
+    assert!(close((start[0] / step).round() * step, start[0]), "start {} is a multiple of {step}", start[0]);
+    // Bar heights in pixels are proportional to the counts (one bar per non-empty bin).
+    let drawn = bars(&out);
+    let nonzero: Vec<f64> = counts.iter().copied().filter(|&c| c > 0.0).collect();
+    assert_eq!(drawn.len(), nonzero.len());
+    let per_row = drawn[0].1.h / nonzero[0];
+    for ((_, rect, rows), count) in drawn.iter().zip(&nonzero) {
+        assert!((rect.h - per_row * count).abs() < 1e-6);
+        assert_eq!(rows.len() as f64, *count);
+    }
+    // Bars stand on the plot's bottom.
+    let p = plot(&out);
+    assert!(drawn.iter().all(|(_, r, _)| (r.y + r.h - p.bottom()).abs() < 1e-6));
+}
+
+#[test]
+fn densities_integrate_to_one_and_cumulative_bars_end_at_the_total() {
+    let csv = sepal_lengths();
+    for extra in ["", "\nnice = false\nbins = 7", "\nstep = 0.3"] {
+        let out = draw_ok(&csv, &format!("x = \"x\"\nstat = \"density\"{extra}"));
+        let (start, end, height) = (numbers(&out, "bin_start"), numbers(&out, "bin_end"), numbers(&out, "height"));
+        let area: f64 = (0..height.len()).map(|k| height[k] * (end[k] - start[k])).sum();
+        assert!(close(area, 1.0), "{extra}: area {area}");
+    }
+    let cumulative = draw_ok(&csv, "x = \"x\"\ncumulative = true");
+    assert_eq!(*numbers(&cumulative, "height").last().unwrap(), 150.0);
+    let proportion = draw_ok(&csv, "x = \"x\"\ncumulative = true\nstat = \"density\"");
+    assert!(close(*numbers(&proportion, "height").last().unwrap(), 1.0));
+    let heights = numbers(&proportion, "height");
+    assert!(heights.windows(2).all(|w| w[0] <= w[1]), "cumulative heights never fall");
+}
+
+#[test]
+fn stacked_groups_reach_the_height_of_the_whole() {
+    let csv = sepal_lengths();
+    let whole = draw_ok(&csv, "x = \"x\"\nstep = 0.5");
+    let stacked = draw_ok(&csv, "x = \"x\"\nstep = 0.5\ncolor = \"species\"");
+    // Each bin's stacked bars add up to the ungrouped bar's height (the legend narrows the plot
+    // of the grouped chart, not its height).
+    let stack_heights = |out: &ChartOutput| {
+        let mut by_left: std::collections::BTreeMap<i64, f64> = Default::default();
+        for (_, r, _) in bars(out) {
+            *by_left.entry((r.x * 1000.0).round() as i64).or_insert(0.0) += r.h;
+        }
+        by_left.into_values().collect::<Vec<f64>>()
+    };
+    let (a, b) = (stack_heights(&whole), stack_heights(&stacked));
+    assert_eq!(a.len(), b.len());
+    assert!(a.iter().zip(&b).all(|(x, y)| (x - y).abs() < 1e-6), "{a:?} vs {b:?}");
+    // Percentages of stacked groups are of all rows: they sum to 100.
+    let percent = draw_ok(&csv, "x = \"x\"\ncolor = \"species\"\nstat = \"percent\"");
+    assert!(close(numbers(&percent, "height").iter().sum::<f64>(), 100.0));
+    assert_eq!(
+        texts(&percent, "species").iter().filter(|s| *s == "setosa").count(),
+        numbers(&percent, "count").len() / 3
+    );
+}
+
+#[test]
+fn layered_and_dodged_groups_are_each_normalised_and_dodged_bars_share_their_bin() {
+    let csv = sepal_lengths();
+    let layered = draw_ok(&csv, "x = \"x\"\ncolor = \"species\"\nstat = \"percent\"\nposition = \"layer\"");
+    let groups = texts(&layered, "species");
+    let heights = numbers(&layered, "height");
+    for species in ["setosa", "versicolor", "virginica"] {
+        let sum: f64 = groups.iter().zip(heights).filter(|(g, _)| *g == species).map(|(_, h)| h).sum();
+        assert!(close(sum, 100.0), "{species}: {sum}");
+    }
+    let dodged = draw_ok(&csv, "x = \"x\"\ncolor = \"species\"\nposition = \"dodge\"\nstep = 0.5");
+    let whole = draw_ok(&csv, "x = \"x\"\nstep = 0.5");
+    let bin_width = bars(&whole)[0].1.w + 1.0; // the bar plus its one-pixel gap
+    let mut drawn = bars(&dodged);
+    drawn.sort_by(|a, b| a.1.x.total_cmp(&b.1.x));
+    for pair in drawn.windows(2) {
+        assert!(pair[0].1.x + pair[0].1.w <= pair[1].1.x + 1e-6, "dodged bars do not overlap");
+    }
+    for (_, r, _) in &drawn {
+        assert!(r.w < bin_width / 3.0 + 1e-6);
+    }
+}
+
+#[test]
+fn a_domain_bins_only_its_range_and_says_what_it_left_out() {
+    let csv = "x\n1\n2\n3\n4\n50\n";
+    let out = draw_ok(csv, "x = { field = \"x\", domain = [0, 10] }\nbins = 5\nnice = false");
+    assert_eq!(numbers(&out, "count").iter().sum::<f64>(), 4.0);
+    assert!(close(numbers(&out, "bin_start")[0], 0.0));
+    assert!(close(*numbers(&out, "bin_end").last().unwrap(), 10.0));
+    let text: Vec<String> = out.warnings.iter().map(|w| w.to_string()).collect();
+    assert!(text.iter().any(|w| w.contains("left out 1 of 5 rows")), "{text:?}");
+    let e = draw_err(csv, "x = { field = \"x\", domain = [100, 200] }");
+    assert!(e.contains("no value of `x` lies in the domain [100, 200]"), "{e}");
+}
+
+#[test]
+fn a_selection_is_drawn_over_the_whole_distribution() {
+    let csv = sepal_lengths();
+    let spec = format!(
+        "{}\nx = \"x\"\nstep = 0.5\nhighlight = \"big\"\n\n[selection.big]\ndata = \"d\"\nrange = {{ x = [6.5, 8] }}\n",
+        spec("")
+    );
+    let out = Fixture::new(&spec, &[("d.csv", csv.as_bytes())]).draw().unwrap().remove(0);
+    let drawn = bars(&out);
+    let (context, selected): (Vec<_>, Vec<_>) = drawn.iter().partition(|(label, _, _)| label.ends_with("(all rows)"));
+    assert_eq!(context.iter().map(|(_, _, rows)| rows.len()).sum::<usize>(), 150);
+    let chosen: usize = selected.iter().map(|(_, _, rows)| rows.len()).sum();
+    let expected = csv.lines().skip(1).filter(|l| l.split(',').next().unwrap().parse::<f64>().unwrap() >= 6.5).count();
+    assert_eq!(chosen, expected);
+    // Each selected bar is no taller than the whole bar of its bin and stands on the same base.
+    for (_, s, _) in &selected {
+        let whole = context.iter().find(|(_, c, _)| (c.x - s.x).abs() < 1e-6).expect("a whole bar under it");
+        assert!(s.h <= whole.1.h + 1e-6 && (s.y + s.h - whole.1.y - whole.1.h).abs() < 1e-6);
+    }
+}
+
+#[test]
+fn non_finite_values_are_dropped_with_the_shared_warning() {
+    let out = draw_ok("x\n1\nNaN\n2\n\n3\n", "x = \"x\"");
+    assert_eq!(numbers(&out, "count").iter().sum::<f64>(), 3.0);
+    assert!(out.warnings.iter().any(|w| w.to_string().contains("dropped 2 of 5 rows")), "{:?}", out.warnings);
+}
+
+#[test]
+fn bad_input_gets_the_documented_errors() {
+    let text = draw_err("x\na\nb\n", "x = \"x\"");
+    assert!(text.contains("holds text; binning needs numbers"), "{text}");
+    let dates = draw_err("x\n2020-01-01\n2020-02-01\n", "x = \"x\"");
+    assert!(dates.contains("holds dates or times"), "{dates}");
+    let log = draw_err("x\n1\n10\n", "x = { field = \"x\", scale = \"log\" }");
+    assert!(log.contains("equal widths on a linear axis"), "{log}");
+    let both = draw_err("x\n1\n10\n", "x = \"x\"\nbins = 5\nstep = 1");
+    assert!(both.contains("`bins` and `step` both set the bins"), "{both}");
+    let tiny = draw_err("x\n0\n100\n", "x = \"x\"\nstep = 0.01");
+    assert!(tiny.contains("makes 10000 bins"), "{tiny}");
+    let zero = draw_err("x\n0\n100\n", "x = \"x\"\nbins = 0");
+    assert!(zero.contains("bins"), "{zero}");
+    let missing = draw_err("y\n1\n", "x = \"x\"");
+    assert!(missing.contains("no column `x`"), "{missing}");
+}
