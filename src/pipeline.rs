@@ -451,6 +451,11 @@ fn chart_fields(index: usize, chart: &Value) -> Vec<(String, Vec<PathSeg>)> {
             _ => out.extend(field_refs(value, base)),
         }
     }
+    // The columns listed for hover texts.
+    if let Some(list @ Value::Array(_)) = chart.get("tooltip") {
+        let base = vec![PathSeg::Key("chart".into()), PathSeg::Index(index), PathSeg::Key("tooltip".into())];
+        out.extend(field_refs(list, base));
+    }
     out
 }
 
@@ -744,9 +749,32 @@ pub fn draw_chart(loaded: &Loaded, index: usize, chart: &spec::Chart) -> Result<
         MarkError::at(&["data"], format!("data \"{}\" was not loaded", chart.data), "").in_chart(index, &chart.name)
     })?;
     let highlight = chart.highlight.as_ref().and_then(|name| loaded.highlights.get(name));
-    mark::draw_in(
+    let mut output = mark::draw_in(
         &mark::ChartContext::new(chart, index, table).with_highlight(highlight).with_nodes(node_table(loaded, chart)),
-    )
+    )?;
+    attach_tooltips(index, chart, table, &mut output);
+    Ok(output)
+}
+
+/// Hover texts for the chart's data marks, as its `tooltip` key asks: the values of its own
+/// columns (default), of the listed ones, or none.
+fn attach_tooltips(index: usize, chart: &spec::Chart, table: &Table, output: &mut ChartOutput) {
+    let (fields, unlimited) = match &chart.tooltip {
+        Some(spec::Tooltip::Show(false)) => return,
+        Some(spec::Tooltip::Fields(fields)) => (fields.clone(), true),
+        Some(spec::Tooltip::Show(true)) | None => {
+            let value = serde_json::to_value(chart).unwrap_or(Value::Null);
+            let mut fields: Vec<String> = Vec::new();
+            for (field, _) in chart_fields(index, &value) {
+                if !fields.contains(&field) {
+                    fields.push(field);
+                }
+            }
+            (fields, false)
+        }
+    };
+    let rows_index_table = mark::technique(&chart.kind).node_data().is_none();
+    mark::tooltip::Tooltips { table, fields, rows_index_table, unlimited }.attach(&mut output.scene);
 }
 
 /// A mark error as a diagnostic pointing into the spec.

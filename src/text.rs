@@ -74,6 +74,12 @@ pub fn sanitize(content: &str) -> String {
     crate::visible::single_line(content).into_owned()
 }
 
+/// `content` with hidden characters removed but line feeds kept: for text shown in several lines
+/// by a viewer (an SVG `<title>`).
+pub fn sanitize_multiline(content: &str) -> String {
+    crate::visible::multiline(content).into_owned()
+}
+
 /// The glyph for `c`, or `.notdef` when the font has none.
 fn glyph(face: &Face<'_>, c: char) -> GlyphId {
     face.glyph_index(c).unwrap_or(GlyphId(0))

@@ -112,6 +112,7 @@ impl CloneEmpty for Item {
             style: self.style.clone(),
             rows: Vec::new(),
             label: self.label.clone(),
+            tooltips: Vec::new(),
         }
     }
 }

@@ -11,7 +11,7 @@ use std::fmt::Write as _;
 use crate::scene::{
     Anchor, Color, Item, LineBatch, Mesh, PathCmd, PerPoint, Point, PointBatch, Raster, Scene, Shape, Style, Text,
 };
-use crate::text::{FONT_FAMILY, FONT_WEIGHT, baseline_shift, sanitize};
+use crate::text::{FONT_FAMILY, FONT_WEIGHT, baseline_shift, sanitize, sanitize_multiline};
 
 use super::{clean_path, dash_pattern, finite_point, normalized_rect, role_name, visible_stroke};
 
@@ -88,12 +88,13 @@ impl Writer {
                 let Some(r) = normalized_rect(*r) else { return };
                 let _ = writeln!(
                     self.out,
-                    "<rect{common} x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\"{}/>",
+                    "<rect{common} x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\"{}{}",
                     num(r.x),
                     num(r.y),
                     num(r.w),
                     num(r.h),
-                    style_attrs(&item.style)
+                    style_attrs(&item.style),
+                    end_tag("rect", item.tooltips.first())
                 );
             }
             Shape::Circle { center, radius } => {
@@ -102,11 +103,12 @@ impl Writer {
                 }
                 let _ = writeln!(
                     self.out,
-                    "<circle{common} cx=\"{}\" cy=\"{}\" r=\"{}\"{}/>",
+                    "<circle{common} cx=\"{}\" cy=\"{}\" r=\"{}\"{}{}",
                     num(center.x),
                     num(center.y),
                     num(*radius),
-                    style_attrs(&item.style)
+                    style_attrs(&item.style),
+                    end_tag("circle", item.tooltips.first())
                 );
             }
             Shape::Path(cmds) => {
@@ -118,7 +120,13 @@ impl Writer {
                     }
                 }
                 let Some(cmds) = clean_path(cmds) else { return };
-                let _ = writeln!(self.out, "<path{common} d=\"{}\"{}/>", path_data(&cmds), style_attrs(&item.style));
+                let _ = writeln!(
+                    self.out,
+                    "<path{common} d=\"{}\"{}{}",
+                    path_data(&cmds),
+                    style_attrs(&item.style),
+                    end_tag("path", item.tooltips.first())
+                );
             }
             Shape::Text(text) => self.text(&common, text),
             Shape::Image(raster) => self.image(&common, raster),
@@ -234,6 +242,7 @@ impl Writer {
         let stroke = stroke_attrs(&batch.stroke);
         let _ = writeln!(self.out, "<g{common}{shared_fill}{stroke}>");
         let per_point_rows = item.rows.len() == batch.centers.len() && item.rows.len() > 1;
+        let per_point_tips = item.tooltips.len() == batch.centers.len();
         for (i, c) in batch.centers.iter().enumerate() {
             let r = batch.radius.at(i).unwrap_or(0.0);
             if !finite_point(*c) || !r.is_finite() || r <= 0.0 {
@@ -247,7 +256,9 @@ impl Writer {
                 Some(row) if per_point_rows => format!(" data-row=\"{row}\""),
                 _ => String::new(),
             };
-            let _ = writeln!(self.out, "<circle cx=\"{}\" cy=\"{}\" r=\"{}\"{fill}{row}/>", num(c.x), num(c.y), num(r));
+            let end = end_tag("circle", item.tooltips.get(i).filter(|_| per_point_tips));
+            let _ =
+                writeln!(self.out, "<circle cx=\"{}\" cy=\"{}\" r=\"{}\"{fill}{row}{end}", num(c.x), num(c.y), num(r));
         }
         self.out.push_str("</g>\n");
     }
@@ -315,6 +326,7 @@ impl Writer {
         let width = if visible_width { format!(" stroke-width=\"{}\"", num(batch.width)) } else { String::new() };
         let _ = writeln!(self.out, "<g{common} fill=\"none\"{shared_color}{width} stroke-linejoin=\"round\">");
         let per_line_rows = item.rows.len() == batch.len() && item.rows.len() > 1;
+        let per_line_tips = item.tooltips.len() == batch.len();
         for k in 0..batch.len() {
             let Some(line) = batch.polyline(k) else { break };
             let d = polyline_data(line);
@@ -329,7 +341,8 @@ impl Writer {
                 Some(row) if per_line_rows => format!(" data-row=\"{row}\""),
                 _ => String::new(),
             };
-            let _ = writeln!(self.out, "<path d=\"{d}\"{color}{row}/>");
+            let end = end_tag("path", item.tooltips.get(k).filter(|_| per_line_tips));
+            let _ = writeln!(self.out, "<path d=\"{d}\"{color}{row}{end}");
         }
         self.out.push_str("</g>\n");
     }
@@ -388,6 +401,17 @@ const MESH_SEAM_WIDTH: f64 = 0.5;
 fn mean_colour(c: [Color; 3]) -> Color {
     let mean = |f: fn(&Color) -> u8| ((c.iter().map(|x| u32::from(f(x))).sum::<u32>() + 1) / 3) as u8;
     Color { r: mean(|c| c.r), g: mean(|c| c.g), b: mean(|c| c.b), a: mean(|c| c.a) }
+}
+
+/// The end of an element `tag`: self-closing, or holding its hover text as a `<title>`.
+fn end_tag(tag: &str, tooltip: Option<&String>) -> String {
+    match tooltip.map(|t| sanitize_multiline(t)).filter(|t| !t.is_empty()) {
+        Some(text) => {
+            let lines: Vec<String> = text.split('\n').map(escape).collect();
+            format!("><title>{}</title></{tag}>", lines.join("&#10;"))
+        }
+        None => "/>".to_string(),
+    }
 }
 
 /// `data-role`, `data-row` (single-row items) and `data-label` attributes.

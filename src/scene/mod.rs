@@ -463,16 +463,24 @@ pub struct Item {
     pub rows: Vec<u32>,
     /// An optional human-readable name (e.g. the series or axis), used by lint messages and SVG ids.
     pub label: Option<String>,
+    /// Hover text of a data mark, written as SVG `<title>`s: one for a single shape, or one per
+    /// point of a point batch and per polyline of a line batch; empty for none.
+    pub tooltips: Vec<String>,
 }
 
 impl Item {
     /// An item with no source rows and no label.
     pub fn new(role: Role, shape: Shape, style: Style) -> Item {
-        Item { role, shape, style, rows: Vec::new(), label: None }
+        Item { role, shape, style, rows: Vec::new(), label: None, tooltips: Vec::new() }
     }
     /// The same item with a label.
     pub fn labelled(mut self, label: impl Into<String>) -> Item {
         self.label = Some(label.into());
+        self
+    }
+    /// The same item with one hover text (see [`Item::tooltips`]).
+    pub fn with_tooltip(mut self, text: impl Into<String>) -> Item {
+        self.tooltips = vec![text.into()];
         self
     }
     /// The same item with its source rows.

@@ -581,6 +581,7 @@ point_size = "d"
                     size: Some([800.0, 600.5]),
                     font_size: Some(12.0),
                     aspect: Some(Aspect::Equal),
+                    tooltip: None,
                     kind: ChartKind::Scatter(ScatterOptions {
                         x: Channel::Detailed(ChannelOptions {
                             field: "sepal_length".to_owned(),
@@ -627,6 +628,7 @@ point_size = "d"
                     aspect: None,
                     highlight: None,
                     lint: None,
+                    tooltip: None,
                     kind: ChartKind::Line(LineOptions {
                         x: field("x"),
                         y: OneOrMany::Many(vec![
@@ -656,6 +658,7 @@ point_size = "d"
                     aspect: None,
                     highlight: None,
                     lint: None,
+                    tooltip: None,
                     kind: ChartKind::Line(LineOptions {
                         x: Channel::Detailed(ChannelOptions {
                             field: "x".to_owned(),
@@ -686,6 +689,7 @@ point_size = "d"
                     aspect: None,
                     highlight: None,
                     lint: None,
+                    tooltip: None,
                     kind: ChartKind::Scatter(ScatterOptions {
                         x: field("a"),
                         y: field("b"),

@@ -203,9 +203,26 @@ pub struct Chart {
     /// `lint = { allow = ["CM002"] }`.
     #[serde(default)]
     pub lint: Option<LintConfig>,
+    /// Hover text in SVG output: each data mark carries a `<title>` with its row's values of
+    /// the chart's columns (default, for charts of at most 5,000 marks), of the columns listed
+    /// here (however many marks), or none (`false`). Marks drawn from several rows show their
+    /// label and row count.
+    #[serde(default)]
+    #[schemars(example = &["name", "value"])]
+    pub tooltip: Option<Tooltip>,
     /// What to draw and how.
     #[serde(flatten)]
     pub kind: ChartKind,
+}
+
+/// Hover texts of a chart's marks: on or off, or the columns to list.
+#[derive(Clone, Debug, Deserialize, Serialize, JsonSchema, PartialEq)]
+#[serde(untagged)]
+pub enum Tooltip {
+    /// `true` (default): the chart's own columns; `false`: no hover texts.
+    Show(bool),
+    /// These columns, in this order (at most 20).
+    Fields(#[schemars(length(max = 20))] Vec<String>),
 }
 
 /// How the plot area's sides relate to the data's units.

@@ -3,7 +3,7 @@
 
 use crate::common::{Fixture, bars, derived_column, plot, tick_labels};
 use dataink::mark::{ChartOutput, DerivedColumn};
-use dataink::scene::{Item, Rect, Role, Shape};
+use dataink::scene::{Item, Role, Shape};
 
 /// A bar chart of `d.csv` (written from `csv`) with extra chart keys.
 fn spec(extra: &str) -> String {

@@ -28,4 +28,5 @@ mod networks;
 mod report;
 mod resources;
 mod safe_output;
+mod tooltips;
 mod transform;

@@ -182,10 +182,19 @@ pub fn draw(chart: &Chart, options: &BarOptions, table: &Table) -> Result<ChartO
         let fill = b.rows.first().map_or(encode::DEFAULT_MARK_COLOR, |&r| colors.color_of(r));
         let plot_rows = (frame.plot.y, frame.plot.bottom());
         let cut = (end != b.sum).then(|| clip_mark(x, w, top, base_px, plot_rows, (fill, theme.background)));
+        let mut tooltip = format!("{}: {}\n", x_opts.field, x_keys.labels.get(b.x).map_or("", String::as_str));
+        if let (Some(c), Some(g)) = (&color, groups.labels.get(b.group)) {
+            tooltip.push_str(&format!("{}: {g}\n", c.field()));
+        }
+        tooltip.push_str(&format!("{}: {}", y_opts.field, b.sum));
+        if b.rows.len() > 1 {
+            tooltip.push_str(&format!(" (sum of {} rows)", b.rows.len()));
+        }
         marks.push(
             Item::new(Role::DataMark, Shape::Rect(Rect::new(x, y0, w, y1 - y0)), Style::fill(fill))
                 .with_rows(b.rows.clone())
-                .labelled(label.clone()),
+                .labelled(label.clone())
+                .with_tooltip(tooltip),
         );
         if let Some(mark) = cut {
             clipped += 1;

@@ -301,7 +301,16 @@ pub fn draw(
     let (frame, theme) = frame::cartesian(chart, x_axis, y_axis, legends)?;
 
     let opacity = options.opacity.unwrap_or(if position == GroupPosition::Layer { 0.5 } else { 1.0 });
-    let bars = BarLayout { frame: &frame, binned: &binned, position, ng };
+    let stat_name = heights.title(per_group, None).to_lowercase();
+    let bars = BarLayout {
+        frame: &frame,
+        binned: &binned,
+        position,
+        ng,
+        field: &x_opts.field,
+        group: color.as_ref().map(|c| (c.field(), groups.as_slice())),
+        stat_name: &stat_name,
+    };
     let mut marks = Vec::new();
     match highlight {
         Some(h) => {
@@ -451,6 +460,12 @@ struct BarLayout<'a> {
     binned: &'a Binned,
     position: GroupPosition,
     ng: usize,
+    /// The binned column, for hover texts.
+    field: &'a str,
+    /// The colour channel's field and the groups' labels, for hover texts.
+    group: Option<(&'a str, &'a [(String, Color)])>,
+    /// What the heights are, for hover texts (`count`, `percent`, `density`, ...).
+    stat_name: &'a str,
 }
 
 impl BarLayout<'_> {
@@ -508,10 +523,34 @@ impl BarLayout<'_> {
                     format_value(h),
                     if what.is_empty() { String::new() } else { format!(" ({what})") }
                 );
-                items.push(Item::new(Role::DataMark, Shape::Rect(rect), style).with_rows(rows).labelled(label));
+                let tooltip = self.tooltip(k, g, h, rows.len(), what);
+                items.push(
+                    Item::new(Role::DataMark, Shape::Rect(rect), style)
+                        .with_rows(rows)
+                        .labelled(label)
+                        .with_tooltip(tooltip),
+                );
             }
         }
         items
+    }
+}
+
+impl BarLayout<'_> {
+    /// The hover text of group `g`'s bar in bin `k`: the bin, the group, the rows and the height.
+    fn tooltip(&self, k: usize, g: usize, height: f64, rows: usize, what: &str) -> String {
+        let e = &self.binned.edges;
+        let close = if k + 1 == self.binned.bins() { "]" } else { ")" };
+        let mut text = format!("{} in [{}, {}{close}", self.field, e[k], e[k + 1]);
+        if let Some((field, label)) = self.group.and_then(|(f, labels)| labels.get(g).map(|(l, _)| (f, l))) {
+            text.push_str(&format!("\n{field}: {label}"));
+        }
+        let what = if what.is_empty() { String::new() } else { format!(" ({what})") };
+        text.push_str(&format!("\nrows: {rows}{what}"));
+        if self.stat_name != "count" {
+            text.push_str(&format!("\n{}: {}", self.stat_name, format_value(height)));
+        }
+        text
     }
 }
 

@@ -1,6 +1,6 @@
 //! Pieces the kinds share: channels and the non-finite policy (`encode`), the cartesian frame,
 //! selections drawn (`highlight`), derived output, categorical colours, gridded input, trees and
-//! networks read from tables, marker sizes, rasters, contour labels and node-link drawing.
+//! networks read from tables, marker sizes, rasters, contour labels, node-link drawing and hover texts (`tooltip`).
 //! Nothing here imports a kind.
 
 pub mod categorical;
@@ -17,5 +17,6 @@ pub mod node_link;
 pub mod overplot;
 pub mod raster;
 pub mod size;
+pub mod tooltip;
 pub mod tree_input;
 pub mod warning;
