@@ -15,13 +15,13 @@ pub enum BinRule {
     Count(usize),
 }
 
-/// The number of bins `rule` gives for the finite `values` over `[lo, hi]`, at least 1 and at
-/// most `max_bins`. `values` need not be sorted.
-pub fn bin_count(rule: BinRule, values: &[f64], lo: f64, hi: f64, max_bins: usize) -> usize {
-    let n = values.iter().filter(|v| v.is_finite()).count();
+/// The number of bins `rule` gives for the `finite` values over `[lo, hi]`, at least 1 and at
+/// most `max_bins`. The values are reordered (the quartiles are found by selection).
+pub fn bin_count(rule: BinRule, finite: &mut [f64], lo: f64, hi: f64, max_bins: usize) -> usize {
+    let n = finite.len();
     let sturges = || if n == 0 { 1 } else { ((n as f64).log2() + 1.0).ceil() as usize };
-    let fd = || {
-        let (q1, q3) = super::distribution::quartiles(values)?;
+    let mut fd = || {
+        let (q1, q3) = quartiles_in_place(finite)?;
         let width = 2.0 * (q3 - q1) / (n as f64).cbrt();
         (width > 0.0 && hi > lo).then(|| ((hi - lo) / width).ceil()).filter(|c| c.is_finite()).map(|c| c as usize)
     };
@@ -32,6 +32,36 @@ pub fn bin_count(rule: BinRule, values: &[f64], lo: f64, hi: f64, max_bins: usiz
         BinRule::Auto => fd().map_or_else(sturges, |f| f.max(sturges())),
     };
     count.clamp(1, max_bins.max(1))
+}
+
+/// The 25th and 75th percentiles of the finite `values` by linear interpolation between order
+/// statistics (numpy's default, R's type 7).
+pub fn quartiles(values: &[f64]) -> Option<(f64, f64)> {
+    let mut v: Vec<f64> = values.iter().copied().filter(|x| x.is_finite()).collect();
+    quartiles_in_place(&mut v)
+}
+
+/// [`quartiles`] of values that are all finite, found by selection in O(n) rather than by
+/// sorting; reorders them.
+pub fn quartiles_in_place(v: &mut [f64]) -> Option<(f64, f64)> {
+    if v.is_empty() {
+        return None;
+    }
+    let q1 = percentile_in_place(v, 0.25);
+    let q3 = percentile_in_place(v, 0.75);
+    Some((q1, q3))
+}
+
+/// The `q` quantile (0 ≤ q ≤ 1, linear interpolation) of finite, non-empty `v`, reordering it.
+fn percentile_in_place(v: &mut [f64], q: f64) -> f64 {
+    let pos = q * (v.len() - 1) as f64;
+    let i = pos.floor() as usize;
+    let frac = pos - i as f64;
+    let (_, &mut at, above) = v.select_nth_unstable_by(i, f64::total_cmp);
+    match above.iter().copied().min_by(f64::total_cmp) {
+        Some(next) if frac > 0.0 => at + frac * (next - at),
+        _ => at,
+    }
 }
 
 /// `bins + 1` equally spaced edges from `lo` to `hi`, both exact (as numpy's `linspace`). An
@@ -72,10 +102,20 @@ pub fn bin_of(edges: &[f64], v: f64) -> Option<usize> {
     Some(k)
 }
 
-/// Each of `rows`' bins (`None` outside the edges), `values` indexed by row.
-pub fn bins_of_rows(edges: &[f64], values: &[f64], rows: &[u32]) -> Vec<Option<usize>> {
-    rows.iter().map(|&r| values.get(r as usize).and_then(|&v| bin_of(edges, v))).collect()
+/// The bin of each of `rows` (`values` indexed by row), [`OUTSIDE`] for a value outside the
+/// edges; computed in parallel for large inputs.
+pub fn bins_of_rows(edges: &[f64], values: &[f64], rows: &[u32]) -> Vec<u32> {
+    use rayon::prelude::*;
+    let bin = |&r: &u32| values.get(r as usize).and_then(|&v| bin_of(edges, v)).map_or(OUTSIDE, |k| k as u32);
+    if rows.len() < 100_000 {
+        rows.iter().map(bin).collect()
+    } else {
+        rows.par_iter().with_min_len(16_384).map(bin).collect()
+    }
 }
+
+/// The bin of a value outside the edges, in [`bins_of_rows`].
+pub const OUTSIDE: u32 = u32::MAX;
 
 #[cfg(test)]
 mod tests {
@@ -107,11 +147,11 @@ mod tests {
         // Known answers from numpy 2.4 (scripts/histogram_reference.py):
         //   np.histogram(sepal_length, bins=b) for b in "fd", "sturges", "auto", 10.
         let (lo, hi) = (4.3, 7.9);
-        let fd = bin_count(BinRule::FreedmanDiaconis, &SEPAL_LENGTH, lo, hi, 1000);
-        let sturges = bin_count(BinRule::Sturges, &SEPAL_LENGTH, lo, hi, 1000);
+        let fd = bin_count(BinRule::FreedmanDiaconis, &mut SEPAL_LENGTH.clone(), lo, hi, 1000);
+        let sturges = bin_count(BinRule::Sturges, &mut SEPAL_LENGTH.clone(), lo, hi, 1000);
         assert_eq!(fd, 8);
         assert_eq!(sturges, 9);
-        assert_eq!(bin_count(BinRule::Auto, &SEPAL_LENGTH, lo, hi, 1000), 9);
+        assert_eq!(bin_count(BinRule::Auto, &mut SEPAL_LENGTH.clone(), lo, hi, 1000), 9);
         assert_eq!(counts(&equal_edges(lo, hi, fd), &SEPAL_LENGTH), [11, 30, 24, 24, 31, 17, 7, 6]);
         assert_eq!(counts(&equal_edges(lo, hi, sturges), &SEPAL_LENGTH), [9, 23, 20, 28, 28, 14, 17, 5, 6]);
         assert_eq!(counts(&equal_edges(lo, hi, 10), &SEPAL_LENGTH), [9, 23, 14, 27, 16, 26, 18, 6, 5, 6]);
@@ -141,10 +181,26 @@ mod tests {
     fn counts_are_clamped_and_degenerate_spreads_fall_back_to_sturges() {
         // Most values equal: IQR 0, so Freedman–Diaconis has no width; Sturges for n = 8 is 4.
         let v = [1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 9.0];
-        assert_eq!(bin_count(BinRule::FreedmanDiaconis, &v, 1.0, 9.0, 100), 4);
-        assert_eq!(bin_count(BinRule::Count(500), &v, 1.0, 9.0, 100), 100);
-        assert_eq!(bin_count(BinRule::Count(0), &v, 1.0, 9.0, 100), 1);
-        assert_eq!(bin_count(BinRule::Sturges, &[], 0.0, 1.0, 100), 1);
+        let mut v = v;
+        assert_eq!(bin_count(BinRule::FreedmanDiaconis, &mut v, 1.0, 9.0, 100), 4);
+        assert_eq!(bin_count(BinRule::Count(500), &mut v, 1.0, 9.0, 100), 100);
+        assert_eq!(bin_count(BinRule::Count(0), &mut v, 1.0, 9.0, 100), 1);
+        assert_eq!(bin_count(BinRule::Sturges, &mut [], 0.0, 1.0, 100), 1);
+    }
+
+    #[test]
+    fn selected_quartiles_equal_sorted_ones() {
+        let mut state = 7u64;
+        let mut next = || {
+            state = state.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            (state >> 11) as f64 / (1u64 << 53) as f64
+        };
+        for n in [1, 2, 3, 4, 5, 10, 101, 1000] {
+            let v: Vec<f64> = (0..n).map(|_| (next() * 20.0).round() / 4.0).collect();
+            assert_eq!(quartiles(&v), super::super::distribution::quartiles(&v), "n = {n}");
+        }
+        assert_eq!(quartiles(&SEPAL_LENGTH), Some((5.1, 6.4)));
+        assert_eq!(quartiles(&[f64::NAN]), None);
     }
 
     #[test]

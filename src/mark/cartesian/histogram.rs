@@ -11,7 +11,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::data::transform::bin::Bins;
 use crate::data::{Column, Table};
-use crate::enrich::histogram::{BinRule, bin_count, bin_of, equal_edges, stepped_edges};
+use crate::enrich::histogram::{BinRule, OUTSIDE, bin_count, bins_of_rows, equal_edges, stepped_edges};
 use crate::guide::axis::title_with_unit;
 use crate::guide::format::format_value;
 use crate::guide::layout::{Domain, PositionAxis};
@@ -432,8 +432,8 @@ fn edges(
         Some(BinCount::Rule(BinRuleName::Sturges)) => BinRule::Sturges,
         Some(BinCount::Count(c)) => BinRule::Count(c as usize),
     };
-    let kept: Vec<f64> = rows.iter().filter_map(|&r| values.get(r as usize).copied()).collect();
-    let count = bin_count(rule, &kept, lo, hi, MAX_BINS);
+    let mut kept: Vec<f64> = rows.iter().filter_map(|&r| values.get(r as usize).copied()).collect();
+    let count = bin_count(rule, &mut kept, lo, hi, MAX_BINS);
     Ok(if nice {
         let b = Bins::nice(lo, hi, count as u32, None);
         stepped_edges(b.start, b.stop, b.step)
@@ -445,10 +445,19 @@ fn edges(
 /// The rows of each group in each bin.
 fn bin_rows(edges: Vec<f64>, values: &[f64], rows: &[u32], group_of_row: &[usize], groups: usize) -> Binned {
     let bins = edges.len() - 1;
-    let mut binned = vec![vec![Vec::new(); bins]; groups];
-    for (&r, &g) in rows.iter().zip(group_of_row) {
-        if let (Some(k), Some(group)) = (values.get(r as usize).and_then(|&v| bin_of(&edges, v)), binned.get_mut(g)) {
-            group[k].push(r);
+    let bin_of_row = bins_of_rows(&edges, values, rows);
+    // Count first, so that each bin's rows are allocated once.
+    let mut sizes = vec![vec![0usize; bins]; groups];
+    for (&k, &g) in bin_of_row.iter().zip(group_of_row) {
+        if k != OUTSIDE && g < groups {
+            sizes[g][k as usize] += 1;
+        }
+    }
+    let mut binned: Vec<Vec<Vec<u32>>> =
+        sizes.iter().map(|group| group.iter().map(|&n| Vec::with_capacity(n)).collect()).collect();
+    for ((&r, &k), &g) in rows.iter().zip(&bin_of_row).zip(group_of_row) {
+        if k != OUTSIDE && g < groups {
+            binned[g][k as usize].push(r);
         }
     }
     Binned { edges, rows: binned }
