@@ -11,4 +11,5 @@ pub mod hyperslice;
 pub mod interp1d;
 pub mod scattered;
 pub mod segments;
+pub mod stack;
 pub mod surface;

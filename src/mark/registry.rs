@@ -278,6 +278,9 @@ registry! {
     /// The distribution of a numeric column as bars over equal-width bins: counts, percentages
     /// or densities, optionally cumulative, grouped by colour (stacked, layered or side by side).
     Histogram(HistogramOptions) => cartesian::histogram,
+    /// The area under a series, or series stacked on zero, normalised to 100%, centred or as a
+    /// streamgraph.
+    Area(AreaOptions) => cartesian::area,
     /// Vertical bars from zero: one per category of `x` (grouped side by side by `color`), rows
     /// of the same category summed.
     Bar(BarOptions) => cartesian::bar,

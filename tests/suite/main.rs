@@ -3,6 +3,7 @@
 //! per file.
 
 mod architecture;
+mod area;
 mod bad_input;
 mod bar;
 mod big_scatter;

@@ -17,7 +17,7 @@ use crate::guide::format::format_value;
 use crate::guide::layout::{Domain, PositionAxis};
 use crate::guide::legend::{Legend, Symbol};
 use crate::mark::derived::{Derived, DerivedColumn};
-use crate::mark::encode::{self, ColorEncoding};
+use crate::mark::encode;
 use crate::mark::registry::{AxisSpec, ChartContext, KindInfo, Technique};
 use crate::mark::warning::Warning;
 use crate::mark::{ChartOutput, MarkError, categorical, frame, highlight};
@@ -250,7 +250,7 @@ pub fn draw(
 
     let (colors, color_legend) =
         encode::color_encoding(chart, color.as_ref(), options.mark_color.as_deref(), table, &rows, Symbol::Square)?;
-    let (group_of_row, groups) = groups(&colors, color.as_ref(), &rows)?;
+    let (group_of_row, groups) = categorical::row_groups(&colors, color.as_ref(), &rows)?;
     let group_colors: Vec<Color> = groups.iter().map(|(_, c)| *c).collect();
     let ng = groups.len();
     let edges = edges(options, values, &rows, x_opts.domain)?;
@@ -381,21 +381,6 @@ fn check_column(options: &HistogramOptions, column: &Column) -> Result<(), MarkE
         ));
     }
     Ok(())
-}
-
-/// Each row's group and each group's colour: one group without a colour channel.
-fn groups(
-    colors: &ColorEncoding,
-    channel: Option<&ColorChannel>,
-    rows: &[u32],
-) -> Result<(Vec<usize>, Vec<(String, Color)>), MarkError> {
-    match (colors, channel) {
-        (ColorEncoding::Categorical { categories, .. }, Some(channel)) => {
-            let (_, entries) = categorical::assign(&channel.options(), categories, rows)?;
-            Ok((categorical::group_rows(categories, &entries, rows), entries))
-        }
-        _ => Ok((vec![0; rows.len()], vec![(String::new(), colors.color_of(rows.first().copied().unwrap_or(0)))])),
-    }
 }
 
 /// The bin edges: from `step` or the bin rule, nice or exact, over the domain or the data.

@@ -1,5 +1,6 @@
-//! Kinds drawn in one x/y frame from rows: scatter, line, bar, histogram, interp1d.
+//! Kinds drawn in one x/y frame from rows: scatter, line, area, bar, histogram, interp1d.
 
+pub mod area;
 pub mod bar;
 pub mod histogram;
 pub mod interp1d;

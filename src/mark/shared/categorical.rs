@@ -261,3 +261,19 @@ pub fn group_rows(categories: &Categories, entries: &[(String, Color)], rows: &[
         })
         .collect()
 }
+
+/// Each of `rows`' group and the groups' labels and colours, in legend order, for a colour
+/// encoding that groups marks; one unlabelled group in the fixed colour without a channel.
+pub fn row_groups(
+    colors: &crate::mark::encode::ColorEncoding,
+    channel: Option<&ColorChannel>,
+    rows: &[u32],
+) -> Result<(Vec<usize>, Vec<(String, Color)>), MarkError> {
+    match (colors, channel) {
+        (crate::mark::encode::ColorEncoding::Categorical { categories, .. }, Some(channel)) => {
+            let (_, entries) = assign(&channel.options(), categories, rows)?;
+            Ok((group_rows(categories, &entries, rows), entries))
+        }
+        _ => Ok((vec![0; rows.len()], vec![(String::new(), colors.color_of(rows.first().copied().unwrap_or(0)))])),
+    }
+}
