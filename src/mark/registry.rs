@@ -281,6 +281,9 @@ registry! {
     /// The area under a series, or series stacked on zero, normalised to 100%, centred or as a
     /// streamgraph.
     Area(AreaOptions) => cartesian::area,
+    /// A category × category matrix of a value (or of row counts) as coloured cells with a
+    /// colour bar and the values written where they fit.
+    Heatmap(HeatmapOptions) => cartesian::heatmap,
     /// Vertical bars from zero: one per category of `x` (grouped side by side by `color`), rows
     /// of the same category summed.
     Bar(BarOptions) => cartesian::bar,

@@ -17,6 +17,7 @@ mod explore;
 mod flow;
 mod frame_fit;
 mod golden;
+mod heatmap;
 mod histogram;
 mod hostile_inputs;
 mod hostile_work;
