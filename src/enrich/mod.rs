@@ -9,6 +9,7 @@ pub mod grid;
 pub mod histogram;
 pub mod hyperslice;
 pub mod interp1d;
+pub mod regression;
 pub mod scattered;
 pub mod segments;
 pub mod stack;

@@ -18,7 +18,7 @@ pub mod volume;
 
 pub use shared::{
     categorical, derived, encode, frame, geojson, geometry, gridded, highlight, level_labels, network_input, node_link,
-    overplot, raster, size, tooltip, tree_input, warning,
+    overplot, raster, size, tooltip, tree_input, trend, warning,
 };
 
 use std::fmt;

@@ -616,6 +616,7 @@ point_size = "d"
                         radius: Some(3.5),
                         mark_color: Some("#336699".to_owned()),
                         opacity: Some(0.7),
+                        trend: None,
                     }),
                 },
                 Chart {
@@ -702,6 +703,7 @@ point_size = "d"
                         radius: None,
                         mark_color: None,
                         opacity: None,
+                        trend: None,
                     }),
                 },
             ],

@@ -215,6 +215,55 @@ pub struct Chart {
     pub kind: ChartKind,
 }
 
+/// A trend line through a scatter: a method, or a table of options.
+#[derive(Clone, Debug, Deserialize, Serialize, JsonSchema, PartialEq)]
+#[serde(untagged)]
+pub enum Trend {
+    /// `"linear"` or `"loess"`, through all drawn points.
+    Method(TrendMethod),
+    /// `{ method, span, groups, equation }`.
+    Detailed(TrendOptions),
+}
+
+impl Trend {
+    /// The options, with defaults for a bare method.
+    pub fn options(&self) -> TrendOptions {
+        match self {
+            Trend::Method(m) => TrendOptions { method: *m, span: None, groups: None, equation: None },
+            Trend::Detailed(o) => o.clone(),
+        }
+    }
+}
+
+/// How a trend line is fitted.
+#[derive(Clone, Copy, Debug, Deserialize, Serialize, JsonSchema, PartialEq, Eq)]
+#[serde(rename_all = "lowercase")]
+pub enum TrendMethod {
+    /// Least squares: the line with its equation and R².
+    Linear,
+    /// Locally weighted linear regression with tricube weights (lowess without robustness
+    /// iterations).
+    Loess,
+}
+
+/// Options of a trend line.
+#[derive(Clone, Debug, Deserialize, Serialize, JsonSchema, PartialEq)]
+pub struct TrendOptions {
+    /// `"linear"` or `"loess"`.
+    pub method: TrendMethod,
+    /// LOESS: the fraction of the points each local line is fitted to, above 0 and at most 1
+    /// (default 0.75).
+    #[serde(default)]
+    #[schemars(extend("exclusiveMinimum" = 0, "maximum" = 1), example = 0.5)]
+    pub span: Option<f64>,
+    /// One line per colour category, in its colour (default: one line through all points).
+    #[serde(default)]
+    pub groups: Option<bool>,
+    /// Write the linear fit's equation and R² in the plot (default true for linear fits).
+    #[serde(default)]
+    pub equation: Option<bool>,
+}
+
 /// Hover texts of a chart's marks: on or off, or the columns to list.
 #[derive(Clone, Debug, Deserialize, Serialize, JsonSchema, PartialEq)]
 #[serde(untagged)]

@@ -32,3 +32,4 @@ mod resources;
 mod safe_output;
 mod tooltips;
 mod transform;
+mod trend;

@@ -9,10 +9,10 @@ use crate::mark::overplot::{point_opacity, point_radius};
 use crate::mark::registry::{AxisSpec, ChartContext, KindInfo, Technique};
 use crate::mark::size::{mapped_radius, size_legend_mapped};
 use crate::mark::warning::Warning;
-use crate::mark::{ChartOutput, MarkError, frame, highlight};
+use crate::mark::{ChartOutput, MarkError, categorical, frame, highlight};
 use crate::scene::{Color, Item, PerPoint, PointBatch, Role, Shape, Stroke, Style};
 use crate::selection::Highlight;
-use crate::spec::{Channel, Chart, ColorChannel, SizeChannel};
+use crate::spec::{Channel, Chart, ColorChannel, SizeChannel, Trend};
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
@@ -44,6 +44,11 @@ pub struct ScatterOptions {
     #[serde(default)]
     #[schemars(range(min = 0, max = 1), example = 0.5)]
     pub opacity: Option<f64>,
+    /// A trend line: `"linear"` (least squares, with its equation and R²), `"loess"`, or
+    /// `{ method, span, groups, equation }` (`groups = true`: one line per colour category).
+    #[serde(default)]
+    #[schemars(example = &"linear")]
+    pub trend: Option<Trend>,
 }
 
 /// Draw a scatter chart.
@@ -171,6 +176,14 @@ pub fn draw(
         .into_iter()
         .collect();
     marks.extend(highlight::layers(&rows, highlight, batch));
+    if let Some(trend) = &options.trend {
+        let groups = match (&options.color, trend.options().groups) {
+            (Some(channel), Some(true)) => Some(categorical::row_groups(&colors, Some(channel), &rows)?),
+            _ => None,
+        };
+        let fitted = crate::mark::trend::Fitted { x: x_col, y: y_col, rows: &rows, groups: groups.as_ref() };
+        marks.extend(crate::mark::trend::marks(&trend.options(), &fitted, &frame, &theme)?);
+    }
     warnings.extend((frame::raster_note(&marks)).into_iter().map(Warning::from));
     let plot = Plot {
         rect: frame.plot,

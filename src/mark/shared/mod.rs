@@ -1,6 +1,6 @@
 //! Pieces the kinds share: channels and the non-finite policy (`encode`), the cartesian frame,
 //! selections drawn (`highlight`), derived output, categorical colours, gridded input, trees and
-//! networks read from tables, marker sizes, rasters, contour labels, node-link drawing and hover texts (`tooltip`).
+//! networks read from tables, marker sizes, rasters, contour labels, node-link drawing, hover texts (`tooltip`) and trend lines (`trend`).
 //! Nothing here imports a kind.
 
 pub mod categorical;
@@ -19,4 +19,5 @@ pub mod raster;
 pub mod size;
 pub mod tooltip;
 pub mod tree_input;
+pub mod trend;
 pub mod warning;
