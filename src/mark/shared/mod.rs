@@ -1,8 +1,9 @@
-//! Pieces the kinds share: channels and the non-finite policy (`encode`), the cartesian frame,
+//! Pieces the kinds share: categories in bands (`bands`), channels and the non-finite policy (`encode`), the cartesian frame,
 //! selections drawn (`highlight`), derived output, categorical colours, gridded input, trees and
 //! networks read from tables, marker sizes, rasters, contour labels and node-link drawing.
 //! Nothing here imports a kind.
 
+pub mod bands;
 pub mod categorical;
 pub mod derived;
 pub mod encode;
