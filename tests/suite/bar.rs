@@ -1,7 +1,7 @@
 //! The `bar` kind against hand-computed geometry: band positions, lengths from zero, grouping,
 //! sums, the non-finite policy, negative values and bad input.
 
-use crate::common::Fixture;
+use crate::common::{Fixture, plot, tick_labels};
 use dataink::mark::{ChartOutput, DerivedColumn};
 use dataink::scene::{Item, Rect, Role, Shape};
 
@@ -38,31 +38,6 @@ fn bars(out: &ChartOutput) -> Vec<(String, Rect, Vec<u32>)> {
         }
     });
     found
-}
-
-/// The plot area: the clip of the data-mark group.
-fn plot(out: &ChartOutput) -> Rect {
-    let mut plot = None;
-    out.scene.walk(|item: &Item| {
-        if let (Role::DataMark, Shape::Group { clip: Some(c), .. }) = (&item.role, &item.shape) {
-            plot = Some(*c);
-        }
-    });
-    plot.expect("a clipped data group")
-}
-
-/// Tick label texts of one axis.
-fn tick_labels(out: &ChartOutput, axis: &str) -> Vec<String> {
-    let mut labels = Vec::new();
-    out.scene.walk(|item: &Item| {
-        if item.role == Role::TickLabel
-            && item.label.as_deref() == Some(axis)
-            && let Shape::Text(t) = &item.shape
-        {
-            labels.push(t.content.clone());
-        }
-    });
-    labels
 }
 
 fn derived_column<'a>(out: &'a ChartOutput, name: &str) -> &'a DerivedColumn {

@@ -8,6 +8,7 @@ use dataink::data::PathPolicy;
 use dataink::lint::{ChartLint, Finding};
 use dataink::mark::ChartOutput;
 use dataink::pipeline::{self, Loaded};
+use dataink::scene::{Item, Rect, Role, Shape};
 
 /// A temporary folder holding a spec file and its data files.
 pub struct Fixture {
@@ -76,6 +77,31 @@ pub fn lint_codes(spec: &str, files: &[(&str, &[u8])]) -> Vec<&'static str> {
 pub fn lint_findings(spec: &str, files: &[(&str, &[u8])], code: &str) -> Vec<Finding> {
     let results = Fixture::new(spec, files).lint().unwrap_or_else(|e| panic!("{e}"));
     results.into_iter().flat_map(|c| c.findings).filter(|f| f.code == code).collect()
+}
+
+/// The plot area of a chart in one cartesian frame: the clip of the data-mark group.
+pub fn plot(out: &ChartOutput) -> Rect {
+    let mut plot = None;
+    out.scene.walk(|item: &Item| {
+        if let (Role::DataMark, Shape::Group { clip: Some(c), .. }) = (&item.role, &item.shape) {
+            plot = Some(*c);
+        }
+    });
+    plot.expect("a clipped data group")
+}
+
+/// Tick label texts of one axis (`"x axis"` or `"y axis"`).
+pub fn tick_labels(out: &ChartOutput, axis: &str) -> Vec<String> {
+    let mut labels = Vec::new();
+    out.scene.walk(|item: &Item| {
+        if item.role == Role::TickLabel
+            && item.label.as_deref() == Some(axis)
+            && let Shape::Text(t) = &item.shape
+        {
+            labels.push(t.content.clone());
+        }
+    });
+    labels
 }
 
 /// The repository root.
