@@ -420,7 +420,7 @@ mod tests {
 
     #[test]
     fn silverman_bandwidth_of_a_known_sample() {
-        // 1..=5: sd = 1.5811, IQR/1.34 = 2/1.34 = 1.4925 → h = 0.9 · 1.4925 · 5^(−0.2) = 1.0589.
+        // 1..=5: sd = 1.5811, IQR/1.34 = 2/1.34 = 1.4925 → h = 0.9 · 1.4925 · 5^(−0.2) = 0.9736.
         let h = silverman_bandwidth(&[1.0, 2.0, 3.0, 4.0, 5.0]).unwrap();
         assert!((h - 0.9 * (2.0 / 1.34) * 5f64.powf(-0.2)).abs() < 1e-12);
         assert_eq!(silverman_bandwidth(&[3.0]), None);
