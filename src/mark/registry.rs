@@ -278,6 +278,9 @@ registry! {
     /// Vertical bars from zero: one per category of `x` (grouped side by side by `color`), rows
     /// of the same category summed.
     Bar(BarOptions) => cartesian::bar,
+    /// Tukey box plots of a numeric column: quartiles, whiskers to 1.5 IQR and outliers, one box
+    /// per category of `x` (dodged by `color`), vertical or horizontal.
+    Box(BoxOptions) => cartesian::box_plot,
     /// Sample points and the curves of one or more 1D interpolation methods through them.
     Interp1d(Interp1dOptions) => cartesian::interp1d,
     /// Contour lines and filled bands of a scalar field on a regular grid.
@@ -361,7 +364,10 @@ mod tests {
 
     #[test]
     fn selection_and_aspect_kinds_are_the_documented_ones() {
-        assert_eq!(names_where(|k| k.draws_selection), ["scatter", "splom", "parallel", "daisy", "faces", "segments"]);
+        assert_eq!(
+            names_where(|k| k.draws_selection),
+            ["scatter", "box", "splom", "parallel", "daisy", "faces", "segments"]
+        );
         assert_eq!(
             names_where(|k| k.applies_aspect),
             ["scatter", "line", "interp1d", "contour", "image", "scattered", "graph", "linkmap", "flow"]

@@ -6,6 +6,7 @@ mod architecture;
 mod bad_input;
 mod bar;
 mod big_scatter;
+mod box_violin;
 mod charts;
 mod cli;
 mod colours;

@@ -1,6 +1,7 @@
-//! Kinds drawn in one x/y frame from rows: scatter, line, bar, interp1d.
+//! Kinds drawn in one x/y frame from rows: scatter, line, bar, box, interp1d.
 
 pub mod bar;
+pub mod box_plot;
 pub mod interp1d;
 pub mod line;
 pub mod scatter;

@@ -11,6 +11,7 @@ pub mod frame;
 pub mod geojson;
 pub mod geometry;
 pub mod gridded;
+pub mod grouped;
 pub mod highlight;
 pub mod level_labels;
 pub mod network_input;
