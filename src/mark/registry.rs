@@ -281,6 +281,9 @@ registry! {
     /// Tukey box plots of a numeric column: quartiles, whiskers to 1.5 IQR and outliers, one box
     /// per category of `x` (dodged by `color`), vertical or horizontal.
     Box(BoxOptions) => cartesian::box_plot,
+    /// Violins: each group's kernel density mirrored about its centre line, with a slim box of
+    /// its quartiles inside, one per category of `x` (dodged by `color`), vertical or horizontal.
+    Violin(ViolinOptions) => cartesian::violin,
     /// Sample points and the curves of one or more 1D interpolation methods through them.
     Interp1d(Interp1dOptions) => cartesian::interp1d,
     /// Contour lines and filled bands of a scalar field on a regular grid.
@@ -366,7 +369,7 @@ mod tests {
     fn selection_and_aspect_kinds_are_the_documented_ones() {
         assert_eq!(
             names_where(|k| k.draws_selection),
-            ["scatter", "box", "splom", "parallel", "daisy", "faces", "segments"]
+            ["scatter", "box", "violin", "splom", "parallel", "daisy", "faces", "segments"]
         );
         assert_eq!(
             names_where(|k| k.applies_aspect),

@@ -240,7 +240,7 @@ mod tests {
                 "hyperslice" => &["axes", "z"],
                 "splom" | "parallel" | "daisy" | "segments" => &["columns"],
                 "faces" => &[],
-                "box" => &["y"],
+                "box" | "violin" => &["y"],
                 "treemap" | "hypertree" => &["tree"],
                 "graph" => &["source", "target"],
                 "linkmap" => &["source", "target", "weight"],

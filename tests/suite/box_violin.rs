@@ -1,10 +1,11 @@
-//! The `box` kind against hand-computed and numpy-computed statistics: quartiles, whiskers,
-//! outliers, notches, counts, orientation, dodging by colour, selections, the non-finite policy,
-//! bad input, and the lint rules that read its axes.
+//! The `box` and `violin` kinds against hand-computed and numpy-computed statistics: quartiles,
+//! whiskers, outliers, notches, kernel bandwidths, mirrored outlines, counts, orientation,
+//! dodging by colour, selections, the non-finite policy, bad input, and the lint rules that read
+//! their axes.
 
 use crate::common::{Fixture, lint_codes, lint_findings, plot, tick_labels};
 use dataink::mark::{ChartOutput, DerivedColumn};
-use dataink::scene::{Item, Point, Rect, Role, Shape, path_points};
+use dataink::scene::{Item, PathCmd, Point, Rect, Role, Shape, path_points};
 
 /// A chart of `kind` over `d.csv` with extra chart keys.
 fn spec(kind: &str, extra: &str) -> String {
@@ -297,7 +298,7 @@ fn derived_csv_has_one_row_per_group() {
 
 #[test]
 fn non_finite_values_are_dropped_with_the_usual_warning() {
-    for kind in ["box"] {
+    for kind in ["box", "violin"] {
         let out = draw_ok(kind, "k,v\na,1\na,NaN\na,3\nb,inf\nb,2\nb,4\n", "x = \"k\"\ny = \"v\"\n");
         assert!(
             out.warnings.iter().any(|w| w.to_string().contains("dropped 2 of 6 rows")
@@ -334,7 +335,7 @@ fn a_selection_draws_its_rows_as_points_over_grey_boxes() {
 #[test]
 fn bad_input_gives_the_documented_errors() {
     let xy = "x = \"k\"\ny = \"v\"\n";
-    for kind in ["box"] {
+    for kind in ["box", "violin"] {
         let e = draw_err(kind, "k,v\n", xy);
         assert!(e.contains("error: chart \"c\": data \"d\" has no rows"), "{e}");
         let e = draw_err(kind, "k,v\na,NaN\nb,\n", xy);
@@ -353,6 +354,12 @@ fn bad_input_gives_the_documented_errors() {
         let e = draw_err(kind, &many, "x = \"k\"\ny = \"v\"\norientation = \"horizontal\"\n");
         assert!(e.contains("300 categories do not fit a 400 px tall chart"), "{e}");
     }
+    let e = draw_err("violin", TWO, "x = \"k\"\ny = { field = \"v\", scale = \"log\" }\n");
+    assert!(e.contains("the values of violins need a continuous scale, not a log scale"), "{e}");
+    let e = draw_err("violin", TWO, "x = \"k\"\ny = \"v\"\nbandwidth = 0\n");
+    assert!(e.contains("`bandwidth` must be greater than 0, found 0"), "{e}");
+    let e = draw_err("violin", TWO, "x = \"k\"\ny = \"v\"\nbandwidth = -0.5\n");
+    assert!(e.contains("`bandwidth` must be greater than 0, found -0.5"), "{e}");
     let e = draw_err("box", TWO, "x = \"k\"\ny = \"v\"\nwhisker = -1\n");
     assert!(e.contains("`whisker` must be at least 0, found -1"), "{e}");
     // A log scale is fine for boxes; values ≤ 0 are dropped and counted.
@@ -362,11 +369,131 @@ fn bad_input_gives_the_documented_errors() {
 }
 
 #[test]
+fn the_violin_bandwidth_is_silvermans_and_the_chart_says_so() {
+    let out = draw_ok("violin", "v\n1\n2\n3\n4\n5\n", "y = \"v\"\n");
+    // 1..=5: sd = 1.5811, IQR/1.34 = 1.4925 → h = 0.9 · 1.4925 · 5^(−1/5) = 0.9736.
+    let h = 0.9 * (2.0 / 1.34) * 5f64.powf(-0.2);
+    assert_close(numbers(&out, "bandwidth")[0], h, "Silverman");
+    let legend = texts(&out, Role::Legend);
+    assert!(legend.contains(&"bandwidth 0.97 (Silverman)".to_string()), "{legend:?}");
+    let given = draw_ok("violin", "v\n1\n2\n3\n4\n5\n", "y = \"v\"\nbandwidth = 0.5\n");
+    assert_eq!(numbers(&given, "bandwidth"), [0.5]);
+    assert!(texts(&given, Role::Legend).contains(&"bandwidth 0.5 (given)".to_string()));
+    // Groups with their own bandwidths: the range. b is a scaled tenfold, and so is its bandwidth.
+    let csv: String =
+        std::iter::once("k,v\n".to_string()).chain((1..=8).map(|i| format!("a,{i}\nb,{}\n", 10 * i))).collect();
+    let groups = draw_ok("violin", &csv, "x = \"k\"\ny = \"v\"\n");
+    let h = numbers(&groups, "bandwidth");
+    assert_close(h[1], 10.0 * h[0], "b's bandwidth");
+    let legend = texts(&groups, Role::Legend);
+    assert!(legend.contains(&"bandwidth 1.5–15".to_string()), "{legend:?}");
+    assert!(legend.contains(&"(Silverman, per violin)".to_string()), "{legend:?}");
+}
+
+/// The outline of violin `label`: its points and the centre line it is mirrored about.
+fn outline(out: &ChartOutput, label: &str) -> (Vec<Point>, usize) {
+    let points = path(out, label);
+    let half = points.len() / 2;
+    (points, half)
+}
+
+#[test]
+fn violins_are_mirrored_densities_as_wide_as_their_slot() {
+    let out = draw_ok("violin", TWO, "x = \"k\"\ny = \"v\"\n");
+    let y = value_map(&out, "y axis");
+    let p = plot(&out);
+    let band = (p.w / 2.0 * 0.8).min(160.0);
+    for (label, lo, hi) in [("a", 1.0, 8.0), ("b", 0.3, 9.1)] {
+        let (points, half) = outline(&out, label);
+        let Some(Shape::Path(cmds)) = Some(&item(&out, label).shape) else { panic!("path") };
+        assert!(matches!(cmds.last(), Some(PathCmd::Close)), "closed");
+        // Right side up the values, the left side back down, mirrored about the centre.
+        let (right, left) = points.split_at(half);
+        let centre = (right[0].x + left[left.len() - 1].x) / 2.0;
+        for (r, l) in right.iter().zip(left.iter().rev()) {
+            assert_close(r.y, l.y, "mirrored at the same value");
+            assert_close(r.x - centre, centre - l.x, "mirrored widths");
+        }
+        // Cut 0: from the smallest to the largest value; widest at the slot's half width.
+        assert_close(right[0].y, y(lo), "starts at the minimum");
+        assert_close(right[right.len() - 1].y, y(hi), "ends at the maximum");
+        let widest = right.iter().map(|q| q.x - centre).fold(0.0, f64::max);
+        assert_close(widest, band / 2.0, "scale = width");
+    }
+    // With cut = 2 the density runs two bandwidths past the data.
+    let cut = draw_ok("violin", TWO, "x = \"k\"\ny = \"v\"\ncut = 2\n");
+    let h = numbers(&cut, "bandwidth")[0];
+    let y = value_map(&cut, "y axis");
+    let (points, _) = outline(&cut, "a");
+    assert_close(points[0].y, y(1.0 - 2.0 * h), "cut below");
+}
+
+#[test]
+fn count_scaling_makes_areas_proportional_to_the_counts() {
+    // b holds a's values twice: with one bandwidth their densities are the same curve.
+    let mut csv = String::from("k,v\n");
+    for v in [1.0, 2.0, 2.5, 3.0, 4.0, 6.0] {
+        csv.push_str(&format!("a,{v}\nb,{v}\nb,{v}\n"));
+    }
+    let out = draw_ok("violin", &csv, "x = \"k\"\ny = \"v\"\nbandwidth = 1\nscale = \"count\"\n");
+    let width = |label: &str| {
+        let (points, half) = outline(&out, label);
+        let xs: Vec<f64> = points[..half].iter().map(|p| p.x).collect();
+        xs.iter().fold(0.0f64, |m, &x| m.max(x)) - points[half..].iter().map(|p| p.x).fold(f64::INFINITY, f64::min)
+    };
+    assert_close(width("b") / width("a"), 2.0, "twice the rows, twice the width everywhere");
+    assert!(texts(&out, Role::Legend).contains(&"areas proportional to counts".to_string()));
+}
+
+#[test]
+fn horizontal_violins_swap_the_axes() {
+    let out = draw_ok("violin", TWO, "x = \"k\"\ny = \"v\"\norientation = \"horizontal\"\n");
+    let x = value_map(&out, "x axis");
+    let (points, half) = outline(&out, "b");
+    let (right, left) = points.split_at(half);
+    assert_close(right[0].x, x(0.3), "from b's minimum along x");
+    assert_close(right[right.len() - 1].x, x(9.1), "to b's maximum");
+    let centre = (right[0].y + left[left.len() - 1].y) / 2.0;
+    for (r, l) in right.iter().zip(left.iter().rev()) {
+        assert_close(r.x, l.x, "mirrored at the same value");
+        assert_close(r.y - centre, centre - l.y, "mirrored about a horizontal centre line");
+    }
+}
+
+#[test]
+fn violin_insides_and_groups_without_a_density() {
+    let out = draw_ok("violin", TWO, "x = \"k\"\ny = \"v\"\n");
+    let y = value_map(&out, "y axis");
+    let mut dots = Vec::new();
+    out.scene.walk(|i: &Item| {
+        if let (Some("median"), Shape::Circle { center, .. }) = (i.label.as_deref(), &i.shape) {
+            dots.push(center.y);
+        }
+    });
+    assert_eq!(dots.len(), 2);
+    assert_close(dots[0], y(4.5), "a's median dot");
+    let lines = draw_ok("violin", TWO, "x = \"k\"\ny = \"v\"\ninner = \"quartiles\"\n");
+    let q1 = path(&lines, "first quartile");
+    assert!(q1.iter().all(|p| close(p.y, value_map(&lines, "y axis")(1.85))), "b's Q1 across the violin");
+    let bare = draw_ok("violin", TWO, "x = \"k\"\ny = \"v\"\ninner = \"none\"\n");
+    let mut marks = 0;
+    bare.scene
+        .walk(|i: &Item| marks += usize::from(i.role == Role::DataMark && !matches!(i.shape, Shape::Group { .. })));
+    assert_eq!(marks, 2, "the two outlines only");
+    // One value has no spread for Silverman's rule: drawn as a point, with a note.
+    let single = draw_ok("violin", "k,v\na,1\na,2\na,4\nb,3\n", "x = \"k\"\ny = \"v\"\n");
+    let Shape::Points(batch) = &item(&single, "b").shape else { panic!("b is a point") };
+    assert_eq!(batch.centers.len(), 1);
+    assert!(single.warnings.iter().any(|w| w.to_string().contains("`b` has too few values")), "{:?}", single.warnings);
+    assert!(numbers(&single, "bandwidth")[1].is_nan());
+}
+
+#[test]
 fn lint_reads_the_value_axis_and_leaves_baselines_to_bars() {
     // Values near 100: the value axis leaves zero out, which is right for distributions.
     let csv = "k,temp_c\na,101\na,104\na,103\nb,108\nb,107\nb,110\nb,109\n";
     let files = [("d.csv", csv.as_bytes())];
-    for kind in ["box"] {
+    for kind in ["box", "violin"] {
         let codes = lint_codes(&spec(kind, "x = \"k\"\ny = { field = \"temp_c\", unit = \"°C\" }\n"), &files);
         assert!(!codes.contains(&"DI001"), "{kind}: {codes:?}");
         // SC002 finds the values' axis on x when the chart is horizontal.
@@ -386,13 +513,17 @@ fn lint_reads_the_value_axis_and_leaves_baselines_to_bars() {
 }
 
 #[test]
-fn a_brush_in_the_explorer_relights_the_selected_rows_in_boxes() {
+fn a_brush_in_the_explorer_relights_the_selected_rows_in_boxes_and_violins() {
     use dataink::explore::brush::Mode;
     use dataink::explore::{Session, Target};
-    let charts: String = [("s", "scatter", "x = \"v\"\ny = \"v\"\n"), ("b", "box", "x = \"k\"\ny = \"v\"\n")]
-        .iter()
-        .map(|(name, kind, keys)| format!("[[chart]]\nname = \"{name}\"\nkind = \"{kind}\"\ndata = \"d\"\n{keys}\n"))
-        .collect();
+    let charts: String = [
+        ("s", "scatter", "x = \"v\"\ny = \"v\"\n"),
+        ("b", "box", "x = \"k\"\ny = \"v\"\n"),
+        ("w", "violin", "x = \"k\"\ny = \"v\"\n"),
+    ]
+    .iter()
+    .map(|(name, kind, keys)| format!("[[chart]]\nname = \"{name}\"\nkind = \"{kind}\"\ndata = \"d\"\n{keys}\n"))
+    .collect();
     let fx = Fixture::new(&format!("[data.d]\npath = \"d.csv\"\n\n{charts}"), &[("d.csv", TWO.as_bytes())]);
     let mut s = Session::new(fx.load().unwrap_or_else(|e| panic!("{e}")), 1.0);
     assert!(
@@ -400,7 +531,7 @@ fn a_brush_in_the_explorer_relights_the_selected_rows_in_boxes() {
         "{:?}",
         s.charts.iter().map(|v| (&v.error, v.lit)).collect::<Vec<_>>()
     );
-    // Brush v in [3, 8] in the scatter: 11 rows, lit in the box chart too.
+    // Brush v in [3, 8] in the scatter: 11 rows, lit in the box and violin charts too.
     let plot = s.charts[0].geometry.plots[0].clone();
     let (a, b) = (plot.x.scale.map(3.0), plot.x.scale.map(8.0));
     let (c, d) = (plot.y.scale.map(3.0), plot.y.scale.map(8.0));
