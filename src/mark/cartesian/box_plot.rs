@@ -129,7 +129,7 @@ pub fn draw(
             grouped::quoted(&notch_past_box)
         )));
     }
-    let scene = layout.scene(chart, marks);
+    let scene = layout.scene(chart, marks, &mut warnings);
     let mut extra = Vec::new();
     if notch {
         extra.push(("notch_low", DerivedColumn::Number(grouped.list.iter().map(|g| g.stats.notch.0).collect())));

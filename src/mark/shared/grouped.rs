@@ -620,8 +620,10 @@ impl Layout {
         vec![Item::new(Role::DataMark, Shape::Points(batch), Style::default()).with_rows(rows).labelled(label)]
     }
 
-    /// The chart's scene with `marks` in the plot.
-    pub fn scene(self, chart: &Chart, marks: Vec<Item>) -> Scene {
+    /// The chart's scene with `marks` in the plot, noting in `warnings` a selection's points
+    /// that the SVG carries as a raster (a selection of more rows than a vector layer holds).
+    pub fn scene(self, chart: &Chart, marks: Vec<Item>, warnings: &mut Vec<Warning>) -> Scene {
+        warnings.extend(frame::raster_note(&marks).map(Warning::from));
         frame::scene(chart, self.frame, &self.theme, marks)
     }
 }
