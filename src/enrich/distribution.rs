@@ -1,23 +1,137 @@
-//! One-dimensional distributions: histogram bins (Freedman–Diaconis), binned counts, and
-//! Gaussian kernel density estimates (Silverman's bandwidth) computed on a fine binned grid.
+//! One-dimensional distributions: sample quantiles (Hyndman & Fan's continuous types), Tukey's
+//! box-plot statistics with McGill's notches, histogram bins (Freedman–Diaconis), binned counts,
+//! and Gaussian kernel density estimates (Silverman's bandwidth) computed on a fine binned grid.
 
-/// Quartiles (25th and 75th percentile, linear interpolation) of finite values.
-pub fn quartiles(values: &[f64]) -> Option<(f64, f64)> {
-    let mut v: Vec<f64> = values.iter().copied().filter(|x| x.is_finite()).collect();
-    if v.is_empty() {
-        return None;
-    }
-    v.sort_by(f64::total_cmp);
-    let at = |q: f64| {
-        let pos = q * (v.len() - 1) as f64;
-        let i = pos.floor() as usize;
-        let frac = pos - i as f64;
-        match v.get(i + 1) {
-            Some(next) => v[i] + frac * (next - v[i]),
-            None => v[i],
+/// How a sample quantile is interpolated between the order statistics: the continuous types of
+/// Hyndman & Fan (1996), under the names numpy's `percentile(..., method=...)` gives them.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum QuantileMethod {
+    /// Type 7 (numpy's default `"linear"`, R's default): position p·(n − 1) in the sorted
+    /// values, counted from 0.
+    #[default]
+    Linear,
+    /// Type 5 (`"hazen"`): position p·n − 1/2.
+    Hazen,
+    /// Type 6 (`"weibull"`, Minitab and SPSS): position p·(n + 1) − 1.
+    Weibull,
+    /// Type 8 (`"median_unbiased"`, recommended by Hyndman & Fan): position p·(n + 1/3) − 2/3.
+    MedianUnbiased,
+}
+
+impl QuantileMethod {
+    /// The 0-based position of quantile `p` among `n` sorted values (before clamping).
+    fn position(self, p: f64, n: usize) -> f64 {
+        let n = n as f64;
+        match self {
+            QuantileMethod::Linear => p * (n - 1.0),
+            QuantileMethod::Hazen => p * n - 0.5,
+            QuantileMethod::Weibull => p * (n + 1.0) - 1.0,
+            QuantileMethod::MedianUnbiased => p * (n + 1.0 / 3.0) - 2.0 / 3.0,
         }
-    };
-    Some((at(0.25), at(0.75)))
+    }
+}
+
+/// Quantile `p` (in 0..=1) of values sorted ascending, all finite, interpolated linearly between
+/// the two order statistics around `method`'s position; positions outside the sample take its
+/// smallest or largest value. `None` for no values.
+pub fn quantile_sorted(sorted: &[f64], p: f64, method: QuantileMethod) -> Option<f64> {
+    let last = sorted.len().checked_sub(1)?;
+    let pos = method.position(p.clamp(0.0, 1.0), sorted.len()).clamp(0.0, last as f64);
+    let i = (pos.floor() as usize).min(last);
+    let frac = pos - i as f64;
+    let lo = sorted[i];
+    Some(match sorted.get(i + 1) {
+        Some(&hi) if frac > 0.0 => lo + frac * (hi - lo),
+        _ => lo,
+    })
+}
+
+/// The finite values of `values`, sorted ascending.
+pub fn sorted_finite(values: &[f64]) -> Vec<f64> {
+    let mut v: Vec<f64> = values.iter().copied().filter(|x| x.is_finite()).collect();
+    v.sort_by(f64::total_cmp);
+    v
+}
+
+/// Quartiles (25th and 75th percentile, linear interpolation: type 7) of finite values.
+pub fn quartiles(values: &[f64]) -> Option<(f64, f64)> {
+    let v = sorted_finite(values);
+    let at = |p: f64| quantile_sorted(&v, p, QuantileMethod::Linear);
+    Some((at(0.25)?, at(0.75)?))
+}
+
+/// Tukey's fences: the values `k` interquartile ranges below the first and above the third
+/// quartile (`k = 1.5` for the classic box plot's inner fences).
+pub fn tukey_fences(q1: f64, q3: f64, k: f64) -> (f64, f64) {
+    let iqr = q3 - q1;
+    (q1 - k * iqr, q3 + k * iqr)
+}
+
+/// McGill, Tukey & Larsen's (1978) notch around a median: median ± 1.57·IQR/√n, roughly a 95%
+/// interval for comparing two medians (non-overlapping notches suggest different medians).
+pub fn median_notch(median: f64, iqr: f64, n: usize) -> (f64, f64) {
+    let half = 1.57 * iqr / (n.max(1) as f64).sqrt();
+    (median - half, median + half)
+}
+
+/// The statistics a box plot draws of one sample.
+#[derive(Clone, Debug, PartialEq)]
+pub struct BoxStats {
+    /// Number of finite values.
+    pub n: usize,
+    /// Smallest value.
+    pub min: f64,
+    /// First quartile.
+    pub q1: f64,
+    /// Median.
+    pub median: f64,
+    /// Third quartile.
+    pub q3: f64,
+    /// Largest value.
+    pub max: f64,
+    /// Arithmetic mean.
+    pub mean: f64,
+    /// End of the lower whisker: the smallest value at or above the lower fence (the first
+    /// quartile when there is none between the fence and the box).
+    pub whisker_low: f64,
+    /// End of the upper whisker: the largest value at or below the upper fence (the third
+    /// quartile when there is none between the box and the fence).
+    pub whisker_high: f64,
+    /// Positions in the input of the values beyond the whiskers, in input order.
+    pub outliers: Vec<usize>,
+    /// The median's notch (see [`median_notch`]).
+    pub notch: (f64, f64),
+}
+
+impl BoxStats {
+    /// The interquartile range.
+    pub fn iqr(&self) -> f64 {
+        self.q3 - self.q1
+    }
+}
+
+/// Box-plot statistics of `values` (non-finite ones ignored): quartiles by `method`, whiskers to
+/// the most extreme values within `whisker` interquartile ranges of the box (Tukey), values
+/// beyond them as outliers. `None` without finite values.
+pub fn box_stats(values: &[f64], method: QuantileMethod, whisker: f64) -> Option<BoxStats> {
+    let sorted = sorted_finite(values);
+    let (&min, &max) = (sorted.first()?, sorted.last()?);
+    let at = |p: f64| quantile_sorted(&sorted, p, method);
+    let (q1, median, q3) = (at(0.25)?, at(0.5)?, at(0.75)?);
+    let (low_fence, high_fence) = tukey_fences(q1, q3, whisker);
+    // As matplotlib and R do: a whisker never reaches into the box.
+    let whisker_low = sorted.iter().copied().find(|&v| v >= low_fence).map_or(q1, |v| v.min(q1));
+    let whisker_high = sorted.iter().rev().copied().find(|&v| v <= high_fence).map_or(q3, |v| v.max(q3));
+    let outliers = values
+        .iter()
+        .enumerate()
+        .filter(|(_, v)| v.is_finite() && (**v < whisker_low || **v > whisker_high))
+        .map(|(i, _)| i)
+        .collect();
+    let n = sorted.len();
+    let mean = sorted.iter().sum::<f64>() / n as f64;
+    let notch = median_notch(median, q3 - q1, n);
+    Some(BoxStats { n, min, q1, median, q3, max, mean, whisker_low, whisker_high, outliers, notch })
 }
 
 /// Number of histogram bins over `[lo, hi]` by the Freedman–Diaconis rule (bin width
@@ -105,6 +219,70 @@ pub fn kde(values: &[f64], h: f64, lo: f64, hi: f64, points: usize) -> Vec<f64> 
         .collect()
 }
 
+/// A density evaluated at equally spaced points from `lo` to `hi` (both included).
+#[derive(Clone, Debug, PartialEq)]
+pub struct DensityCurve {
+    /// The first evaluation point.
+    pub lo: f64,
+    /// The last evaluation point.
+    pub hi: f64,
+    /// The density at each point.
+    pub density: Vec<f64>,
+}
+
+impl DensityCurve {
+    /// The evaluation points with their densities.
+    pub fn points(&self) -> impl Iterator<Item = (f64, f64)> + '_ {
+        let step = if self.density.len() > 1 { (self.hi - self.lo) / (self.density.len() - 1) as f64 } else { 0.0 };
+        self.density.iter().enumerate().map(move |(k, &d)| (self.lo + step * k as f64, d))
+    }
+
+    /// The largest density.
+    pub fn peak(&self) -> f64 {
+        self.density.iter().copied().fold(0.0, f64::max)
+    }
+
+    /// The integral by the trapezoidal rule.
+    pub fn integral(&self) -> f64 {
+        let n = self.density.len();
+        if n < 2 {
+            return 0.0;
+        }
+        let step = (self.hi - self.lo) / (n - 1) as f64;
+        let inner: f64 = self.density.iter().sum();
+        step * (inner - 0.5 * (self.density[0] + self.density[n - 1]))
+    }
+}
+
+/// The Gaussian kernel density of `values` with bandwidth `h` over the values' range extended by
+/// `cut` bandwidths each side (seaborn's `cut`; 0 trims it to the data), at `points` points.
+/// With `cut` ≥ 3 it integrates to 1 within a fraction of a percent. `None` without finite
+/// values, or for a bandwidth that is not positive and finite.
+pub fn density_curve(values: &[f64], h: f64, cut: f64, points: usize) -> Option<DensityCurve> {
+    let (lo, hi) = values
+        .iter()
+        .copied()
+        .filter(|v| v.is_finite())
+        .fold(None, |acc: Option<(f64, f64)>, v| Some(acc.map_or((v, v), |(a, b)| (a.min(v), b.max(v)))))?;
+    if !(h > 0.0 && h.is_finite()) {
+        return None;
+    }
+    let cut = if cut.is_finite() { cut.max(0.0) } else { 0.0 };
+    let (lo, hi) = (lo - cut * h, hi + cut * h);
+    if hi <= lo {
+        // One distinct value, trimmed: the density is a spike of no width.
+        return Some(DensityCurve { lo, hi, density: vec![kde_at(values, h, lo)] });
+    }
+    Some(DensityCurve { lo, hi, density: kde(values, h, lo, hi, points.max(2)) })
+}
+
+/// The Gaussian kernel density of `values` with bandwidth `h` at `x`, summed directly.
+fn kde_at(values: &[f64], h: f64, x: f64) -> f64 {
+    let finite: Vec<f64> = values.iter().copied().filter(|v| v.is_finite()).collect();
+    let norm = 1.0 / (finite.len().max(1) as f64 * h * (2.0 * std::f64::consts::PI).sqrt());
+    finite.iter().map(|v| (-0.5 * ((x - v) / h).powi(2)).exp()).sum::<f64>() * norm
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -114,6 +292,98 @@ mod tests {
         // numpy.percentile([1, 2, 3, 4], [25, 75]) == [1.75, 3.25]
         assert_eq!(quartiles(&[4.0, 1.0, f64::NAN, 3.0, 2.0]), Some((1.75, 3.25)));
         assert_eq!(quartiles(&[]), None);
+    }
+
+    #[test]
+    fn quantiles_of_a_hand_computed_set() {
+        // 1..=8, type 7: positions 1.75, 3.5 and 5.25 (from 0) → 2.75, 4.5, 6.25.
+        let v: Vec<f64> = (1..=8).map(f64::from).collect();
+        let q = |p| quantile_sorted(&v, p, QuantileMethod::Linear);
+        assert_eq!((q(0.25), q(0.5), q(0.75)), (Some(2.75), Some(4.5), Some(6.25)));
+        assert_eq!((q(0.0), q(1.0)), (Some(1.0), Some(8.0)));
+        assert_eq!(quantile_sorted(&[], 0.5, QuantileMethod::Linear), None);
+        assert_eq!(quantile_sorted(&[3.0], 0.25, QuantileMethod::Hazen), Some(3.0));
+    }
+
+    #[test]
+    fn quantiles_match_numpy() {
+        let v = sorted_finite(&[2.5, 0.3, 9.1, 4.4, 7.7, 1.2, 6.6, 3.9, 8.8, 5.0, 0.9]);
+        let close = |a: Option<f64>, b: f64| a.is_some_and(|a| (a - b).abs() < 1e-12);
+        // python3 -c "import numpy as np; b=[2.5,0.3,9.1,4.4,7.7,1.2,6.6,3.9,8.8,5.0,0.9];
+        //   print(np.percentile(b, [25,50,75]))"                              → [1.85, 4.4, 7.15]
+        // ... method='hazen' → [1.525, 4.4, 7.425]; 'weibull' → [1.2, 4.4, 7.7];
+        // 'median_unbiased' → [1.4166666666666665, 4.4, 7.5166666666666675]
+        for (method, expected) in [
+            (QuantileMethod::Linear, [1.85, 4.4, 7.15]),
+            (QuantileMethod::Hazen, [1.525, 4.4, 7.425]),
+            (QuantileMethod::Weibull, [1.2, 4.4, 7.7]),
+            (QuantileMethod::MedianUnbiased, [1.4166666666666665, 4.4, 7.5166666666666675]),
+        ] {
+            for (p, want) in [0.25, 0.5, 0.75].into_iter().zip(expected) {
+                let got = quantile_sorted(&v, p, method);
+                assert!(close(got, want), "{method:?} p={p}: {got:?} vs {want}");
+            }
+        }
+        // python3 -c "import numpy as np; print(np.percentile([7,15,36,39,40,41,42,43,47,49], [25,50,75]))"
+        //   → [36.75, 40.5, 42.75]
+        let s = box_stats(&[7.0, 15.0, 36.0, 39.0, 40.0, 41.0, 42.0, 43.0, 47.0, 49.0], QuantileMethod::Linear, 1.5);
+        let s = s.expect("stats");
+        assert_eq!((s.q1, s.median, s.q3), (36.75, 40.5, 42.75));
+    }
+
+    #[test]
+    fn whiskers_end_at_the_last_values_inside_the_fences() {
+        // Sorted: −20, 1..=8, 30. Q1 = 2.25, median 4.5, Q3 = 6.75 (numpy: [2.25, 4.5, 6.75]);
+        // IQR 4.5, fences −4.5 and 13.5: whiskers at 1 and 8, outliers −20 and 30.
+        let values = [5.0, 30.0, 1.0, 2.0, f64::NAN, 3.0, -20.0, 4.0, 6.0, 7.0, 8.0];
+        let s = box_stats(&values, QuantileMethod::Linear, 1.5).expect("stats");
+        assert_eq!(s.n, 10);
+        assert_eq!((s.q1, s.median, s.q3), (2.25, 4.5, 6.75));
+        assert_eq!(tukey_fences(s.q1, s.q3, 1.5), (-4.5, 13.5));
+        assert_eq!((s.whisker_low, s.whisker_high), (1.0, 8.0));
+        assert_eq!((s.min, s.max), (-20.0, 30.0));
+        assert_eq!(s.outliers, vec![1, 6], "positions of 30 and −20 in the input");
+        assert!((s.mean - 4.6).abs() < 1e-12);
+        // A whisker factor of 10 reaches both: no outliers.
+        let wide = box_stats(&values, QuantileMethod::Linear, 10.0).expect("stats");
+        assert_eq!((wide.whisker_low, wide.whisker_high, wide.outliers.len()), (-20.0, 30.0, 0));
+        // A gap right below the box: no value between the fence and Q1, the whisker stays at Q1.
+        // [0, 10, 10, 10]: Q1 = 7.5, Q3 = 10, lower fence 3.75; 0 is an outlier.
+        let gap = box_stats(&[0.0, 10.0, 10.0, 10.0], QuantileMethod::Linear, 1.5).expect("stats");
+        assert_eq!((gap.q1, gap.whisker_low, gap.outliers.clone()), (7.5, 7.5, vec![0]));
+        assert_eq!(box_stats(&[f64::NAN], QuantileMethod::Linear, 1.5), None);
+    }
+
+    #[test]
+    fn notches_are_the_median_plus_minus_1_57_iqr_over_root_n() {
+        // The set above: 4.5 ± 1.57 · 4.5 / √10 (python3 -c "import math; print(4.5 - 1.57*4.5/math.sqrt(10))"
+        // → 2.26585083309104, and 6.73414916690896 above).
+        let s = box_stats(&[-20.0, 1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0, 8.0, 30.0], QuantileMethod::Linear, 1.5);
+        let (lo, hi) = s.expect("stats").notch;
+        assert!((lo - 2.26585083309104).abs() < 1e-12 && (hi - 6.73414916690896).abs() < 1e-12, "{lo} {hi}");
+        assert_eq!(median_notch(10.0, 4.0, 1), (10.0 - 6.28, 10.0 + 6.28));
+    }
+
+    #[test]
+    fn a_density_curve_integrates_to_one_over_its_support() {
+        let values: Vec<f64> =
+            (0..200).map(|i| ((i * 37) % 101) as f64 / 10.0 + if i % 3 == 0 { 4.0 } else { 0.0 }).collect();
+        let h = silverman_bandwidth(&values).expect("a bandwidth");
+        let curve = density_curve(&values, h, 3.0, 512).expect("a curve");
+        assert_eq!(curve.density.len(), 512);
+        let (min, max) = values.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| (a.min(v), b.max(v)));
+        assert!((curve.lo - (min - 3.0 * h)).abs() < 1e-12 && (curve.hi - (max + 3.0 * h)).abs() < 1e-12);
+        let integral = curve.integral();
+        assert!((integral - 1.0).abs() < 5e-3, "integral {integral}");
+        // Trimmed to the data (cut 0), some mass of the end values lies outside.
+        let trimmed = density_curve(&values, h, 0.0, 512).expect("a curve").integral();
+        assert!(trimmed < integral - 1e-3, "{trimmed}");
+        assert_eq!(density_curve(&values, 0.0, 3.0, 512), None);
+        assert_eq!(density_curve(&[f64::NAN], 1.0, 3.0, 512), None);
+        // One value with no spread and no cut: a single point of density 1/(h√2π).
+        let spike = density_curve(&[2.0, 2.0], 0.5, 0.0, 64).expect("a curve");
+        assert_eq!(spike.density.len(), 1);
+        assert!((spike.peak() - 1.0 / (0.5 * (2.0 * std::f64::consts::PI).sqrt())).abs() < 1e-12);
     }
 
     #[test]
@@ -150,7 +420,7 @@ mod tests {
 
     #[test]
     fn silverman_bandwidth_of_a_known_sample() {
-        // 1..=5: sd = 1.5811, IQR/1.34 = 2/1.34 = 1.4925 → h = 0.9 · 1.4925 · 5^(−0.2) = 1.0589.
+        // 1..=5: sd = 1.5811, IQR/1.34 = 2/1.34 = 1.4925 → h = 0.9 · 1.4925 · 5^(−0.2) = 0.9736.
         let h = silverman_bandwidth(&[1.0, 2.0, 3.0, 4.0, 5.0]).unwrap();
         assert!((h - 0.9 * (2.0 / 1.34) * 5f64.powf(-0.2)).abs() < 1e-12);
         assert_eq!(silverman_bandwidth(&[3.0]), None);

@@ -17,8 +17,8 @@ pub mod vector;
 pub mod volume;
 
 pub use shared::{
-    categorical, derived, encode, frame, geojson, geometry, gridded, highlight, level_labels, network_input, node_link,
-    overplot, raster, size, tooltip, tree_input, trend, warning,
+    bands, categorical, derived, encode, frame, geojson, geometry, gridded, grouped, highlight, level_labels,
+    network_input, node_link, overplot, raster, size, tooltip, tree_input, trend, warning,
 };
 
 use std::fmt;

@@ -275,18 +275,24 @@ registry! {
     Scatter(ScatterOptions) => cartesian::scatter,
     /// One or more series drawn as lines through (x, y).
     Line(LineOptions) => cartesian::line,
-    /// The distribution of a numeric column as bars over equal-width bins: counts, percentages
-    /// or densities, optionally cumulative, grouped by colour (stacked, layered or side by side).
-    Histogram(HistogramOptions) => cartesian::histogram,
     /// The area under a series, or series stacked on zero, normalised to 100%, centred or as a
     /// streamgraph.
     Area(AreaOptions) => cartesian::area,
-    /// A category × category matrix of a value (or of row counts) as coloured cells with a
-    /// colour bar and the values written where they fit.
-    Heatmap(HeatmapOptions) => cartesian::heatmap,
     /// Vertical bars from zero: one per category of `x` (grouped side by side by `color`), rows
     /// of the same category summed.
     Bar(BarOptions) => cartesian::bar,
+    /// The distribution of a numeric column as bars over equal-width bins: counts, percentages
+    /// or densities, optionally cumulative, grouped by colour (stacked, layered or side by side).
+    Histogram(HistogramOptions) => cartesian::histogram,
+    /// A category × category matrix of a value (or of row counts) as coloured cells with a
+    /// colour bar and the values written where they fit.
+    Heatmap(HeatmapOptions) => cartesian::heatmap,
+    /// Tukey box plots of a numeric column: quartiles, whiskers to 1.5 IQR and outliers, one box
+    /// per category of `x` (dodged by `color`), vertical or horizontal.
+    Box(BoxOptions) => cartesian::box_plot,
+    /// Violins: each group's kernel density mirrored about its centre line, with a slim box of
+    /// its quartiles inside, one per category of `x` (dodged by `color`), vertical or horizontal.
+    Violin(ViolinOptions) => cartesian::violin,
     /// Sample points and the curves of one or more 1D interpolation methods through them.
     Interp1d(Interp1dOptions) => cartesian::interp1d,
     /// Contour lines and filled bands of a scalar field on a regular grid.
@@ -370,7 +376,10 @@ mod tests {
 
     #[test]
     fn selection_and_aspect_kinds_are_the_documented_ones() {
-        assert_eq!(names_where(|k| k.draws_selection), ["scatter", "splom", "parallel", "daisy", "faces", "segments"]);
+        assert_eq!(
+            names_where(|k| k.draws_selection),
+            ["scatter", "histogram", "box", "violin", "splom", "parallel", "daisy", "faces", "segments"]
+        );
         assert_eq!(
             names_where(|k| k.applies_aspect),
             ["scatter", "line", "interp1d", "contour", "image", "scattered", "graph", "linkmap", "flow"]

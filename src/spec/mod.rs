@@ -217,7 +217,7 @@ y = "petal_width"
         assert_eq!(
             diags[0].hint.as_deref(),
             Some(
-                "keys allowed here: name, data, kind, x, y, aspect, caption, color, font_size, highlight, lint, mark_color, opacity, point_size, radius, size, title"
+                "keys allowed here: name, data, kind, x, y, aspect, caption, color, font_size, highlight, lint, mark_color, opacity, point_size, radius, size, title, tooltip, trend"
             )
         );
         assert_eq!(
@@ -236,7 +236,7 @@ y = "petal_width"
    |
 12 | colour = "species"
    | ^^^^^^ did you mean `color`?
-   = hint: keys allowed here: name, data, kind, x, y, aspect, caption, color, font_size, highlight, lint, mark_color, opacity, point_size, radius, size, title
+   = hint: keys allowed here: name, data, kind, x, y, aspect, caption, color, font_size, highlight, lint, mark_color, opacity, point_size, radius, size, title, tooltip, trend
 
 error: `size` must be an array of 2 numbers, found a string
   --> spec.toml:13:8
@@ -475,6 +475,8 @@ point_size = { field = "petal_width", title = "Width", unit = "cm", max_radius =
 radius = 3.5
 mark_color = "#336699"
 opacity = 0.7
+tooltip = ["species", "petal_length"]
+trend = { method = "loess", span = 0.5, groups = true, equation = false }
 
 [[chart]]
 name = "prices.v2"
@@ -581,7 +583,7 @@ point_size = "d"
                     size: Some([800.0, 600.5]),
                     font_size: Some(12.0),
                     aspect: Some(Aspect::Equal),
-                    tooltip: None,
+                    tooltip: Some(Tooltip::Fields(vec!["species".to_owned(), "petal_length".to_owned()])),
                     kind: ChartKind::Scatter(ScatterOptions {
                         x: Channel::Detailed(ChannelOptions {
                             field: "sepal_length".to_owned(),
@@ -616,7 +618,12 @@ point_size = "d"
                         radius: Some(3.5),
                         mark_color: Some("#336699".to_owned()),
                         opacity: Some(0.7),
-                        trend: None,
+                        trend: Some(Trend::Detailed(TrendOptions {
+                            method: TrendMethod::Loess,
+                            span: Some(0.5),
+                            groups: Some(true),
+                            equation: Some(false),
+                        })),
                     }),
                 },
                 Chart {

@@ -195,7 +195,7 @@ pub struct Chart {
     pub aspect: Option<Aspect>,
     /// Name of a selection (`[selection.NAME]`) over the same data: its rows are drawn in full
     /// colour, the rest as grey context, and its ranges are marked on the axes
-    /// (scatter, splom, parallel, daisy, faces, segments).
+    /// (scatter, box, violin, splom, parallel, daisy, faces, segments).
     #[serde(default)]
     #[schemars(example = &"small")]
     pub highlight: Option<String>,

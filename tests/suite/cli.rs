@@ -29,7 +29,8 @@ fn gallery_renders_every_chart_as_svg_png_and_csv() {
         let png = std::fs::read(out.path().join(format!("{name}.png"))).expect("png written");
         assert_eq!(&png[..8], b"\x89PNG\r\n\x1a\n", "{name}.png is a PNG");
         let csv = std::fs::read_to_string(out.path().join(format!("{name}.csv"))).expect("csv written");
-        assert!(csv.lines().count() > 5, "{name}.csv has rows");
+        // A header and rows: one per point, line, cell... or per group for box plots and violins.
+        assert!(csv.lines().count() > 3, "{name}.csv has rows");
     }
     // The cars data has missing values: the warning says how many rows were dropped.
     assert!(stderr.contains("warning: chart \"cars-power\": dropped 14 of 406 rows"), "{stderr}");

@@ -79,6 +79,31 @@ pub fn lint_findings(spec: &str, files: &[(&str, &[u8])], code: &str) -> Vec<Fin
     results.into_iter().flat_map(|c| c.findings).filter(|f| f.code == code).collect()
 }
 
+/// The plot area of a chart in one cartesian frame: the clip of the data-mark group.
+pub fn plot(out: &ChartOutput) -> Rect {
+    let mut plot = None;
+    out.scene.walk(|item: &Item| {
+        if let (Role::DataMark, Shape::Group { clip: Some(c), .. }) = (&item.role, &item.shape) {
+            plot = Some(*c);
+        }
+    });
+    plot.expect("a clipped data group")
+}
+
+/// Tick label texts of one axis (`"x axis"` or `"y axis"`).
+pub fn tick_labels(out: &ChartOutput, axis: &str) -> Vec<String> {
+    let mut labels = Vec::new();
+    out.scene.walk(|item: &Item| {
+        if item.role == Role::TickLabel
+            && item.label.as_deref() == Some(axis)
+            && let Shape::Text(t) = &item.shape
+        {
+            labels.push(t.content.clone());
+        }
+    });
+    labels
+}
+
 /// The repository root.
 pub fn root() -> &'static Path {
     Path::new(env!("CARGO_MANIFEST_DIR"))
@@ -159,31 +184,6 @@ pub fn bars(out: &ChartOutput) -> Vec<(String, Rect, Vec<u32>)> {
         }
     });
     found
-}
-
-/// The plot area: the clip of the data-mark group.
-pub fn plot(out: &ChartOutput) -> Rect {
-    let mut plot = None;
-    out.scene.walk(|item: &Item| {
-        if let (Role::DataMark, Shape::Group { clip: Some(c), .. }) = (&item.role, &item.shape) {
-            plot = Some(*c);
-        }
-    });
-    plot.expect("a clipped data group")
-}
-
-/// Tick label texts of one axis.
-pub fn tick_labels(out: &ChartOutput, axis: &str) -> Vec<String> {
-    let mut labels = Vec::new();
-    out.scene.walk(|item: &Item| {
-        if item.role == Role::TickLabel
-            && item.label.as_deref() == Some(axis)
-            && let Shape::Text(t) = &item.shape
-        {
-            labels.push(t.content.clone());
-        }
-    });
-    labels
 }
 
 pub fn derived_column<'a>(out: &'a ChartOutput, name: &str) -> &'a DerivedColumn {

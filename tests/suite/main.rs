@@ -7,6 +7,7 @@ mod area;
 mod bad_input;
 mod bar;
 mod big_scatter;
+mod box_violin;
 mod charts;
 mod cli;
 mod colours;

@@ -121,7 +121,7 @@ pub fn draw(chart: &Chart, options: &AreaOptions, table: &Table) -> Result<Chart
     if table.rows == 0 {
         return Err(encode::no_rows(chart, table, None));
     }
-    let color = categorical::grouping_channel(chart, options.color.as_ref(), table, "areas")?;
+    let color = crate::mark::bands::grouping_channel(chart, options.color.as_ref(), table, "areas")?;
     let numeric = vec![(x_opts.field.as_str(), x_col), (y_opts.field.as_str(), y_col)];
     let (rows, mut warnings) = encode::drawn_rows(chart, table, numeric, color.as_ref())?;
     let (xv, yv) = (x_col.numbers().unwrap_or(&[]), y_col.numbers().unwrap_or(&[]));

@@ -5,18 +5,16 @@
 //! fixed `domain` that excludes it); then they are drawn honestly from the end of the axis nearest
 //! zero, and lint rule DI001 reports the exaggeration. Negative sums hang below zero.
 
-use crate::data::{Categories, Column, Table};
+use crate::data::{Column, Table};
 use crate::guide::axis::title_with_unit;
-use crate::guide::format::format_value;
 use crate::guide::layout::{Domain, PositionAxis};
 use crate::guide::legend::Symbol;
-use crate::guide::scale::{BandScale, Scale};
-use crate::guide::time::format_timestamp;
+use crate::guide::scale::Scale;
 use crate::mark::derived::{Derived, DerivedColumn};
-use crate::mark::encode::{self, MISSING_LABEL};
+use crate::mark::encode;
 use crate::mark::registry::{AxisSpec, ChartContext, KindInfo, Technique};
 use crate::mark::warning::Warning;
-use crate::mark::{ChartOutput, MarkError, frame};
+use crate::mark::{ChartOutput, MarkError, bands, frame};
 use crate::scene::{Color, Item, PathCmd, Point, Rect, Role, Shape, Style};
 use crate::spec::{Channel, Chart, ColorChannel, ScaleKind};
 use schemars::JsonSchema;
@@ -42,19 +40,8 @@ pub struct BarOptions {
     pub mark_color: Option<String>,
 }
 
-/// Gap between the bars of one group, as a fraction of a bar's step.
-const GROUP_PADDING: f64 = 0.1;
 /// Bars narrower than this many pixels get a warning: they are hard to see and compare.
 const NARROW_BAR: f64 = 2.0;
-
-/// The distinct values of a column over some rows, as labelled categories, and the category of
-/// each of those rows.
-struct Keys {
-    /// Category labels in display order (unique).
-    labels: Vec<String>,
-    /// Category index of each row, in the order of the rows given.
-    of_row: Vec<usize>,
-}
 
 /// One drawn bar: its category and group, the sum of its rows' values and those rows.
 struct Bar {
@@ -74,7 +61,7 @@ pub fn draw(chart: &Chart, options: &BarOptions, table: &Table) -> Result<ChartO
         return Err(encode::no_rows(chart, table, None));
     }
     check_scales(options, y_col)?;
-    let color = crate::mark::categorical::grouping_channel(chart, options.color.as_ref(), table, "bars")?;
+    let color = bands::grouping_channel(chart, options.color.as_ref(), table, "bars")?;
     let color_col = match &color {
         Some(c) => Some(encode::column(chart, "color", c.field(), table)?),
         None => None,
@@ -87,10 +74,10 @@ pub fn draw(chart: &Chart, options: &BarOptions, table: &Table) -> Result<ChartO
     let (rows, warnings) = encode::drawn_rows(chart, table, numeric, color.as_ref())?;
     let mut warnings = warnings;
 
-    let x_keys = keys(x_col, &rows);
+    let x_keys = bands::keys(x_col, &rows);
     let groups = match color_col {
-        Some(col) => keys(col, &rows),
-        None => Keys { labels: vec![String::new()], of_row: vec![0; rows.len()] },
+        Some(col) => bands::keys(col, &rows),
+        None => bands::Keys::single("", rows.len()),
     };
     let (nx, ng) = (x_keys.labels.len(), groups.labels.len());
     let [width, _] = chart.size.unwrap_or(crate::mark::FRAME_SIZE);
@@ -149,16 +136,7 @@ pub fn draw(chart: &Chart, options: &BarOptions, table: &Table) -> Result<ChartO
     let (d0, d1) = frame.y.domain();
     let base = 0.0f64.clamp(d0.min(d1), d0.max(d1));
     let base_px = frame.y.map(base);
-    let slot_of = |b: &Bar| -> (f64, f64) {
-        let start = band.start(b.x);
-        if ng == 1 {
-            return (start, band.bandwidth());
-        }
-        match BandScale::new(groups.labels.clone(), (start, start + band.bandwidth()), GROUP_PADDING, 0.0) {
-            Ok(inner) => (inner.start(b.group), inner.bandwidth()),
-            Err(_) => (start, band.bandwidth() / ng as f64),
-        }
-    };
+    let slot_of = |b: &Bar| bands::dodged(band, b.x, &groups.labels, b.group);
     let (lo, hi) = (d0.min(d1), d0.max(d1));
     let mut marks = Vec::with_capacity(bars.len() + 1);
     let mut narrowest = f64::INFINITY;
@@ -194,11 +172,12 @@ pub fn draw(chart: &Chart, options: &BarOptions, table: &Table) -> Result<ChartO
             Item::new(Role::DataMark, Shape::Rect(Rect::new(x, y0, w, y1 - y0)), Style::fill(fill))
                 .with_rows(b.rows.clone())
                 .labelled(label.clone())
-                .with_tooltip(tooltip),
+                .with_tooltip(tooltip.clone()),
         );
         if let Some(mark) = cut {
             clipped += 1;
-            marks.push(mark.with_rows(b.rows.clone()).labelled(format!("{CLIPPED_PREFIX}{label}")));
+            let mark = mark.with_rows(b.rows.clone()).labelled(format!("{CLIPPED_PREFIX}{label}"));
+            marks.push(mark.with_tooltip(format!("{tooltip}\ncut at the end of the y domain")));
         }
     }
     if clipped > 0 {
@@ -337,64 +316,6 @@ fn value_axis(y_opts: &crate::spec::ChannelOptions, bars: &[Bar], summed: bool) 
     }
 }
 
-/// The categories of `column` over `rows`: text in the table's order of levels (missing text is
-/// its own category, last), numbers and times ascending.
-fn keys(column: &Column, rows: &[u32]) -> Keys {
-    if let Some(cats) = column.categories() {
-        return text_keys(cats, rows);
-    }
-    let values = column.numbers().unwrap_or(&[]);
-    let mut distinct: Vec<f64> = rows.iter().filter_map(|&r| values.get(r as usize).copied()).collect();
-    distinct.sort_by(f64::total_cmp);
-    // `==` merges -0 and 0, which are one category.
-    distinct.dedup_by(|a, b| a == b);
-    let of_row = rows
-        .iter()
-        .map(|&r| {
-            let v = values.get(r as usize).copied().unwrap_or(f64::NAN);
-            distinct.partition_point(|d| *d < v).min(distinct.len().saturating_sub(1))
-        })
-        .collect();
-    Keys { labels: number_labels(&distinct, column.is_time()), of_row }
-}
-
-/// Categories of a text column over `rows`.
-fn text_keys(cats: &Categories, rows: &[u32]) -> Keys {
-    let labels = encode::used_levels(cats, rows);
-    let index: std::collections::HashMap<&str, usize> =
-        labels.iter().enumerate().map(|(i, l)| (l.as_str(), i)).collect();
-    let position: Vec<Option<usize>> = cats.levels.iter().map(|l| index.get(l.as_str()).copied()).collect();
-    let missing = labels.iter().position(|l| l == MISSING_LABEL).unwrap_or(0);
-    let of_row = rows
-        .iter()
-        .map(|&r| match cats.codes.get(r as usize) {
-            Some(&c) if c != Categories::MISSING => position.get(c as usize).copied().flatten().unwrap_or(missing),
-            _ => missing,
-        })
-        .collect();
-    Keys { labels, of_row }
-}
-
-/// Labels of distinct sorted numbers: short forms (`1.5k`), or dates for time columns; the full
-/// round-trip form where short forms of two values would coincide.
-fn number_labels(values: &[f64], time: bool) -> Vec<String> {
-    let short: Vec<String> = values
-        .iter()
-        .map(|&v| {
-            if time {
-                let t = format_timestamp(v);
-                t.strip_suffix(" 00:00:00").map(str::to_string).unwrap_or(t)
-            } else {
-                format_value(v)
-            }
-        })
-        .collect();
-    let mut sorted = short.clone();
-    sorted.sort_unstable();
-    let unique = sorted.windows(2).all(|w| w[0] != w[1]);
-    if unique { short } else { values.iter().map(|v| v.to_string()).collect() }
-}
-
 /// `kind = "bar"`.
 pub static KIND: KindInfo = KindInfo::new("bar", &["x", "y", "color"]);
 
@@ -417,24 +338,4 @@ impl Technique for BarOptions {
     }
 
     crate::mark::registry::color_key!();
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn number_keys_are_sorted_and_merge_signed_zero() {
-        let col =
-            Column { name: "n".into(), values: crate::data::ColumnValues::Number(vec![3.0, -0.0, 1.0, 0.0, 3.0]) };
-        let k = keys(&col, &[0, 1, 2, 3, 4]);
-        assert_eq!(k.labels, vec!["0", "1", "3"]);
-        assert_eq!(k.of_row, vec![2, 0, 1, 0, 2]);
-    }
-
-    #[test]
-    fn colliding_short_labels_fall_back_to_full_numbers() {
-        let labels = number_labels(&[1.000001, 1.000002], false);
-        assert_eq!(labels, vec!["1.000001", "1.000002"]);
-    }
 }

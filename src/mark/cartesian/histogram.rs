@@ -222,7 +222,7 @@ pub fn draw(
     if table.rows == 0 {
         return Err(encode::no_rows(chart, table, None));
     }
-    let color = categorical::grouping_channel(chart, options.color.as_ref(), table, "histogram bars")?;
+    let color = crate::mark::bands::grouping_channel(chart, options.color.as_ref(), table, "histogram bars")?;
     let (mut rows, mut warnings) =
         encode::drawn_rows(chart, table, vec![(x_opts.field.as_str(), x_col)], color.as_ref())?;
     let values = x_col.numbers().unwrap_or(&[]);

@@ -223,29 +223,6 @@ pub fn share_domains(charts: &mut [Chart], tables: &BTreeMap<String, Table>) {
     }
 }
 
-/// A colour channel that groups marks (bars side by side or stacked, a histogram's groups)
-/// read as categories: a numeric column without `type` is grouped by its distinct values;
-/// `type = "continuous"` is an error, since groups need categories. `marks` names what is
-/// grouped in the message ("bars").
-pub fn grouping_channel(
-    chart: &Chart,
-    channel: Option<&ColorChannel>,
-    table: &Table,
-    marks: &str,
-) -> Result<Option<ColorChannel>, MarkError> {
-    let Some(channel) = channel else { return Ok(None) };
-    let options = channel.options();
-    if options.r#type == Some(ColorType::Continuous) {
-        return Err(MarkError::at(
-            &["color", "type"],
-            format!("{marks} are grouped by colour, which needs categories, not a continuous scale"),
-            "remove `type = \"continuous\"`: a numeric column is then grouped by its distinct values",
-        ));
-    }
-    crate::mark::encode::column(chart, "color", &options.field, table)?;
-    Ok(Some(ColorChannel::Detailed(ColorOptions { r#type: Some(ColorType::Categorical), ..options })))
-}
-
 /// The groups of a categorical colour encoding over `rows`: the legend entries' labels in their
 /// order (`entries` as [`assign`] returns them), and each row's group index in that list.
 pub fn group_rows(categories: &Categories, entries: &[(String, Color)], rows: &[u32]) -> Vec<usize> {

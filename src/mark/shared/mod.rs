@@ -1,8 +1,9 @@
-//! Pieces the kinds share: channels and the non-finite policy (`encode`), the cartesian frame,
+//! Pieces the kinds share: categories in bands (`bands`), channels and the non-finite policy (`encode`), the cartesian frame,
 //! selections drawn (`highlight`), derived output, categorical colours, gridded input, trees and
 //! networks read from tables, marker sizes, rasters, contour labels, node-link drawing, hover texts (`tooltip`) and trend lines (`trend`).
 //! Nothing here imports a kind.
 
+pub mod bands;
 pub mod categorical;
 pub mod derived;
 pub mod encode;
@@ -10,6 +11,7 @@ pub mod frame;
 pub mod geojson;
 pub mod geometry;
 pub mod gridded;
+pub mod grouped;
 pub mod highlight;
 pub mod level_labels;
 pub mod network_input;
