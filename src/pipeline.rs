@@ -448,6 +448,8 @@ fn chart_fields(index: usize, chart: &Value) -> Vec<(String, Vec<PathSeg>)> {
             })),
             // A tree's columns (treemap, hypertree).
             ("tree", Value::Object(map)) => out.extend(named_fields(map, &["id", "parent", "path"], &base)),
+            // A line's band edges.
+            ("band", Value::Object(map)) => out.extend(named_fields(map, &["lower", "upper"], &base)),
             _ => out.extend(field_refs(value, base)),
         }
     }

@@ -23,6 +23,7 @@ mod histogram;
 mod hostile_inputs;
 mod hostile_work;
 mod layout;
+mod line_band;
 mod lint;
 mod lint_colour;
 mod lint_technique;

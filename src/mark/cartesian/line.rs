@@ -48,6 +48,26 @@ pub struct LineOptions {
     /// Line colour when there is a single series (CSS name or `#rrggbb`).
     #[serde(default)]
     pub mark_color: Option<String>,
+    /// An uncertainty band around each series: `{ lower = "COLUMN", upper = "COLUMN" }` (an
+    /// interval per row, e.g. a confidence interval or a min–max range computed by a
+    /// transform), shaded in the series' colour. Needs a single `y` column.
+    #[serde(default)]
+    pub band: Option<LineBand>,
+}
+
+/// The interval shaded around a line.
+#[derive(Clone, Debug, Deserialize, Serialize, JsonSchema, PartialEq)]
+pub struct LineBand {
+    /// The column of the band's lower edge.
+    #[schemars(example = &"low")]
+    pub lower: String,
+    /// The column of the band's upper edge.
+    #[schemars(example = &"high")]
+    pub upper: String,
+    /// Fill opacity, above 0 and at most 1 (default 0.25).
+    #[serde(default)]
+    #[schemars(extend("exclusiveMinimum" = 0, "maximum" = 1), example = 0.25)]
+    pub opacity: Option<f64>,
 }
 
 impl LineOptions {
@@ -130,6 +150,7 @@ pub fn draw(chart: &Chart, options: &LineOptions, table: &Table) -> Result<Chart
         Some(field) => Some(encode::column(chart, split_key, field, table)?),
         None => None,
     };
+    let band = band_columns(chart, options, table, y_cols.len())?;
 
     // Non-finite policy: rows with a non-finite x (or y) are dropped and counted.
     let mut numeric: Vec<(&str, &Column)> = Vec::new();
@@ -222,6 +243,16 @@ pub fn draw(chart: &Chart, options: &LineOptions, table: &Table) -> Result<Chart
             hi = hi.max(b);
         }
     }
+    if let Some((lower, upper, _)) = &band {
+        for s in &series {
+            for col in [lower, upper] {
+                if let Some((a, b)) = encode::extent(col.numbers().unwrap_or(&[]), &s.rows) {
+                    lo = lo.min(a);
+                    hi = hi.max(b);
+                }
+            }
+        }
+    }
     if first_y.domain.is_none() && lo <= hi {
         if first_y.zero == Some(true) {
             lo = lo.min(0.0);
@@ -262,6 +293,11 @@ pub fn draw(chart: &Chart, options: &LineOptions, table: &Table) -> Result<Chart
     let (frame, theme) = frame::cartesian(chart, x_axis, y_axis, legends)?;
 
     let mut marks = Vec::new();
+    if let Some((lower, upper, opacity)) = &band {
+        for s in &series {
+            marks.extend(band_marks(&frame, x_col, (lower, upper), s, *opacity));
+        }
+    }
     let mut derived_series = Vec::new();
     let mut derived_y = Vec::new();
     let mut derived_rows = Vec::new();
@@ -318,6 +354,75 @@ pub fn draw(chart: &Chart, options: &LineOptions, table: &Table) -> Result<Chart
     Ok(ChartOutput { scene, derived, warnings, geojson: None, geometry: Default::default() })
 }
 
+/// The band's lower and upper columns and its opacity, checked: numeric, and a single `y`.
+fn band_columns<'t>(
+    chart: &Chart,
+    options: &LineOptions,
+    table: &'t Table,
+    y_count: usize,
+) -> Result<Option<(&'t Column, &'t Column, f64)>, MarkError> {
+    let Some(band) = &options.band else { return Ok(None) };
+    if y_count > 1 {
+        return Err(MarkError::at(
+            &["band"],
+            format!("a band surrounds one y column's line, but {y_count} y columns are given"),
+            "give one y column (long data split by `series` or `color` gets a band per series)",
+        ));
+    }
+    let mut columns = Vec::new();
+    for (key, field) in [("lower", &band.lower), ("upper", &band.upper)] {
+        let col = encode::column(chart, "band", field, table).map_err(|mut e| {
+            e.path.push(crate::spec::PathSeg::Key(key.into()));
+            e
+        })?;
+        if col.numbers().is_none() || col.is_time() {
+            return Err(MarkError::at(
+                &["band", key],
+                format!(
+                    "band {key} column `{field}` holds {}; a band's edges are numbers on the y scale",
+                    col.type_name()
+                ),
+                "name numeric columns computed for the interval (a `calculate` or `aggregate` transform)",
+            ));
+        }
+        columns.push(col);
+    }
+    Ok(Some((columns[0], columns[1], band.opacity.unwrap_or(0.25))))
+}
+
+/// The shaded band of one series: one polygon per run of rows whose edges are both finite,
+/// upper edge forward and lower edge back.
+fn band_marks(
+    frame: &crate::guide::layout::Frame,
+    x_col: &Column,
+    (lower, upper): (&Column, &Column),
+    s: &Series<'_>,
+    opacity: f64,
+) -> Vec<Item> {
+    let (lo, hi) = (lower.numbers().unwrap_or(&[]), upper.numbers().unwrap_or(&[]));
+    let x_at = encode::Positioner::new(&frame.x, x_col);
+    let finite =
+        |r: u32| lo.get(r as usize).is_some_and(|v| v.is_finite()) && hi.get(r as usize).is_some_and(|v| v.is_finite());
+    let mut items = Vec::new();
+    for run in s.rows.split(|&r| !finite(r)).filter(|run| !run.is_empty()) {
+        let mut cmds: Vec<PathCmd> = Vec::with_capacity(2 * run.len() + 1);
+        for (k, &r) in run.iter().enumerate() {
+            let p = Point::new(x_at.at(r), frame.y.map(hi[r as usize]));
+            cmds.push(if k == 0 { PathCmd::MoveTo(p) } else { PathCmd::LineTo(p) });
+        }
+        for &r in run.iter().rev() {
+            cmds.push(PathCmd::LineTo(Point::new(x_at.at(r), frame.y.map(lo[r as usize]))));
+        }
+        cmds.push(PathCmd::Close);
+        items.push(
+            Item::new(Role::DataMark, Shape::Path(cmds), Style::fill(s.color.with_opacity(opacity)))
+                .with_rows(run.to_vec())
+                .labelled(format!("{} band", s.name)),
+        );
+    }
+    items
+}
+
 /// Numbers as categories (a numeric `series` column).
 fn numeric_categories(col: &Column) -> Categories {
     let texts: Vec<Option<String>> = col
@@ -369,7 +474,7 @@ fn dropped_between(kept: &[u32], all: &[u32], x: Option<&[f64]>, y: Option<&[f64
 }
 
 /// `kind = "line"`.
-pub static KIND: KindInfo = KindInfo::new("line", &["x", "y", "series", "color"]).taking_aspect();
+pub static KIND: KindInfo = KindInfo::new("line", &["x", "y", "series", "color", "band"]).taking_aspect();
 
 impl Technique for LineOptions {
     fn info(&self) -> &'static KindInfo {
