@@ -265,3 +265,49 @@ fn a_domain_leaving_zero_out_is_judged_by_the_bar_totals_not_the_rows() {
     assert!(crate::common::lint_findings(&spec(extra), files, "DI005").is_empty());
     assert!(clip_marked(&draw_ok(BARLEY, extra)).is_empty());
 }
+
+/// Two categories, two groups: a = 10 (g) + 30 (h); b = 20 (g) + 20 (h) + 40 (h again).
+const GROUPS: &str = "k,g,v\na,g,10\na,h,30\nb,g,20\nb,h,20\nb,h,40\n";
+
+fn numbers(out: &ChartOutput, name: &str) -> Vec<f64> {
+    match derived_column(out, name) {
+        DerivedColumn::Number(v) => v.clone(),
+        other => panic!("{name}: {other:?}"),
+    }
+}
+
+#[test]
+fn stacked_bars_reach_the_category_totals_and_normalised_ones_100() {
+    let out = draw_ok(GROUPS, "x = \"k\"\ny = \"v\"\ncolor = \"g\"\nstack = \"stack\"");
+    assert_eq!(numbers(&out, "from"), [0.0, 10.0, 0.0, 20.0]);
+    assert_eq!(numbers(&out, "to"), [10.0, 40.0, 20.0, 80.0]);
+    // Each stack fills its band: the bars of one category share x and width.
+    let drawn = bars(&out);
+    assert_eq!(drawn[0].1.x, drawn[1].1.x);
+    assert_eq!(drawn[0].1.w, drawn[1].1.w);
+    assert!((drawn[1].1.y + drawn[1].1.h - drawn[0].1.y).abs() < 1e-9, "h sits on g");
+    let norm = draw_ok(GROUPS, "x = \"k\"\ny = \"v\"\ncolor = \"g\"\nstack = \"normalize\"");
+    let to = numbers(&norm, "to");
+    assert!((to[1] - 100.0).abs() < 1e-9 && (to[3] - 100.0).abs() < 1e-9, "{to:?}");
+    assert!((to[0] - 25.0).abs() < 1e-9 && (to[2] - 25.0).abs() < 1e-9, "{to:?}");
+    assert!(tick_labels(&norm, "y axis").contains(&"100".to_string()));
+}
+
+#[test]
+fn negative_sums_stack_downwards_and_categories_sort_by_total() {
+    let out = draw_ok("k,g,v\na,g,10\na,h,-5\na,i,-3\n", "x = \"k\"\ny = \"v\"\ncolor = \"g\"\nstack = \"stack\"");
+    assert_eq!(numbers(&out, "from"), [0.0, 0.0, -5.0]);
+    assert_eq!(numbers(&out, "to"), [10.0, -5.0, -8.0]);
+    let sorted = draw_ok(GROUPS, "x = \"k\"\ny = \"v\"\nsort = \"descending\"");
+    let DerivedColumn::Text(k) = derived_column(&sorted, "k") else { panic!() };
+    assert_eq!(k, &["b", "a"], "b totals 80, a 40");
+    let ascending = draw_ok(GROUPS, "x = \"k\"\ny = \"v\"\nsort = \"ascending\"");
+    let DerivedColumn::Text(k) = derived_column(&ascending, "k") else { panic!() };
+    assert_eq!(k, &["a", "b"]);
+}
+
+#[test]
+fn normalising_without_groups_is_refused() {
+    let e = draw_err(GROUPS, "x = \"k\"\ny = \"v\"\nstack = \"normalize\"");
+    assert!(e.contains("the chart has no `color`"), "{e}");
+}

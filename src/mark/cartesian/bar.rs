@@ -1,4 +1,5 @@
-//! `bar`: vertical bars, one per category of `x`, grouped side by side by a categorical `color`.
+//! `bar`: vertical bars, one per category of `x`, grouped side by side or stacked (to totals or to
+//! 100%) by a categorical `color`, categories in data order or sorted by their totals.
 //!
 //! Rows with the same x category (and colour group) are summed into one bar. Bars encode length,
 //! so they start at zero unless the spec leaves zero out of the value axis (`zero = false`, or a
@@ -38,16 +39,54 @@ pub struct BarOptions {
     /// Bar colour when `color` is not given (CSS name or `#rrggbb`).
     #[serde(default)]
     pub mark_color: Option<String>,
+    /// How the colour groups of a category share it: `"dodge"` (default: side by side),
+    /// `"stack"` (on top of each other: the stack is the category's total; negative sums stack
+    /// down from zero) or `"normalize"` (stacked to 100% of the category's total).
+    #[serde(default)]
+    pub stack: Option<BarStack>,
+    /// Order of the categories: `"data"` (default: as `x` gives them), `"descending"` or
+    /// `"ascending"` by each category's total.
+    #[serde(default)]
+    pub sort: Option<BarSort>,
+}
+
+/// How a bar chart's colour groups share a category.
+#[derive(Clone, Copy, Debug, Default, Deserialize, Serialize, JsonSchema, PartialEq, Eq)]
+#[serde(rename_all = "lowercase")]
+pub enum BarStack {
+    /// Side by side.
+    #[default]
+    Dodge,
+    /// On top of each other.
+    Stack,
+    /// On top of each other, as shares of the category's total.
+    Normalize,
+}
+
+/// The order of a bar chart's categories.
+#[derive(Clone, Copy, Debug, Default, Deserialize, Serialize, JsonSchema, PartialEq, Eq)]
+#[serde(rename_all = "lowercase")]
+pub enum BarSort {
+    /// As the `x` column gives them.
+    #[default]
+    Data,
+    /// Largest total first.
+    Descending,
+    /// Smallest total first.
+    Ascending,
 }
 
 /// Bars narrower than this many pixels get a warning: they are hard to see and compare.
 const NARROW_BAR: f64 = 2.0;
 
-/// One drawn bar: its category and group, the sum of its rows' values and those rows.
+/// One drawn bar: its category and group, the sum of its rows' values, where it starts and
+/// ends on the value axis (0 and the sum unless stacked) and its rows.
 struct Bar {
     x: usize,
     group: usize,
     sum: f64,
+    from: f64,
+    to: f64,
     rows: Vec<u32>,
 }
 
@@ -61,6 +100,16 @@ pub fn draw(chart: &Chart, options: &BarOptions, table: &Table) -> Result<ChartO
         return Err(encode::no_rows(chart, table, None));
     }
     check_scales(options, y_col)?;
+    let stack = options.stack.unwrap_or_default();
+    if stack == BarStack::Normalize && options.color.is_none() {
+        return Err(MarkError::at(
+            &["stack"],
+            "`stack = \"normalize\"` shares each category among its colour groups, but the chart has no `color`"
+                .to_string(),
+            "add `color = \"COLUMN\"` to split the bars into groups, or remove `stack`",
+        ));
+    }
+    let stacked = stack != BarStack::Dodge;
     let color = bands::grouping_channel(chart, options.color.as_ref(), table, "bars")?;
     let color_col = match &color {
         Some(c) => Some(encode::column(chart, "color", c.field(), table)?),
@@ -74,7 +123,7 @@ pub fn draw(chart: &Chart, options: &BarOptions, table: &Table) -> Result<ChartO
     let (rows, warnings) = encode::drawn_rows(chart, table, numeric, color.as_ref())?;
     let mut warnings = warnings;
 
-    let x_keys = bands::keys(x_col, &rows);
+    let mut x_keys = bands::keys(x_col, &rows);
     let groups = match color_col {
         Some(col) => bands::keys(col, &rows),
         None => bands::Keys::single("", rows.len()),
@@ -82,7 +131,8 @@ pub fn draw(chart: &Chart, options: &BarOptions, table: &Table) -> Result<ChartO
     let (nx, ng) = (x_keys.labels.len(), groups.labels.len());
     let [width, _] = chart.size.unwrap_or(crate::mark::FRAME_SIZE);
     let slots = nx.saturating_mul(ng);
-    if slots as f64 > width {
+    let across = if stacked { nx } else { slots };
+    if across as f64 > width {
         let what = if ng > 1 {
             format!("{nx} categories × {ng} colour groups = {slots} bars")
         } else {
@@ -104,18 +154,22 @@ pub fn draw(chart: &Chart, options: &BarOptions, table: &Table) -> Result<ChartO
             slot.push(r);
         }
     }
-    let bars: Vec<Bar> = slot_rows
+    let mut bars: Vec<Bar> = slot_rows
         .into_iter()
         .enumerate()
         .filter(|(_, rows)| !rows.is_empty())
         .map(|(slot, rows)| {
             let sum = rows.iter().filter_map(|&r| values.get(r as usize)).sum();
-            Bar { x: slot / ng, group: slot % ng, sum, rows }
+            Bar { x: slot / ng, group: slot % ng, sum, from: 0.0, to: sum, rows }
         })
         .collect();
+    if stacked {
+        stack_bars(&mut bars, nx, stack == BarStack::Normalize);
+    }
+    sort_categories(&mut bars, &mut x_keys, options.sort.unwrap_or_default());
 
     let summed = bars.iter().any(|b| b.rows.len() > 1);
-    let y_axis = value_axis(&y_opts, &bars, summed);
+    let y_axis = value_axis(&y_opts, &bars, summed, stack);
     let x_axis = PositionAxis {
         title: title_with_unit(x_opts.title.as_deref().unwrap_or(&x_opts.field), x_opts.unit.as_deref()),
         kind: ScaleKind::Band,
@@ -136,7 +190,9 @@ pub fn draw(chart: &Chart, options: &BarOptions, table: &Table) -> Result<ChartO
     let (d0, d1) = frame.y.domain();
     let base = 0.0f64.clamp(d0.min(d1), d0.max(d1));
     let base_px = frame.y.map(base);
-    let slot_of = |b: &Bar| bands::dodged(band, b.x, &groups.labels, b.group);
+    let slot_of = |b: &Bar| {
+        if stacked { (band.start(b.x), band.bandwidth()) } else { bands::dodged(band, b.x, &groups.labels, b.group) }
+    };
     let (lo, hi) = (d0.min(d1), d0.max(d1));
     let mut marks = Vec::with_capacity(bars.len() + 1);
     let mut narrowest = f64::INFINITY;
@@ -145,9 +201,10 @@ pub fn draw(chart: &Chart, options: &BarOptions, table: &Table) -> Result<ChartO
         let (x, w) = slot_of(b);
         narrowest = narrowest.min(w);
         // A sum beyond the domain is drawn up to the domain's end and marked as cut there.
-        let end = b.sum.max(lo).min(hi);
+        let end = b.to.max(lo).min(hi);
         let top = frame.y.map(end);
-        let (y0, y1) = (base_px.min(top), base_px.max(top));
+        let start_px = if b.from == 0.0 { base_px } else { frame.y.map(b.from.max(lo).min(hi)) };
+        let (y0, y1) = (start_px.min(top), start_px.max(top));
         // A zero sum has no bar; a bar at a baseline other than zero stays, even with no length,
         // so that the scene (and lint rule DI001) still sees it.
         if b.sum == 0.0 || (y1 - y0).is_nan() {
@@ -159,7 +216,7 @@ pub fn draw(chart: &Chart, options: &BarOptions, table: &Table) -> Result<ChartO
         };
         let fill = b.rows.first().map_or(encode::DEFAULT_MARK_COLOR, |&r| colors.color_of(r));
         let plot_rows = (frame.plot.y, frame.plot.bottom());
-        let cut = (end != b.sum).then(|| clip_mark(x, w, top, base_px, plot_rows, (fill, theme.background)));
+        let cut = (end != b.to).then(|| clip_mark(x, w, top, start_px, plot_rows, (fill, theme.background)));
         let mut tooltip = format!("{}: {}\n", x_opts.field, x_keys.labels.get(b.x).map_or("", String::as_str));
         if let (Some(c), Some(g)) = (&color, groups.labels.get(b.group)) {
             tooltip.push_str(&format!("{}: {g}\n", c.field()));
@@ -167,6 +224,9 @@ pub fn draw(chart: &Chart, options: &BarOptions, table: &Table) -> Result<ChartO
         tooltip.push_str(&format!("{}: {}", y_opts.field, b.sum));
         if b.rows.len() > 1 {
             tooltip.push_str(&format!(" (sum of {} rows)", b.rows.len()));
+        }
+        if stack == BarStack::Normalize {
+            tooltip.push_str(&format!("\nshare of {}: {:.1}%", x_opts.field, (b.to - b.from).abs()));
         }
         marks.push(
             Item::new(Role::DataMark, Shape::Rect(Rect::new(x, y0, w, y1 - y0)), Style::fill(fill))
@@ -181,14 +241,15 @@ pub fn draw(chart: &Chart, options: &BarOptions, table: &Table) -> Result<ChartO
         }
     }
     if clipped > 0 {
-        let (min, max) = encode::finite_extent(bars.iter().map(|b| b.sum)).unwrap_or((lo, hi));
+        let ends = bars.iter().map(|b| b.to).chain(bars.iter().filter(|b| b.from != 0.0).map(|b| b.from));
+        let (min, max) = encode::finite_extent(ends).unwrap_or((lo, hi));
         warnings.push(Warning::from(format!(
             "{clipped} of {} bars reach past the y domain [{lo}, {hi}] and are cut at its end \
              (marked with a break); widen `domain` to cover [{min}, {max}], or remove it",
             bars.len()
         )));
     }
-    if bars.iter().any(|b| b.sum < 0.0) && base == 0.0 {
+    if bars.iter().any(|b| b.to < 0.0) && base == 0.0 {
         // Bars on both sides of zero: a zero line separates them.
         let y = base_px.round() + 0.5;
         marks.push(
@@ -219,6 +280,10 @@ pub fn draw(chart: &Chart, options: &BarOptions, table: &Table) -> Result<ChartO
     }
     derived.push(&y_opts.field, DerivedColumn::Number(bars.iter().map(|b| b.sum).collect()));
     derived.push("rows", DerivedColumn::Number(bars.iter().map(|b| b.rows.len() as f64).collect()));
+    if stacked {
+        derived.push("from", DerivedColumn::Number(bars.iter().map(|b| b.from).collect()));
+        derived.push("to", DerivedColumn::Number(bars.iter().map(|b| b.to).collect()));
+    }
     Ok(ChartOutput { scene, derived, warnings, geojson: None, geometry: Default::default() })
 }
 
@@ -289,31 +354,79 @@ fn check_scales(options: &BarOptions, y_col: &Column) -> Result<(), MarkError> {
     }
 }
 
-/// The value axis over the bars' sums: zero included unless `zero = false`; a fixed `domain`
-/// wins. Its title says "Sum of" when some bar adds up several rows and the spec names no title.
-fn value_axis(y_opts: &crate::spec::ChannelOptions, bars: &[Bar], summed: bool) -> PositionAxis {
-    let (mut lo, mut hi) = encode::finite_extent(bars.iter().map(|b| b.sum)).unwrap_or((0.0, 0.0));
+/// The value axis over the bars' extents: zero included unless `zero = false`; a fixed
+/// `domain` wins; 0–100 % for normalised stacks. Its title says "Sum of" when some bar adds up
+/// several rows, or "Share of … (%)" for normalised stacks, unless the spec names a title.
+fn value_axis(y_opts: &crate::spec::ChannelOptions, bars: &[Bar], summed: bool, stack: BarStack) -> PositionAxis {
+    let (mut lo, mut hi) = encode::finite_extent(bars.iter().flat_map(|b| [b.from, b.to])).unwrap_or((0.0, 0.0));
     if y_opts.zero != Some(false) {
         lo = lo.min(0.0);
         hi = hi.max(0.0);
+    }
+    if stack == BarStack::Normalize {
+        (lo, hi) = (lo.min(0.0).max(-100.0), hi.max(0.0).min(100.0));
     }
     if let Some([a, b]) = y_opts.domain {
         (lo, hi) = (a, b);
     }
     let title = match &y_opts.title {
         Some(t) => t.clone(),
+        None if stack == BarStack::Normalize => format!("Share of {} (%)", y_opts.field),
         None if summed => format!("Sum of {}", y_opts.field),
         None => y_opts.field.clone(),
     };
     PositionAxis {
-        title: title_with_unit(&title, y_opts.unit.as_deref()),
+        title: title_with_unit(&title, if stack == BarStack::Normalize { None } else { y_opts.unit.as_deref() }),
         kind: ScaleKind::Linear,
         domain: Domain::Continuous(lo, hi),
-        nice: y_opts.nice.unwrap_or(true) && y_opts.domain.is_none(),
+        nice: y_opts.nice.unwrap_or(true) && y_opts.domain.is_none() && stack != BarStack::Normalize,
         ticks: y_opts.ticks,
         grid: y_opts.grid.unwrap_or(true),
         inset: 0.0,
     }
+}
+
+/// Stack each category's bars in group order: positive sums upwards from zero, negative ones
+/// downwards; with `normalize`, as percentages of the category's total of absolute sums.
+fn stack_bars(bars: &mut [Bar], categories: usize, normalize: bool) {
+    let mut totals = vec![0.0f64; categories];
+    for b in bars.iter() {
+        totals[b.x] += b.sum.abs();
+    }
+    let (mut up, mut down) = (vec![0.0f64; categories], vec![0.0f64; categories]);
+    for b in bars.iter_mut() {
+        let scale = if normalize && totals[b.x] > 0.0 { 100.0 / totals[b.x] } else { 1.0 };
+        let v = b.sum * scale;
+        let running = if v >= 0.0 { &mut up[b.x] } else { &mut down[b.x] };
+        b.from = *running;
+        b.to = *running + v;
+        *running = b.to;
+    }
+}
+
+/// Put the categories in `sort` order by their totals (ties keep their order).
+fn sort_categories(bars: &mut [Bar], keys: &mut bands::Keys, sort: BarSort) {
+    if sort == BarSort::Data {
+        return;
+    }
+    let mut totals = vec![0.0f64; keys.labels.len()];
+    for b in bars.iter() {
+        totals[b.x] += b.sum;
+    }
+    let mut order: Vec<usize> = (0..totals.len()).collect();
+    match sort {
+        BarSort::Descending => order.sort_by(|&a, &b| totals[b].total_cmp(&totals[a])),
+        BarSort::Ascending => order.sort_by(|&a, &b| totals[a].total_cmp(&totals[b])),
+        BarSort::Data => {}
+    }
+    let mut new_of_old = vec![0; order.len()];
+    for (new, &old) in order.iter().enumerate() {
+        new_of_old[old] = new;
+    }
+    keys.labels = order.iter().map(|&old| keys.labels[old].clone()).collect();
+    keys.of_row.iter_mut().for_each(|k| *k = new_of_old[*k]);
+    bars.iter_mut().for_each(|b| b.x = new_of_old[b.x]);
+    bars.sort_by_key(|b| (b.x, b.group));
 }
 
 /// `kind = "bar"`.
