@@ -1,8 +1,8 @@
 //! The `area` kind against hand-computed stacks: totals, shares, gap filling, order, the
 //! streamgraph's thickness, and bad input.
 
-use crate::common::{Fixture, derived_column};
-use dataink::mark::{ChartOutput, DerivedColumn};
+use crate::common::{Fixture, numbers, texts};
+use dataink::mark::ChartOutput;
 
 /// Two series over x = 1, 2, 3; `b` has no row at x = 2.
 const CSV: &str = "x,y,s\n1,1,a\n2,2,a\n3,3,a\n1,4,b\n3,2,b\n";
@@ -12,20 +12,6 @@ fn draw(csv: &str, extra: &str) -> Result<ChartOutput, String> {
         "[data.d]\npath = \"d.csv\"\n\n[[chart]]\nname = \"a\"\nkind = \"area\"\ndata = \"d\"\nx = \"x\"\ny = \"y\"\n{extra}"
     );
     Fixture::new(&spec, &[("d.csv", csv.as_bytes())]).draw().map(|mut v| v.remove(0))
-}
-
-fn numbers(out: &ChartOutput, name: &str) -> Vec<f64> {
-    match derived_column(out, name) {
-        DerivedColumn::Number(v) => v.clone(),
-        other => panic!("{name}: {other:?}"),
-    }
-}
-
-fn texts(out: &ChartOutput, name: &str) -> Vec<String> {
-    match derived_column(out, name) {
-        DerivedColumn::Text(v) => v.clone(),
-        other => panic!("{name}: {other:?}"),
-    }
 }
 
 #[test]

@@ -1,7 +1,7 @@
 //! The `bar` kind against hand-computed geometry: band positions, lengths from zero, grouping,
 //! sums, the non-finite policy, negative values and bad input.
 
-use crate::common::{Fixture, bars, derived_column, plot, tick_labels};
+use crate::common::{Fixture, bars, derived_column, numbers, plot, tick_labels};
 use dataink::mark::{ChartOutput, DerivedColumn};
 use dataink::scene::{Item, Role, Shape};
 
@@ -268,13 +268,6 @@ fn a_domain_leaving_zero_out_is_judged_by_the_bar_totals_not_the_rows() {
 
 /// Two categories, two groups: a = 10 (g) + 30 (h); b = 20 (g) + 20 (h) + 40 (h again).
 const GROUPS: &str = "k,g,v\na,g,10\na,h,30\nb,g,20\nb,h,20\nb,h,40\n";
-
-fn numbers(out: &ChartOutput, name: &str) -> Vec<f64> {
-    match derived_column(out, name) {
-        DerivedColumn::Number(v) => v.clone(),
-        other => panic!("{name}: {other:?}"),
-    }
-}
 
 #[test]
 fn stacked_bars_reach_the_category_totals_and_normalised_ones_100() {

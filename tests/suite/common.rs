@@ -189,3 +189,19 @@ pub fn bars(out: &ChartOutput) -> Vec<(String, Rect, Vec<u32>)> {
 pub fn derived_column<'a>(out: &'a ChartOutput, name: &str) -> &'a DerivedColumn {
     &out.derived.columns.iter().find(|(n, _)| n == name).unwrap_or_else(|| panic!("no column {name}")).1
 }
+
+/// A numeric column of a chart's derived table.
+pub fn numbers(out: &ChartOutput, name: &str) -> Vec<f64> {
+    match derived_column(out, name) {
+        DerivedColumn::Number(v) => v.clone(),
+        other => panic!("derived column {name} is not numeric: {other:?}"),
+    }
+}
+
+/// A text column of a chart's derived table.
+pub fn texts(out: &ChartOutput, name: &str) -> Vec<String> {
+    match derived_column(out, name) {
+        DerivedColumn::Text(v) => v.clone(),
+        other => panic!("derived column {name} is not text: {other:?}"),
+    }
+}

@@ -1,8 +1,8 @@
 //! The `heatmap` kind against hand-computed cells: aggregates, empty pairs, cell geometry,
 //! ordering, label contrast, and bad input.
 
-use crate::common::{Fixture, bars, derived_column, plot};
-use dataink::mark::{ChartOutput, DerivedColumn};
+use crate::common::{Fixture, bars, numbers, plot, texts};
+use dataink::mark::ChartOutput;
 use dataink::scene::{Item, Role, Shape};
 
 /// Columns c (x), r (y) and v: cell (p, a) has 1 and 3, (p, b) has 5, (q, a) has 2; (q, b) none.
@@ -13,20 +13,6 @@ fn draw(csv: &str, extra: &str) -> Result<ChartOutput, String> {
         "[data.d]\npath = \"d.csv\"\n\n[[chart]]\nname = \"h\"\nkind = \"heatmap\"\ndata = \"d\"\nsize = [500, 400]\nx = \"c\"\ny = \"r\"\n{extra}"
     );
     Fixture::new(&spec, &[("d.csv", csv.as_bytes())]).draw().map(|mut v| v.remove(0))
-}
-
-fn numbers(out: &ChartOutput, name: &str) -> Vec<f64> {
-    match derived_column(out, name) {
-        DerivedColumn::Number(v) => v.clone(),
-        other => panic!("{name}: {other:?}"),
-    }
-}
-
-fn texts(out: &ChartOutput, name: &str) -> Vec<String> {
-    match derived_column(out, name) {
-        DerivedColumn::Text(v) => v.clone(),
-        other => panic!("{name}: {other:?}"),
-    }
 }
 
 /// The cell labels drawn: (text, colour).

@@ -2,8 +2,8 @@
 //! rows, densities integrating to one, cumulative ends, stacked and grouped bars, the domain,
 //! the selection, and bad input.
 
-use crate::common::{Fixture, bars, derived_column, plot};
-use dataink::mark::{ChartOutput, DerivedColumn};
+use crate::common::{Fixture, bars, numbers, plot, texts};
+use dataink::mark::ChartOutput;
 
 /// A histogram of `d.csv` (written from `csv`) with extra chart keys.
 fn spec(extra: &str) -> String {
@@ -24,20 +24,6 @@ fn draw_err(csv: &str, extra: &str) -> String {
     match draw(csv, extra) {
         Ok(_) => panic!("expected an error"),
         Err(e) => e,
-    }
-}
-
-fn numbers<'a>(out: &'a ChartOutput, name: &str) -> &'a [f64] {
-    match derived_column(out, name) {
-        DerivedColumn::Number(v) => v,
-        other => panic!("column {name} is not numeric: {other:?}"),
-    }
-}
-
-fn texts<'a>(out: &'a ChartOutput, name: &str) -> &'a [String] {
-    match derived_column(out, name) {
-        DerivedColumn::Text(v) => v,
-        other => panic!("column {name} is not text: {other:?}"),
     }
 }
 
@@ -144,7 +130,7 @@ fn layered_and_dodged_groups_are_each_normalised_and_dodged_bars_share_their_bin
     let groups = texts(&layered, "species");
     let heights = numbers(&layered, "height");
     for species in ["setosa", "versicolor", "virginica"] {
-        let sum: f64 = groups.iter().zip(heights).filter(|(g, _)| *g == species).map(|(_, h)| h).sum();
+        let sum: f64 = groups.iter().zip(&heights).filter(|(g, _)| *g == species).map(|(_, h)| h).sum();
         assert!(close(sum, 100.0), "{species}: {sum}");
     }
     let dodged = draw_ok(&csv, "x = \"x\"\ncolor = \"species\"\nposition = \"dodge\"\nstep = 0.5");
