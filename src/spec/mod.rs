@@ -654,6 +654,7 @@ point_size = "d"
                         stroke_width: Some(1.5),
                         scheme: Some("okabe-ito".to_owned()),
                         mark_color: Some("black".to_owned()),
+                        band: None,
                     }),
                 },
                 Chart {
@@ -685,6 +686,7 @@ point_size = "d"
                         stroke_width: None,
                         scheme: None,
                         mark_color: None,
+                        band: None,
                     }),
                 },
                 Chart {
