@@ -358,7 +358,9 @@ fn check_scales(options: &BarOptions, y_col: &Column) -> Result<(), MarkError> {
 /// `domain` wins; 0–100 % for normalised stacks. Its title says "Sum of" when some bar adds up
 /// several rows, or "Share of … (%)" for normalised stacks, unless the spec names a title.
 fn value_axis(y_opts: &crate::spec::ChannelOptions, bars: &[Bar], summed: bool, stack: BarStack) -> PositionAxis {
-    let (mut lo, mut hi) = encode::finite_extent(bars.iter().flat_map(|b| [b.from, b.to])).unwrap_or((0.0, 0.0));
+    // A bar's start counts only when stacked on another: zero is the axis's choice (`zero`).
+    let ends = bars.iter().map(|b| b.to).chain(bars.iter().filter(|b| b.from != 0.0).map(|b| b.from));
+    let (mut lo, mut hi) = encode::finite_extent(ends).unwrap_or((0.0, 0.0));
     if y_opts.zero != Some(false) {
         lo = lo.min(0.0);
         hi = hi.max(0.0);
