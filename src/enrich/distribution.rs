@@ -55,9 +55,31 @@ pub fn sorted_finite(values: &[f64]) -> Vec<f64> {
 
 /// Quartiles (25th and 75th percentile, linear interpolation: type 7) of finite values.
 pub fn quartiles(values: &[f64]) -> Option<(f64, f64)> {
-    let v = sorted_finite(values);
-    let at = |p: f64| quantile_sorted(&v, p, QuantileMethod::Linear);
-    Some((at(0.25)?, at(0.75)?))
+    let mut v: Vec<f64> = values.iter().copied().filter(|x| x.is_finite()).collect();
+    quartiles_in_place(&mut v)
+}
+
+/// [`quartiles`] of values that are all finite, found by selection in O(n) rather than by
+/// sorting; reorders them.
+pub fn quartiles_in_place(v: &mut [f64]) -> Option<(f64, f64)> {
+    if v.is_empty() {
+        return None;
+    }
+    let q1 = percentile_in_place(v, 0.25);
+    let q3 = percentile_in_place(v, 0.75);
+    Some((q1, q3))
+}
+
+/// The `q` quantile (0 ≤ q ≤ 1, type 7) of finite, non-empty `v`, reordering it.
+fn percentile_in_place(v: &mut [f64], q: f64) -> f64 {
+    let pos = q * (v.len() - 1) as f64;
+    let i = pos.floor() as usize;
+    let frac = pos - i as f64;
+    let (_, &mut at, above) = v.select_nth_unstable_by(i, f64::total_cmp);
+    match above.iter().copied().min_by(f64::total_cmp) {
+        Some(next) if frac > 0.0 => at + frac * (next - at),
+        _ => at,
+    }
 }
 
 /// Tukey's fences: the values `k` interquartile ranges below the first and above the third

@@ -21,7 +21,7 @@ pub fn bin_count(rule: BinRule, finite: &mut [f64], lo: f64, hi: f64, max_bins: 
     let n = finite.len();
     let sturges = || if n == 0 { 1 } else { ((n as f64).log2() + 1.0).ceil() as usize };
     let mut fd = || {
-        let (q1, q3) = quartiles_in_place(finite)?;
+        let (q1, q3) = super::distribution::quartiles_in_place(finite)?;
         let width = 2.0 * (q3 - q1) / (n as f64).cbrt();
         (width > 0.0 && hi > lo).then(|| ((hi - lo) / width).ceil()).filter(|c| c.is_finite()).map(|c| c as usize)
     };
@@ -32,36 +32,6 @@ pub fn bin_count(rule: BinRule, finite: &mut [f64], lo: f64, hi: f64, max_bins: 
         BinRule::Auto => fd().map_or_else(sturges, |f| f.max(sturges())),
     };
     count.clamp(1, max_bins.max(1))
-}
-
-/// The 25th and 75th percentiles of the finite `values` by linear interpolation between order
-/// statistics (numpy's default, R's type 7).
-pub fn quartiles(values: &[f64]) -> Option<(f64, f64)> {
-    let mut v: Vec<f64> = values.iter().copied().filter(|x| x.is_finite()).collect();
-    quartiles_in_place(&mut v)
-}
-
-/// [`quartiles`] of values that are all finite, found by selection in O(n) rather than by
-/// sorting; reorders them.
-pub fn quartiles_in_place(v: &mut [f64]) -> Option<(f64, f64)> {
-    if v.is_empty() {
-        return None;
-    }
-    let q1 = percentile_in_place(v, 0.25);
-    let q3 = percentile_in_place(v, 0.75);
-    Some((q1, q3))
-}
-
-/// The `q` quantile (0 ≤ q ≤ 1, linear interpolation) of finite, non-empty `v`, reordering it.
-fn percentile_in_place(v: &mut [f64], q: f64) -> f64 {
-    let pos = q * (v.len() - 1) as f64;
-    let i = pos.floor() as usize;
-    let frac = pos - i as f64;
-    let (_, &mut at, above) = v.select_nth_unstable_by(i, f64::total_cmp);
-    match above.iter().copied().min_by(f64::total_cmp) {
-        Some(next) if frac > 0.0 => at + frac * (next - at),
-        _ => at,
-    }
 }
 
 /// `bins + 1` equally spaced edges from `lo` to `hi`, both exact (as numpy's `linspace`). An
@@ -120,6 +90,7 @@ pub const OUTSIDE: u32 = u32::MAX;
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::enrich::distribution::{QuantileMethod, quantile_sorted, quartiles, sorted_finite};
 
     /// The 150 sepal lengths of the iris data set (examples/data/iris.csv), in file order.
     const SEPAL_LENGTH: [f64; 150] = [
@@ -197,7 +168,9 @@ mod tests {
         };
         for n in [1, 2, 3, 4, 5, 10, 101, 1000] {
             let v: Vec<f64> = (0..n).map(|_| (next() * 20.0).round() / 4.0).collect();
-            assert_eq!(quartiles(&v), super::super::distribution::quartiles(&v), "n = {n}");
+            let sorted = sorted_finite(&v);
+            let at = |p| quantile_sorted(&sorted, p, QuantileMethod::Linear);
+            assert_eq!(quartiles(&v), Some((at(0.25).unwrap(), at(0.75).unwrap())), "n = {n}");
         }
         assert_eq!(quartiles(&SEPAL_LENGTH), Some((5.1, 6.4)));
         assert_eq!(quartiles(&[f64::NAN]), None);
