@@ -217,7 +217,7 @@ y = "petal_width"
         assert_eq!(
             diags[0].hint.as_deref(),
             Some(
-                "keys allowed here: name, data, kind, x, y, aspect, caption, color, font_size, highlight, lint, mark_color, opacity, point_size, radius, size, title, tooltip, trend"
+                "keys allowed here: name, data, kind, x, y, aspect, caption, color, facet, font_size, highlight, lint, mark_color, opacity, point_size, radius, size, title, tooltip, trend"
             )
         );
         assert_eq!(
@@ -236,7 +236,7 @@ y = "petal_width"
    |
 12 | colour = "species"
    | ^^^^^^ did you mean `color`?
-   = hint: keys allowed here: name, data, kind, x, y, aspect, caption, color, font_size, highlight, lint, mark_color, opacity, point_size, radius, size, title, tooltip, trend
+   = hint: keys allowed here: name, data, kind, x, y, aspect, caption, color, facet, font_size, highlight, lint, mark_color, opacity, point_size, radius, size, title, tooltip, trend
 
 error: `size` must be an array of 2 numbers, found a string
   --> spec.toml:13:8
@@ -476,6 +476,7 @@ radius = 3.5
 mark_color = "#336699"
 opacity = 0.7
 tooltip = ["species", "petal_length"]
+facet = { row = "sex", column = "island", resolve = { y = "independent" }, sort = "data" }
 trend = { method = "loess", span = 0.5, groups = true, equation = false }
 
 [[chart]]
@@ -584,6 +585,14 @@ point_size = "d"
                     font_size: Some(12.0),
                     aspect: Some(Aspect::Equal),
                     tooltip: Some(Tooltip::Fields(vec!["species".to_owned(), "petal_length".to_owned()])),
+                    facet: Some(Facet::Detailed(FacetOptions {
+                        row: Some("sex".to_owned()),
+                        column: Some("island".to_owned()),
+                        wrap: None,
+                        resolve: Some(FacetResolve { x: None, y: Some(Sharing::Independent) }),
+                        sort: Some(FacetSort::Data),
+                    })),
+                    panel: None,
                     kind: ChartKind::Scatter(ScatterOptions {
                         x: Channel::Detailed(ChannelOptions {
                             field: "sepal_length".to_owned(),
@@ -637,6 +646,8 @@ point_size = "d"
                     highlight: None,
                     lint: None,
                     tooltip: None,
+                    facet: None,
+                    panel: None,
                     kind: ChartKind::Line(LineOptions {
                         x: field("x"),
                         y: OneOrMany::Many(vec![
@@ -668,6 +679,8 @@ point_size = "d"
                     highlight: None,
                     lint: None,
                     tooltip: None,
+                    facet: None,
+                    panel: None,
                     kind: ChartKind::Line(LineOptions {
                         x: Channel::Detailed(ChannelOptions {
                             field: "x".to_owned(),
@@ -700,6 +713,8 @@ point_size = "d"
                     highlight: None,
                     lint: None,
                     tooltip: None,
+                    facet: None,
+                    panel: None,
                     kind: ChartKind::Scatter(ScatterOptions {
                         x: field("a"),
                         y: field("b"),

@@ -384,7 +384,7 @@ fn derived_table(
 }
 
 /// `kind = "area"`.
-pub static KIND: KindInfo = KindInfo::new("area", &["x", "y", "color"]);
+pub static KIND: KindInfo = KindInfo::new("area", &["x", "y", "color"]).faceted(crate::mark::registry::Faceting::Frame);
 
 impl Technique for AreaOptions {
     fn info(&self) -> &'static KindInfo {
