@@ -78,6 +78,9 @@ pub struct FixedPlot {
     pub x_labels: bool,
     /// Whether the y axis has tick labels (else only its line and tick marks).
     pub y_labels: bool,
+    /// How far x and y tick labels may reach past the plot's ends (half the gap to the next
+    /// panel across and along).
+    pub overhang: (f64, f64),
 }
 
 /// A laid-out frame: the plot area, its scales, and the guide items to draw under and over the data.
@@ -229,6 +232,20 @@ pub fn axis_room(axis: &PositionAxis, side: Side, length: f64, title: Option<&st
     }
 }
 
+/// The width of the widest tick label `axis` draws along a side `length` pixels long: the gap
+/// small multiples keep between panels so their end labels do not meet.
+pub fn widest_tick_label(axis: &PositionAxis, side: Side, length: f64, theme: &Theme) -> f64 {
+    let target = match side {
+        Side::Bottom => x_target(length, theme),
+        Side::Left => y_target(length, theme),
+    };
+    let Ok(scale) = build_scale(axis, (0.0, length.max(1.0)), target) else { return 0.0 };
+    axis::visible_ticks(&scale, side, theme)
+        .iter()
+        .map(|t| measure(&t.label, theme.font_size).width)
+        .fold(0.0, f64::max)
+}
+
 /// The frame of a facet panel: scales over its fixed plot area, grid, and axes labelled only
 /// on the sides asked for.
 fn fixed_frame(spec: &FrameSpec, fixed: FixedPlot) -> Result<Frame, LayoutError> {
@@ -252,9 +269,13 @@ fn fixed_frame(spec: &FrameSpec, fixed: FixedPlot) -> Result<Frame, LayoutError>
         under.extend(axis::grid(&y, Side::Left, plot, theme));
     }
     let mut over = Vec::new();
-    for (scale, side, labelled) in [(&x, Side::Bottom, fixed.x_labels), (&y, Side::Left, fixed.y_labels)] {
+    let (ox, oy) = fixed.overhang;
+    let spans = [(plot.x - ox, plot.right() + ox), (plot.y - oy, plot.bottom() + oy)];
+    for ((scale, side, labelled), span) in
+        [(&x, Side::Bottom, fixed.x_labels), (&y, Side::Left, fixed.y_labels)].into_iter().zip(spans)
+    {
         over.extend(match labelled {
-            true => axis::draw(scale, side, plot, None, theme),
+            true => axis::draw_within(scale, side, plot, None, theme, span),
             false => axis::draw_unlabelled(scale, side, plot, theme),
         });
     }

@@ -233,3 +233,25 @@ fn bad_facets_give_the_documented_errors() {
     .unwrap_or_default();
     assert!(e.contains("cannot be faceted"), "{e}");
 }
+
+#[test]
+fn end_labels_of_neighbouring_panels_keep_apart() {
+    // Years 1955–2005 tick at 1950, 1980, 2010: the panels' end labels meet in the gap between
+    // them, which must keep them apart (LB002) without dropping them (SC001).
+    let mut csv = String::from("year,value,group\n");
+    for g in ["a", "b", "c"] {
+        for (k, year) in (1955..=2005).step_by(5).enumerate() {
+            csv.push_str(&format!("{year},{},{g}\n", k * 3 + g.len()));
+        }
+    }
+    let spec = "[data.d]\npath = \"d.csv\"\n\n[[chart]]\nname = \"c\"\nkind = \"line\"\ndata = \"d\"\ntitle = \"T\"\nx = \"year\"\ny = \"value\"\nfacet = \"group\"\nsize = [760, 300]";
+    let codes = lint_codes(spec, &[("d.csv", csv.as_bytes())]);
+    assert!(!codes.contains(&"LB002") && !codes.contains(&"SC001"), "{codes:?}");
+    let out = Fixture::new(spec, &[("d.csv", csv.as_bytes())])
+        .draw()
+        .map(|mut v| v.remove(0))
+        .unwrap_or_else(|e| panic!("{e}"));
+    for (name, items) in panels(&out) {
+        assert!(ticks(items, "x axis").len() >= 2, "{name} labels its x axis");
+    }
+}

@@ -4,7 +4,7 @@
 
 use crate::guide::Theme;
 use crate::guide::axis::Side;
-use crate::guide::layout::{MIN_PLOT_SIDE, PositionAxis, axis_room};
+use crate::guide::layout::{MIN_PLOT_SIDE, PositionAxis, axis_room, widest_tick_label};
 use crate::guide::legend::{self, Legend, truncate_to_width};
 use crate::mark::MarkError;
 use crate::mark::frame::title_and_caption;
@@ -34,6 +34,9 @@ pub struct GridLayout {
     pub x_labels: Vec<bool>,
     /// Whether each panel labels its y axis.
     pub y_labels: Vec<bool>,
+    /// How far x and y tick labels may reach past a panel's plot and still leave a gap to the
+    /// neighbour's labels.
+    pub overhang: (f64, f64),
     /// The background, drawn first.
     pub under: Vec<Item>,
     /// Title, caption, headers, axis titles and legends, drawn after the panels.
@@ -76,8 +79,11 @@ pub fn layout(
             bottom = m + caption_h + axis_room(a.x, Side::Bottom, panel.0, Some(&a.x.title), &theme);
             let y_labels = axis_room(a.y, Side::Left, panel.1, None, &theme);
             let x_labels = axis_room(a.x, Side::Bottom, panel.0, None, &theme);
+            // End labels of neighbouring x axes meet in the gap: it is as wide as the widest label.
+            let x_label = widest_tick_label(a.x, Side::Bottom, panel.0, &theme) + theme.font_size;
             hgap = if a.y_independent { y_labels + theme.font_size * 1.5 } else { theme.font_size * 2.0 };
-            vgap = if a.x_independent { x_labels + theme.font_size * 0.5 } else { theme.font_size * 0.8 };
+            hgap = hgap.max(x_label);
+            vgap = if a.x_independent { x_labels + theme.font_size * 0.5 } else { theme.font_size * 1.3 };
         }
         let free_w = width - left - m - legend_room - row_strip - (nc - 1) as f64 * hgap;
         let free_h = height - top - bottom - headers_total - (nr - 1) as f64 * vgap;
@@ -180,7 +186,14 @@ pub fn layout(
         }
     }
     over.extend(legend::draw_stack(legends, Point::new(width - m - legend_w, top), &theme, room));
-    Ok(GridLayout { areas, x_labels, y_labels, under, over })
+    Ok(GridLayout {
+        areas,
+        x_labels,
+        y_labels,
+        overhang: (hgap / 2.0 - theme.font_size * 0.3, vgap / 2.0 - theme.font_size * 0.1),
+        under,
+        over,
+    })
 }
 
 /// The canvas size of a faceted chart when the spec gives none: room for each panel, the

@@ -165,6 +165,7 @@ fn frame_panels(parts: &Parts<'_>, x_independent: bool, y_independent: bool) -> 
             plot: Some(layout.areas[i]),
             x_labels: layout.x_labels[i],
             y_labels: layout.y_labels[i],
+            overhang: layout.overhang,
             ..Panel::default()
         };
         (panel, size)

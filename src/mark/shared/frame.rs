@@ -35,7 +35,12 @@ pub fn cartesian(
         if let Some(domain) = &panel.y {
             y.domain = domain.clone();
         }
-        fixed = panel.plot.map(|plot| FixedPlot { plot, x_labels: panel.x_labels, y_labels: panel.y_labels });
+        fixed = panel.plot.map(|plot| FixedPlot {
+            plot,
+            x_labels: panel.x_labels,
+            y_labels: panel.y_labels,
+            overhang: panel.overhang,
+        });
     }
     let frame = layout::cartesian(&FrameSpec {
         width,

@@ -26,6 +26,8 @@ pub struct Panel {
     pub x_labels: bool,
     /// Whether the y axis carries tick labels (left panels, or every panel of an unshared y).
     pub y_labels: bool,
+    /// How far tick labels may reach past the plot's ends without running into a neighbour.
+    pub overhang: (f64, f64),
     /// What the panel drew, recorded as it drew it.
     pub(crate) seen: Mutex<Seen>,
 }
