@@ -6,7 +6,8 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 cargo build --release --quiet
 mkdir -p target/bench/out
-[ -f benches/data/points.csv ] || python3 benches/make_points.py benches/data/points.csv 1000000
+# (Re)made when missing or written before it had the `panel` column.
+head -1 benches/data/points.csv 2>/dev/null | grep -q panel || python3 benches/make_points.py benches/data/points.csv 1000000
 
 echo "== 1M-point scatter to a 1000x1000 PNG, whole process (CSV read included)"
 hyperfine --warmup 2 --runs 10 --export-markdown target/bench/scatter_1m.md \
@@ -18,6 +19,11 @@ echo "== histogram of 1M values (auto bins) to an 800x500 PNG, whole process (CS
 hyperfine --warmup 2 --runs 10 --export-markdown target/bench/histogram_1m.md \
   -n dataink 'target/release/dataink render benches/histogram_1m.toml --format png --out target/bench/out --quiet' \
   -n pandas+matplotlib-hist 'python3 benches/peer_matplotlib_hist.py benches/data/points.csv target/bench/out/peer_hist.png'
+
+echo "== 1M points faceted into 10 scatter panels (shared scales) to a 1600x1000 PNG, whole process (CSV read included)"
+hyperfine --warmup 2 --runs 10 --export-markdown target/bench/facet_1m.md \
+  -n dataink 'target/release/dataink render benches/facet_1m.toml --format png --out target/bench/out --quiet' \
+  -n pandas+matplotlib-subplots 'python3 benches/peer_matplotlib_facet.py benches/data/points.csv target/bench/out/peer_facet.png'
 
 echo "== small line chart to SVG + PNG, whole cold process"
 hyperfine -N --warmup 5 --runs 50 --export-markdown target/bench/line_small.md \

@@ -205,6 +205,12 @@ fn bars_and_boxes_facet_with_categories_in_place() {
     );
     assert_eq!(panels(&parallel).len(), 3);
     assert!(parallel.scene.width > 900.0, "room for three panels: {}", parallel.scene.width);
+    // Each column's axis spans every species' values in every panel.
+    let y: Vec<Vec<String>> = panels(&parallel).iter().map(|(_, items)| ticks(items, "y axis")).collect();
+    assert!(!y[0].is_empty() && y.iter().all(|t| *t == y[0]), "{y:?}");
+    let spec_text = spec("kind = \"parallel\"\ncolumns = [\"sepal_length\", \"petal_length\"]\nfacet = \"species\"");
+    let codes = lint_codes(&spec_text, &[("iris.csv", &iris())]);
+    assert!(!codes.contains(&"CM001"), "{codes:?}");
 }
 
 #[test]

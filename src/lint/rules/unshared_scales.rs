@@ -11,7 +11,7 @@
 
 use crate::lint::{Category, Issue, Rule, Severity, Subject};
 use crate::mark::grid::section::SectionLayout;
-use crate::scene::{PathCmd, Role, Scene, Shape};
+use crate::scene::{Item, PathCmd, Role, Scene, Shape};
 use crate::spec::ChartKind;
 
 /// The rule.
@@ -27,18 +27,28 @@ pub static RULE: Rule = Rule {
 /// The y-axis tick labels of each panel of a scene, top panel first: one list per axis line
 /// labelled `y axis`, holding the labels beside it (left of it, within its vertical extent).
 pub fn panel_tick_labels(scene: &Scene) -> Vec<Vec<String>> {
-    axis_tick_labels(scene, "y axis")
+    axis_tick_labels(&scene.items, "y axis")
+}
+
+/// Visit `items` and their children depth-first.
+fn walk<'a>(items: &'a [Item], visit: &mut impl FnMut(&'a Item)) {
+    for item in items {
+        visit(item);
+        if let Shape::Group { items, .. } = &item.shape {
+            walk(items, visit);
+        }
+    }
 }
 
 /// The tick labels of each axis line labelled `axis` (`"x axis"` or `"y axis"`), in the order
 /// of the lines (top to bottom, then left to right): the labels left of a y axis within its
 /// vertical extent, or below an x axis within its horizontal extent.
-pub fn axis_tick_labels(scene: &Scene, axis: &str) -> Vec<Vec<String>> {
+pub fn axis_tick_labels(items: &[Item], axis: &str) -> Vec<Vec<String>> {
     let vertical = axis == "y axis";
     // An axis line as (position across it, start, end along it).
     let mut axes: Vec<(f64, f64, f64)> = Vec::new();
     let mut labels: Vec<(f64, f64, String)> = Vec::new();
-    scene.walk(|item| {
+    walk(items, &mut |item: &Item| {
         if item.label.as_deref() != Some(axis) {
             return;
         }
@@ -78,12 +88,28 @@ pub fn axis_tick_labels(scene: &Scene, axis: &str) -> Vec<Vec<String>> {
         .collect()
 }
 
-/// CM001 for a faceted chart: the panels that label an axis should label it alike.
+/// CM001 for a faceted chart: the panels that label an axis should label it alike (each
+/// panel's axes of that name compared in order: one per frame, one per column of parallel
+/// coordinates).
 fn check_facets(s: &Subject<'_>) -> Vec<Issue> {
+    let groups: Vec<&[Item]> = s
+        .output
+        .scene
+        .items
+        .iter()
+        .filter(|i| i.label.as_deref().is_some_and(|l| l.starts_with("panel: ")))
+        .filter_map(|i| match &i.shape {
+            Shape::Group { items, .. } => Some(items.as_slice()),
+            _ => None,
+        })
+        .collect();
     let mut issues = Vec::new();
     for (axis, key) in [("x axis", "x"), ("y axis", "y")] {
-        let panels: Vec<Vec<String>> =
-            axis_tick_labels(&s.output.scene, axis).into_iter().filter(|p| !p.is_empty()).collect();
+        let panels: Vec<Vec<Vec<String>>> = groups
+            .iter()
+            .map(|items| axis_tick_labels(items, axis))
+            .filter(|lines| lines.iter().any(|l| !l.is_empty()))
+            .collect();
         let Some(first) = panels.first() else { continue };
         let differing = panels.iter().filter(|p| *p != first).count();
         if differing == 0 {

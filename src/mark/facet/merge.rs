@@ -32,6 +32,20 @@ pub fn union_axis<'a>(axes: impl Iterator<Item = &'a PositionAxis>) -> Option<Po
     union
 }
 
+/// The domain of each column axis over every panel, by column (columns in first-seen order).
+pub fn union_columns<'a>(lists: impl Iterator<Item = &'a [(String, PositionAxis)]>) -> Vec<(String, Domain)> {
+    let mut by_field: Vec<(String, Vec<&PositionAxis>)> = Vec::new();
+    for list in lists {
+        for (field, axis) in list {
+            match by_field.iter_mut().find(|(f, _)| f == field) {
+                Some((_, axes)) => axes.push(axis),
+                None => by_field.push((field.clone(), vec![axis])),
+            }
+        }
+    }
+    by_field.into_iter().filter_map(|(field, axes)| Some((field, union_axis(axes.into_iter())?.domain))).collect()
+}
+
 /// Add the items of `more` missing from `have`, each after the item it follows in `more`, so
 /// that orders the lists agree on are kept.
 fn merge_in_order<T: Clone>(have: &mut Vec<T>, more: &[T], same: impl Fn(&T, &T) -> bool) {

@@ -178,13 +178,15 @@ fn frame_panels(parts: &Parts<'_>, x_independent: bool, y_independent: bool) -> 
 fn canvas_panels(parts: &Parts<'_>) -> Result<ChartOutput, MarkError> {
     let measured = parts.draw_all(|_| (Panel::default(), FRAME_SIZE))?;
     let legends = merge::union_legends(measured.iter().map(|(_, s)| s.legends.as_slice()), &parts.colour_order);
+    let columns = merge::union_columns(measured.iter().map(|(_, s)| s.columns.as_slice()));
     drop(measured);
     let mut chart = parts.cx.chart.clone();
     chart.size = Some(parts.size(false, !legends.is_empty()));
     let layout = grid::layout(&chart, parts.split, None, &legends)?;
     let size = chart.size.unwrap_or(FRAME_SIZE);
     let areas = layout.areas.clone();
-    let drawn = parts.draw_all(|i| (Panel::default(), [areas[i].w, areas[i].h]))?;
+    let drawn =
+        parts.draw_all(|i| (Panel { columns: columns.clone(), ..Panel::default() }, [areas[i].w, areas[i].h]))?;
     let mut outputs: Vec<ChartOutput> = drawn.into_iter().map(|(o, _)| o).collect();
     for (output, area) in outputs.iter_mut().zip(&areas) {
         // The panel's own interactive geometry is in its own coordinates; none is offered.

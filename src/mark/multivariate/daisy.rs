@@ -80,7 +80,10 @@ pub fn draw(
         &rows,
         Symbol::Line,
     )?;
-    let axes = encode::column_axes(&columns, &rows)?;
+    let mut axes = encode::column_axes(&columns, &rows)?;
+    if let Some(panel) = &chart.panel {
+        panel.share_columns(&columns.iter().map(|(o, _)| o.field.as_str()).collect::<Vec<_>>(), &mut axes);
+    }
     let mut legends: Vec<Legend> = color_legend.into_iter().collect();
     legends.extend(highlight.map(|h| highlight::legend(h, &rows, Symbol::Line)));
     let canvas = frame::PanelCanvas::new(chart, legends);

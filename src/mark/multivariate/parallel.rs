@@ -98,6 +98,9 @@ pub fn draw(
         Symbol::Line,
     )?;
     let mut axes = encode::column_axes(&columns, &rows)?;
+    if let Some(panel) = &chart.panel {
+        panel.share_columns(&columns.iter().map(|(o, _)| o.field.as_str()).collect::<Vec<_>>(), &mut axes);
+    }
     if options.shared_scale == Some(true) {
         share_domain(&mut axes);
     }

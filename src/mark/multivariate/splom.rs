@@ -161,6 +161,9 @@ pub fn draw(
         }
         axes.push(axis);
     }
+    if let Some(panel) = &chart.panel {
+        panel.share_columns(&columns.iter().map(|(o, _)| o.field.as_str()).collect::<Vec<_>>(), &mut axes);
+    }
     let mut legends: Vec<Legend> = color_legend.into_iter().collect();
     if density {
         // Bins hold at most every row; the real maximum replaces this bound once counted, so the

@@ -20,6 +20,9 @@ pub struct Panel {
     pub y: Option<Domain>,
     /// The range a continuous colour map spans in every panel (`None`: the panel's own).
     pub color: Option<(f64, f64)>,
+    /// The domain every panel uses on each column's axis (parallel coordinates, daisy, splom),
+    /// by column; empty: the panel's own.
+    pub columns: Vec<(String, Domain)>,
     /// Where the plot area lies on the canvas (`None` while measuring).
     pub plot: Option<Rect>,
     /// Whether the x axis carries tick labels (bottom panels, or every panel of an unshared x).
@@ -41,6 +44,8 @@ pub struct Seen {
     pub y: Option<PositionAxis>,
     /// Its legends (drawn once beside the panels instead).
     pub legends: Vec<Legend>,
+    /// Its column axes, by column (kinds with one axis per column).
+    pub columns: Vec<(String, PositionAxis)>,
 }
 
 impl Panel {
@@ -49,6 +54,17 @@ impl Panel {
         let mut seen = self.seen.lock().unwrap_or_else(|e| e.into_inner());
         seen.x = Some(x.clone());
         seen.y = Some(y.clone());
+    }
+
+    /// Record the axes of the panel's columns and give them the shared domains, if set.
+    pub fn share_columns(&self, fields: &[&str], axes: &mut [PositionAxis]) {
+        let mut seen = self.seen.lock().unwrap_or_else(|e| e.into_inner());
+        for (field, axis) in fields.iter().zip(axes.iter_mut()) {
+            seen.columns.push((field.to_string(), axis.clone()));
+            if let Some((_, domain)) = self.columns.iter().find(|(f, _)| f == field) {
+                axis.domain = domain.clone();
+            }
+        }
     }
 
     /// Record the panel's legends.
