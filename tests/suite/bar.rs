@@ -304,3 +304,47 @@ fn normalising_without_groups_is_refused() {
     let e = draw_err(GROUPS, "x = \"k\"\ny = \"v\"\nstack = \"normalize\"");
     assert!(e.contains("the chart has no `color`"), "{e}");
 }
+
+#[test]
+fn horizontal_bars_run_right_from_zero_with_the_first_category_on_top() {
+    let out = draw_ok(SUMS, "x = \"k\"\ny = \"v\"\norientation = \"horizontal\"\n");
+    let p = plot(&out);
+    let drawn = bars(&out);
+    let labels: Vec<&str> = drawn.iter().map(|b| b.0.as_str()).collect();
+    assert_eq!(labels, ["a", "b", "c"]);
+    // Every bar starts at the plot's left edge (zero) and its length is proportional to its sum.
+    assert!(drawn.iter().all(|(_, r, _)| close(r.x, p.x)), "{drawn:?}");
+    let per_unit = drawn[0].1.w / 30.0;
+    assert!(close(drawn[1].1.w, 40.0 * per_unit) && close(drawn[2].1.w, 20.0 * per_unit));
+    // Equal bands down the plot, a on top.
+    assert!(drawn[0].1.y < drawn[1].1.y && drawn[1].1.y < drawn[2].1.y);
+    assert!(close(drawn[1].1.y - drawn[0].1.y, drawn[2].1.y - drawn[1].1.y));
+    assert!(close(drawn[0].1.h, drawn[1].1.h));
+    // The categories label the y axis, the values the x axis.
+    assert_eq!(tick_labels(&out, "y axis"), ["c", "b", "a"], "bottom to top");
+    assert_eq!(tick_labels(&out, "x axis").first().map(String::as_str), Some("0"));
+}
+
+#[test]
+fn horizontal_normalised_stacks_fill_the_plot_and_di001_reads_their_lengths() {
+    let csv = "k,g,v\na,p,1\na,q,3\nb,p,2\nb,q,2\n";
+    let out =
+        draw_ok(csv, "x = \"k\"\ny = \"v\"\ncolor = \"g\"\nstack = \"normalize\"\norientation = \"horizontal\"\n");
+    let p = plot(&out);
+    for category in ["a", "b"] {
+        let width: f64 = bars(&out).iter().filter(|b| b.0.starts_with(category)).map(|b| b.1.w).sum();
+        assert!((width - p.w).abs() < 1e-6, "{category}: {width} of {}", p.w);
+    }
+    // A value axis that leaves zero out is reported whichever way the bars run.
+    let codes = crate::common::lint_codes(
+        &spec("x = \"k\"\ny = { field = \"v\", zero = false }\norientation = \"horizontal\"\n"),
+        &[("d.csv", SUMS.as_bytes())],
+    );
+    assert!(codes.contains(&"DI001"), "{codes:?}");
+    let honest = crate::common::lint_findings(
+        &spec("x = \"k\"\ny = \"v\"\norientation = \"horizontal\"\n"),
+        &[("d.csv", SUMS.as_bytes())],
+        "DI001",
+    );
+    assert!(honest.is_empty(), "{honest:?}");
+}

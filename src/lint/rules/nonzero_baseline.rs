@@ -48,6 +48,7 @@ fn check(s: &Subject<'_>) -> Vec<Issue> {
     let ChartKind::Bar(options) = &s.chart.kind else { return Vec::new() };
     let y = options.y.options();
     let Some(values) = s.table.column(&y.field).and_then(|c| c.numbers()) else { return Vec::new() };
+    let horizontal = options.orientation == Some(crate::mark::grouped::Orientation::Horizontal);
     let mut bars = Vec::new();
     s.output.scene.walk(|item| {
         if item.role == Role::DataMark
@@ -55,9 +56,13 @@ fn check(s: &Subject<'_>) -> Vec<Issue> {
             && !item.rows.is_empty()
         {
             let value = item.rows.iter().filter_map(|&row| values.get(row as usize)).sum();
-            bars.push(DrawnBar { label: item.label.clone().unwrap_or_default(), value, top: r.y, bottom: r.bottom() });
+            // A horizontal bar's ends, mirrored so that "up" is away from the baseline as for
+            // a vertical one.
+            let (top, bottom) = if horizontal { (-r.right(), -r.x) } else { (r.y, r.bottom()) };
+            bars.push(DrawnBar { label: item.label.clone().unwrap_or_default(), value, top, bottom });
         }
     });
+    let value_axis = if horizontal { "x axis" } else { "y axis" };
     let key = if y.domain.is_some() {
         "y.domain"
     } else if y.zero == Some(false) {
@@ -99,7 +104,7 @@ fn check(s: &Subject<'_>) -> Vec<Issue> {
         // One bar height only: the lengths cannot be checked, the spec can.
         return if spec_excludes_zero {
             vec![Issue::new(
-                "y axis",
+                value_axis,
                 key,
                 "the value axis of the bars does not start at zero, so their lengths are not proportional to their values",
                 hint,
@@ -132,7 +137,7 @@ fn check(s: &Subject<'_>) -> Vec<Issue> {
     };
     let factor_text = if factor.is_finite() { format!("{factor:.2}") } else { "∞".to_string() };
     vec![Issue::new(
-        "y axis",
+        value_axis,
         key,
         format!(
             "the value axis of the bars {start}: {shown} only {:.2}× as large; \

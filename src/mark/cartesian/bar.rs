@@ -1,5 +1,6 @@
-//! `bar`: vertical bars, one per category of `x`, grouped side by side or stacked (to totals or to
-//! 100%) by a categorical `color`, categories in data order or sorted by their totals.
+//! `bar`: bars, one per category of `x`, vertical or horizontal, grouped side by side or stacked
+//! (to totals or to 100%) by a categorical `color`, categories in data order or sorted by their
+//! totals.
 //!
 //! Rows with the same x category (and colour group) are summed into one bar. Bars encode length,
 //! so they start at zero unless the spec leaves zero out of the value axis (`zero = false`, or a
@@ -13,6 +14,7 @@ use crate::guide::legend::Symbol;
 use crate::guide::scale::Scale;
 use crate::mark::derived::{Derived, DerivedColumn};
 use crate::mark::encode;
+use crate::mark::grouped::Orientation;
 use crate::mark::registry::{AxisSpec, ChartContext, KindInfo, Technique};
 use crate::mark::warning::Warning;
 use crate::mark::{ChartOutput, MarkError, bands, frame};
@@ -48,6 +50,10 @@ pub struct BarOptions {
     /// `"ascending"` by each category's total.
     #[serde(default)]
     pub sort: Option<BarSort>,
+    /// `"vertical"` (default: categories along the bottom, bars rising) or `"horizontal"`
+    /// (categories down the left, the first on top, bars running right: room for long names).
+    #[serde(default)]
+    pub orientation: Option<Orientation>,
 }
 
 /// How a bar chart's colour groups share a category.
@@ -129,10 +135,13 @@ pub fn draw(chart: &Chart, options: &BarOptions, table: &Table) -> Result<ChartO
         None => bands::Keys::single("", rows.len()),
     };
     let (nx, ng) = (x_keys.labels.len(), groups.labels.len());
-    let [width, _] = chart.size.unwrap_or(crate::mark::FRAME_SIZE);
+    let orientation = options.orientation.unwrap_or_default();
+    let horizontal = orientation == Orientation::Horizontal;
+    let [width, height] = chart.size.unwrap_or(crate::mark::FRAME_SIZE);
+    let room = if horizontal { height } else { width };
     let slots = nx.saturating_mul(ng);
     let across = if stacked { nx } else { slots };
-    if across as f64 > width {
+    if across as f64 > room {
         let what = if ng > 1 {
             format!("{nx} categories × {ng} colour groups = {slots} bars")
         } else {
@@ -140,8 +149,11 @@ pub fn draw(chart: &Chart, options: &BarOptions, table: &Table) -> Result<ChartO
         };
         return Err(MarkError::at(
             &["x"],
-            format!("{what} do not fit a {width} px wide chart (each bar would be narrower than a pixel)"),
-            "bar charts suit tens of categories: filter or aggregate the data into fewer categories, or make `size` wider",
+            format!(
+                "{what} do not fit a {room} px {} chart (each bar would be narrower than a pixel)",
+                if horizontal { "tall" } else { "wide" }
+            ),
+            "bar charts suit tens of categories: filter or aggregate the data into fewer categories, or make `size` larger",
         ));
     }
 
@@ -170,10 +182,15 @@ pub fn draw(chart: &Chart, options: &BarOptions, table: &Table) -> Result<ChartO
 
     let summed = bars.iter().any(|b| b.rows.len() > 1);
     let y_axis = value_axis(&y_opts, &bars, summed, stack);
+    let mut category_labels = x_keys.labels.clone();
+    if horizontal {
+        // Band 0 is at the bottom of a vertical axis: reversed, the first category is on top.
+        category_labels.reverse();
+    }
     let x_axis = PositionAxis {
         title: title_with_unit(x_opts.title.as_deref().unwrap_or(&x_opts.field), x_opts.unit.as_deref()),
         kind: ScaleKind::Band,
-        domain: Domain::Categories(x_keys.labels.clone()),
+        domain: Domain::Categories(category_labels),
         nice: false,
         ticks: None,
         grid: x_opts.grid.unwrap_or(false),
@@ -181,15 +198,24 @@ pub fn draw(chart: &Chart, options: &BarOptions, table: &Table) -> Result<ChartO
     };
     let (colors, legend) =
         encode::color_encoding(chart, color.as_ref(), options.mark_color.as_deref(), table, &rows, Symbol::Square)?;
-    let (frame, theme) = frame::cartesian(chart, x_axis, y_axis, legend.into_iter().collect())?;
-    let Scale::Band(band) = &frame.x else {
-        return Err(MarkError::at(&["x"], format!("x is not a band scale"), ""));
+    let legends = legend.into_iter().collect();
+    let (frame, theme) = match orientation {
+        Orientation::Vertical => frame::cartesian(chart, x_axis, y_axis, legends)?,
+        Orientation::Horizontal => frame::cartesian(chart, y_axis, x_axis, legends)?,
+    };
+    let (Scale::Band(band), value) = (if horizontal { (&frame.y, &frame.x) } else { (&frame.x, &frame.y) }) else {
+        return Err(MarkError::at(&["x"], "the categories are not on a band scale", ""));
+    };
+    // A rectangle from (across, along) extents: across the category axis, along the value axis.
+    let rect = |(a0, a1): (f64, f64), (v0, v1): (f64, f64)| match orientation {
+        Orientation::Vertical => Rect::new(a0, v0, a1 - a0, v1 - v0),
+        Orientation::Horizontal => Rect::new(v0, a0, v1 - v0, a1 - a0),
     };
 
     // The baseline: zero, or the end of the value axis nearest zero when zero is left out.
-    let (d0, d1) = frame.y.domain();
+    let (d0, d1) = value.domain();
     let base = 0.0f64.clamp(d0.min(d1), d0.max(d1));
-    let base_px = frame.y.map(base);
+    let base_px = value.map(base);
     // Bands by category name: a facet panel's axis may hold categories the panel has no bar for.
     let band_index = |b: &Bar| x_keys.labels.get(b.x).and_then(|l| band.band_of(l)).unwrap_or(b.x);
     let slot_of = |b: &Bar| {
@@ -205,8 +231,8 @@ pub fn draw(chart: &Chart, options: &BarOptions, table: &Table) -> Result<ChartO
         narrowest = narrowest.min(w);
         // A sum beyond the domain is drawn up to the domain's end and marked as cut there.
         let end = b.to.max(lo).min(hi);
-        let top = frame.y.map(end);
-        let start_px = if b.from == 0.0 { base_px } else { frame.y.map(b.from.max(lo).min(hi)) };
+        let top = value.map(end);
+        let start_px = if b.from == 0.0 { base_px } else { value.map(b.from.max(lo).min(hi)) };
         let (y0, y1) = (start_px.min(top), start_px.max(top));
         // A zero sum has no bar; a bar at a baseline other than zero stays, even with no length,
         // so that the scene (and lint rule DI001) still sees it.
@@ -218,8 +244,10 @@ pub fn draw(chart: &Chart, options: &BarOptions, table: &Table) -> Result<ChartO
             None => x_keys.labels.get(b.x).cloned().unwrap_or_default(),
         };
         let fill = b.rows.first().map_or(encode::DEFAULT_MARK_COLOR, |&r| colors.color_of(r));
-        let plot_rows = (frame.plot.y, frame.plot.bottom());
-        let cut = (end != b.to).then(|| clip_mark(x, w, top, start_px, plot_rows, (fill, theme.background)));
+        let plot_span =
+            if horizontal { (frame.plot.x, frame.plot.right()) } else { (frame.plot.y, frame.plot.bottom()) };
+        let cut =
+            (end != b.to).then(|| clip_mark(orientation, (x, w), (top, start_px), plot_span, (fill, theme.background)));
         let mut tooltip = format!("{}: {}\n", x_opts.field, x_keys.labels.get(b.x).map_or("", String::as_str));
         if let (Some(c), Some(g)) = (&color, groups.labels.get(b.group)) {
             tooltip.push_str(&format!("{}: {g}\n", c.field()));
@@ -232,7 +260,7 @@ pub fn draw(chart: &Chart, options: &BarOptions, table: &Table) -> Result<ChartO
             tooltip.push_str(&format!("\nshare of {}: {:.1}%", x_opts.field, (b.to - b.from).abs()));
         }
         marks.push(
-            Item::new(Role::DataMark, Shape::Rect(Rect::new(x, y0, w, y1 - y0)), Style::fill(fill))
+            Item::new(Role::DataMark, Shape::Rect(rect((x, x + w), (y0, y1))), Style::fill(fill))
                 .with_rows(b.rows.clone())
                 .labelled(label.clone())
                 .with_tooltip(tooltip.clone()),
@@ -254,14 +282,15 @@ pub fn draw(chart: &Chart, options: &BarOptions, table: &Table) -> Result<ChartO
     }
     if bars.iter().any(|b| b.to < 0.0) && base == 0.0 {
         // Bars on both sides of zero: a zero line separates them.
-        let y = base_px.round() + 0.5;
+        let at = base_px.round() + 0.5;
+        let (from, to) = match orientation {
+            Orientation::Vertical => (Point::new(frame.plot.x, at), Point::new(frame.plot.right(), at)),
+            Orientation::Horizontal => (Point::new(at, frame.plot.y), Point::new(at, frame.plot.bottom())),
+        };
         marks.push(
             Item::new(
                 Role::Axis,
-                Shape::Path(vec![
-                    PathCmd::MoveTo(Point::new(frame.plot.x, y)),
-                    PathCmd::LineTo(Point::new(frame.plot.right(), y)),
-                ]),
+                Shape::Path(vec![PathCmd::MoveTo(from), PathCmd::LineTo(to)]),
                 Style::stroke(theme.axis, 1.0),
             )
             .labelled("baseline"),
@@ -297,11 +326,19 @@ const CLIP_INSET: f64 = 7.0;
 /// Height of a clip mark's teeth, in pixels.
 const CLIP_TOOTH: f64 = 3.0;
 
-/// The mark of a bar cut at the end of the value axis: a zig-zag across the bar near the cut
-/// end (`end_px`; the bar runs from there towards `base_px`), in the background colour so that
-/// the bar looks broken; a bar too short to hold it gets the zig-zag in its own colour beside
-/// the cut, inside the plot (`plot`: its top and bottom pixel rows).
-fn clip_mark(x: f64, width: f64, end_px: f64, base_px: f64, plot: (f64, f64), colors: (Color, Color)) -> Item {
+/// The mark of a bar cut at the end of the value axis: a zig-zag across the bar (`slot`: its
+/// start and width across the category axis) near the cut end (`ends`: the cut end and the
+/// base, in pixels along the value axis), in the background colour so that the bar looks
+/// broken; a bar too short to hold it gets the zig-zag in its own colour beside the cut, inside
+/// the plot (`plot`: its pixel span along the value axis).
+fn clip_mark(
+    orientation: Orientation,
+    slot: (f64, f64),
+    ends: (f64, f64),
+    plot: (f64, f64),
+    colors: (Color, Color),
+) -> Item {
+    let ((x, width), (end_px, base_px)) = (slot, ends);
     let (fill, background) = colors;
     let towards_base = if base_px >= end_px { 1.0 } else { -1.0 };
     let room = (base_px - end_px).abs();
@@ -316,7 +353,11 @@ fn clip_mark(x: f64, width: f64, end_px: f64, base_px: f64, plot: (f64, f64), co
     let cmds = (0..=teeth)
         .map(|k| {
             let side = if k % 2 == 0 { -0.5 } else { 0.5 };
-            let p = Point::new(x + step * k as f64, y + side * CLIP_TOOTH);
+            let (across, along) = (x + step * k as f64, y + side * CLIP_TOOTH);
+            let p = match orientation {
+                Orientation::Vertical => Point::new(across, along),
+                Orientation::Horizontal => Point::new(along, across),
+            };
             if k == 0 { PathCmd::MoveTo(p) } else { PathCmd::LineTo(p) }
         })
         .collect();
@@ -447,12 +488,8 @@ impl Technique for BarOptions {
     }
 
     fn cartesian_axes(&self) -> Vec<AxisSpec> {
-        // Bars place every x value in a band, numbers included.
-        let mut axes = AxisSpec::pair(&self.x, &self.y);
-        if let Some(x) = axes.first_mut() {
-            x.options.scale = Some(crate::spec::ScaleKind::Band);
-        }
-        axes
+        // Bars place every x value in a band, numbers included (`grouped::axes` says so).
+        crate::mark::grouped::axes(Some(&self.x), &self.y, self.orientation.unwrap_or_default())
     }
 
     crate::mark::registry::color_key!();
