@@ -210,6 +210,11 @@ pub struct Chart {
     #[serde(default)]
     #[schemars(example = &["name", "value"])]
     pub tooltip: Option<Tooltip>,
+    /// Notes over the data of the kinds drawn in one x/y frame, each a `[[chart.annotate]]`
+    /// table: a rule (`y = 50`), a band (`x = [a, b]`), text at a point (`text`, `at`) or an
+    /// arrow (`arrow`), in the data's values (dates and categories as text).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub annotate: Vec<super::annotation::Annotation>,
     /// What to draw and how.
     #[serde(flatten)]
     pub kind: ChartKind,
