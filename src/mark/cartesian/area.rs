@@ -384,7 +384,7 @@ fn derived_table(
 }
 
 /// `kind = "area"`.
-pub static KIND: KindInfo = KindInfo::new("area", &["x", "y", "color"]);
+pub static KIND: KindInfo = KindInfo::new("area", &["x", "y", "color"]).drawing_annotations();
 
 impl Technique for AreaOptions {
     fn info(&self) -> &'static KindInfo {

@@ -432,7 +432,7 @@ fn sort_categories(bars: &mut [Bar], keys: &mut bands::Keys, sort: BarSort) {
 }
 
 /// `kind = "bar"`.
-pub static KIND: KindInfo = KindInfo::new("bar", &["x", "y", "color"]);
+pub static KIND: KindInfo = KindInfo::new("bar", &["x", "y", "color"]).drawing_annotations();
 
 impl Technique for BarOptions {
     fn info(&self) -> &'static KindInfo {

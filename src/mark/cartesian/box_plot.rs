@@ -216,7 +216,7 @@ fn mean_mark(layout: &Layout, grouped: &Grouped, g: &Group, context: bool) -> It
 }
 
 /// `kind = "box"`.
-pub static KIND: KindInfo = KindInfo::new("box", &["x", "y", "color"]).drawing_selections();
+pub static KIND: KindInfo = KindInfo::new("box", &["x", "y", "color"]).drawing_selections().drawing_annotations();
 
 impl Technique for BoxOptions {
     fn info(&self) -> &'static KindInfo {

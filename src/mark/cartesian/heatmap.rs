@@ -427,7 +427,7 @@ fn derived_table(x_field: &str, y_field: &str, x: &Side, y: &Side, cells: &Cells
 }
 
 /// `kind = "heatmap"`.
-pub static KIND: KindInfo = KindInfo::new("heatmap", &["x", "y", "z"]);
+pub static KIND: KindInfo = KindInfo::new("heatmap", &["x", "y", "z"]).drawing_annotations();
 
 impl Technique for HeatmapOptions {
     fn info(&self) -> &'static KindInfo {

@@ -617,7 +617,7 @@ fn derived_table(binned: &Binned, heights: &[Vec<f64>], groups: Option<(&str, &[
 }
 
 /// `kind = "histogram"`.
-pub static KIND: KindInfo = KindInfo::new("histogram", &["x", "color"]).drawing_selections();
+pub static KIND: KindInfo = KindInfo::new("histogram", &["x", "color"]).drawing_selections().drawing_annotations();
 
 impl Technique for HistogramOptions {
     fn info(&self) -> &'static KindInfo {

@@ -210,8 +210,10 @@ pub fn draw(
 }
 
 /// `kind = "scatter"`.
-pub static KIND: KindInfo =
-    KindInfo::new("scatter", &["x", "y", "color", "point_size"]).drawing_selections().taking_aspect();
+pub static KIND: KindInfo = KindInfo::new("scatter", &["x", "y", "color", "point_size"])
+    .drawing_selections()
+    .taking_aspect()
+    .drawing_annotations();
 
 impl Technique for ScatterOptions {
     fn info(&self) -> &'static KindInfo {

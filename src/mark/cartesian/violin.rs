@@ -312,7 +312,7 @@ fn half_width_at(half: &[(f64, f64)], v: f64) -> f64 {
 }
 
 /// `kind = "violin"`.
-pub static KIND: KindInfo = KindInfo::new("violin", &["x", "y", "color"]).drawing_selections();
+pub static KIND: KindInfo = KindInfo::new("violin", &["x", "y", "color"]).drawing_selections().drawing_annotations();
 
 impl Technique for ViolinOptions {
     fn info(&self) -> &'static KindInfo {
