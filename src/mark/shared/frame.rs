@@ -5,23 +5,25 @@ use crate::guide::Theme;
 use crate::guide::layout::{self, Frame, FrameSpec, PositionAxis};
 use crate::guide::legend::truncate_to_width;
 use crate::guide::legend::{self, Legend};
-use crate::mark::{FRAME_SIZE, MarkError};
+use crate::mark::{FRAME_SIZE, MarkError, annotate};
 use crate::scene::{
     Anchor, Baseline, Color, Item, LineBatch, PathCmd, PerPoint, Point, PointBatch, Rect, Role, Scene, Shape, Style,
     Text,
 };
 use crate::spec::Chart;
 
-/// Lay out the frame of chart `index` around its axes and legends.
+/// Lay out the frame of chart `index` around its axes (widened to take in its annotations) and
+/// legends, with its annotations placed in it.
 pub fn cartesian(
     chart: &Chart,
-    x: PositionAxis,
-    y: PositionAxis,
+    mut x: PositionAxis,
+    mut y: PositionAxis,
     legends: Vec<Legend>,
 ) -> Result<(Frame, Theme), MarkError> {
+    annotate::widen(chart, &mut x, &mut y);
     let [width, height] = chart.size.unwrap_or(FRAME_SIZE);
     let theme = Theme::with_font_size(chart.font_size.unwrap_or(12.0));
-    let frame = layout::cartesian(&FrameSpec {
+    let mut frame = layout::cartesian(&FrameSpec {
         width,
         height,
         title: chart.title.clone(),
@@ -33,14 +35,20 @@ pub fn cartesian(
         equal_aspect: chart.aspect == Some(crate::spec::Aspect::Equal),
     })
     .map_err(|e| MarkError::layout(e))?;
+    frame.overlay = annotate::resolve(chart, &frame, &theme)?;
     Ok((frame, theme))
 }
 
-/// The chart's scene: background and grid, the marks clipped to the plot, then axes and legends.
+/// The chart's scene: background and grid, annotated bands, the marks clipped to the plot, the
+/// other annotations, then axes and legends.
 pub fn scene(chart: &Chart, frame: Frame, theme: &Theme, marks: Vec<Item>) -> Scene {
     let [width, height] = chart.size.unwrap_or(FRAME_SIZE);
+    let canvas = Rect::new(0.0, 0.0, width, height);
+    let notes = annotate::draw(frame.overlay, frame.plot, canvas, theme, &[&marks, &frame.over]);
     let mut items = frame.under;
+    items.extend(notes.under);
     items.push(Item::group(Role::DataMark, marks, Some(frame.plot)));
+    items.extend(notes.over);
     items.extend(frame.over);
     Scene { width, height, background: theme.background, title: chart.title.clone(), items }
 }
