@@ -37,7 +37,8 @@ pub struct Annotation {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     #[schemars(example = &"target")]
     pub label: Option<String>,
-    /// Colour of the line, band, text or arrow (CSS name or `#rrggbb`; default dark grey).
+    /// Colour of the rule, band, text or arrow (CSS name or `#rrggbb`; default dark grey);
+    /// labels are written in the text colour.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     #[schemars(example = &"firebrick")]
     pub color: Option<String>,

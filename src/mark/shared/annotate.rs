@@ -86,7 +86,12 @@ pub fn resolve(chart: &Chart, frame: &Frame, theme: &Theme) -> Result<Overlay, M
         let look = Look {
             name: format!("{NAME}{i}]"),
             line: color.unwrap_or(INK),
-            text: color.unwrap_or(theme.text),
+            // A label reads in the theme's ink whatever the colour of its line or band (a light
+            // colour that shades a band well is too pale for text); a note is text in its colour.
+            text: match form {
+                Form::Text(..) => color.unwrap_or(theme.text),
+                _ => theme.text,
+            },
             dash: if note.dash == Some(true) { DASH.to_vec() } else { Vec::new() },
             size: theme.font_size,
         };
