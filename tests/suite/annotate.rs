@@ -104,11 +104,23 @@ fn the_axis_widens_to_show_a_rule_outside_the_data() {
 }
 
 #[test]
-fn a_fixed_domain_is_kept_and_a_value_outside_it_is_an_error() {
+fn a_fixed_domain_is_kept_and_what_lies_outside_it_is_cut_off() {
+    // The explorer zooms the same way: by fixing the domain of the channels.
     let keys = "kind = \"scatter\"\nx = \"x\"\ny = { field = \"y\", domain = [0, 10] }";
-    let err = draw(keys, POINTS, "[[chart.annotate]]\ny = 50\n").unwrap_err();
-    assert!(err.contains("annotate[0].y: `50` lies outside the y axis (0 to 10)"), "{err}");
-    assert!(err.contains("widen that domain"), "{err}");
+    let notes = "[[chart.annotate]]\ny = 50\nlabel = \"off the top\"\n\n\
+                 [[chart.annotate]]\ntext = \"also off\"\nat = [5, 50]\n\n\
+                 [[chart.annotate]]\narrow = [[5, 50], [5, 5]]\nlabel = \"from above\"\n\n\
+                 [[chart.annotate]]\ny = [8, 20]\nlabel = \"high\"\n";
+    let out = draw(keys, POINTS, notes).unwrap();
+    let top = ticks(&out, "y axis").iter().map(|(l, _)| l.parse::<f64>().unwrap()).fold(0.0, f64::max);
+    assert_eq!(top, 10.0, "the domain is kept");
+    for i in 0..3 {
+        assert!(named(&out, &format!("annotate[{i}] label")).is_empty(), "no label for annotation {i} outside");
+    }
+    assert_eq!(named(&out, "annotate[2] arrow").len(), 1, "the arrow's visible part is drawn");
+    let p = plot(&out);
+    let high = dataink::text::bounds(text_of(named(&out, "annotate[3] label")[0]));
+    assert!(p.contains_rect(&high, 0.0) && high.bottom() <= pixel_of(&out, "y axis", 8.0), "{high:?} in {p:?}");
 }
 
 #[test]

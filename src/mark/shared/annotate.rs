@@ -12,10 +12,8 @@ mod place;
 use crate::data::time::parse_iso;
 use crate::guide::Theme;
 use crate::guide::color::parse_color;
-use crate::guide::format::format_value;
 use crate::guide::layout::{Domain, Frame, Overlay, PositionAxis};
 use crate::guide::scale::Scale;
-use crate::guide::time::format_timestamp;
 use crate::mark::{MarkError, technique};
 use crate::scene::{Anchor, Baseline, Color, Item, PathCmd, Point, Rect, Role, Shape, Stroke, Style, Text};
 use crate::spec::annotation::{AxisValue, Form, FormError, PlotAxis, TextAnchor};
@@ -45,8 +43,9 @@ const MAX_SLIDES: usize = 12;
 const NAME: &str = "annotate[";
 
 /// Widen the continuous x and y domains to take in every annotation value, so rules, bands, text
-/// and arrows lie inside the plot. An axis whose channel fixes its `domain` keeps it (a value
-/// outside is an error in [`resolve`]); values an axis cannot place are left to [`resolve`] too.
+/// and arrows lie inside the plot. An axis whose channel fixes its `domain` keeps it (the spec's,
+/// or the explorer's zoom), and what lies outside is cut off at the plot's edge like data; values
+/// an axis cannot place are left to [`resolve`] to report.
 pub fn widen(chart: &Chart, x: &mut PositionAxis, y: &mut PositionAxis) {
     if chart.annotate.is_empty() {
         return;
@@ -65,13 +64,14 @@ pub fn widen(chart: &Chart, x: &mut PositionAxis, y: &mut PositionAxis) {
 }
 
 /// The chart's annotations in the pixels of `frame`: bands under the data, rules and arrows over
-/// it, and labels with the places each may take. A value an axis cannot place (a category it
-/// does not show, text that is not a date on a time axis, text on a numeric axis, a value
-/// outside a fixed domain) is an error at its place in the spec, e.g. `annotate[2].x`.
+/// it, and labels with the places each may take (none for a rule, note or arrow tail outside a
+/// fixed domain, whose lines the plot's clip cuts off). A value an axis cannot place (a category
+/// it does not show, text that is not a date on a time axis, text on a numeric axis) is an error
+/// at its place in the spec, e.g. `annotate[2].x`.
 pub fn resolve(chart: &Chart, frame: &Frame, theme: &Theme) -> Result<Overlay, MarkError> {
     let mut overlay = Overlay::default();
     for (i, note) in chart.annotate.iter().enumerate() {
-        let here = Here { chart, frame, index: i };
+        let here = Here { frame, index: i };
         let form = note.form().map_err(|e| here.form_error(e))?;
         let color = match &note.color {
             None => None,
@@ -100,7 +100,8 @@ pub fn resolve(chart: &Chart, frame: &Frame, theme: &Theme) -> Result<Overlay, M
             Form::Rule(axis, v) => {
                 let at = here.along(axis, v, &[PathSeg::from(axis.key())])?.mid;
                 overlay.over.push(look.rule(axis, at, frame.plot));
-                overlay.labels.extend(label.map(|l| look.beside(l, axis, (at, at), frame.plot)));
+                let shown = label.filter(|_| visible(frame.plot, axis, (at, at)).is_some());
+                overlay.labels.extend(shown.map(|l| look.beside(l, axis, (at, at), frame.plot)));
             }
             Form::Band(axis, [a, b]) => {
                 let key = PathSeg::from(axis.key());
@@ -111,7 +112,9 @@ pub fn resolve(chart: &Chart, frame: &Frame, theme: &Theme) -> Result<Overlay, M
                 let (lo, hi) = (a.lo.min(b.lo), a.hi.max(b.hi));
                 let opacity = note.opacity.filter(|o| o.is_finite()).unwrap_or(BAND_OPACITY);
                 overlay.under.push(look.band(axis, (lo, hi), frame.plot, opacity));
-                overlay.labels.extend(label.map(|l| look.beside(l, axis, (lo, hi), frame.plot)));
+                if let (Some(l), Some(part)) = (label, visible(frame.plot, axis, (lo, hi))) {
+                    overlay.labels.push(look.beside(l, axis, part, frame.plot));
+                }
             }
             Form::Text(text, at) => {
                 let point = here.point(at, &[PathSeg::from("at")])?;
@@ -120,7 +123,9 @@ pub fn resolve(chart: &Chart, frame: &Frame, theme: &Theme) -> Result<Overlay, M
                     TextAnchor::Middle => Anchor::Middle,
                     TextAnchor::End => Anchor::End,
                 };
-                overlay.labels.push(vec![look.text(text, point, anchor, Baseline::Middle)]);
+                if contains(frame.plot, point) {
+                    overlay.labels.push(vec![look.text(text, point, anchor, Baseline::Middle)]);
+                }
             }
             Form::Arrow([from, to]) => {
                 let arrow = |k: usize| [PathSeg::from("arrow"), PathSeg::Index(k)];
@@ -133,7 +138,8 @@ pub fn resolve(chart: &Chart, frame: &Frame, theme: &Theme) -> Result<Overlay, M
                     ));
                 }
                 overlay.over.extend(look.arrow(tail, head));
-                overlay.labels.extend(label.map(|l| look.at_tail(l, tail, head)));
+                let shown = label.filter(|_| contains(frame.plot, tail));
+                overlay.labels.extend(shown.map(|l| look.at_tail(l, tail, head)));
             }
         }
     }
@@ -188,6 +194,22 @@ pub fn is_note(item: &Item) -> bool {
     item.label.as_deref().is_some_and(|l| l.starts_with(NAME))
 }
 
+/// The part of pixels `lo..=hi` across `axis` that lies inside `plot` (half a pixel of slack),
+/// if any.
+fn visible(plot: Rect, axis: PlotAxis, (lo, hi): (f64, f64)) -> Option<(f64, f64)> {
+    let (start, end) = match axis {
+        PlotAxis::X => (plot.x, plot.right()),
+        PlotAxis::Y => (plot.y, plot.bottom()),
+    };
+    let (lo, hi) = (lo.min(hi).max(start), lo.max(hi).min(end));
+    (lo <= hi + 0.5).then_some((lo.min(hi), hi.max(lo)))
+}
+
+/// Whether `p` lies inside `plot` (half a pixel of slack).
+fn contains(plot: Rect, p: Point) -> bool {
+    plot.contains_rect(&Rect::new(p.x, p.y, 0.0, 0.0), 0.5)
+}
+
 /// The `domain` a chart's channel fixes for the plot's `axis`, if it fixes one.
 fn fixed_domain(chart: &Chart, axis: PlotAxis) -> Option<[f64; 2]> {
     let name = match axis {
@@ -237,9 +259,8 @@ struct Along {
     hi: f64,
 }
 
-/// Annotation number `index` of `chart`, placed in `frame`: where its errors point.
+/// Annotation number `index`, placed in `frame`: where its errors point.
 struct Here<'a> {
-    chart: &'a Chart,
     frame: &'a Frame,
     index: usize,
 }
@@ -330,18 +351,6 @@ impl Here<'_> {
             }
             (_, AxisValue::Number(n)) => *n,
         };
-        let (lo, hi) = scale.domain();
-        let slack = (hi - lo).abs() * 1e-9;
-        if n < lo - slack || n > hi + slack {
-            let show = |x: f64| if matches!(scale, Scale::Time(_)) { format_timestamp(x) } else { format_value(x) };
-            let hint = match fixed_domain(self.chart, axis) {
-                Some(_) => format!(
-                    "the {name} axis keeps the `domain` its channel fixes; widen that domain to take the value in, or move the annotation"
-                ),
-                None => "move the annotation inside the axis".to_owned(),
-            };
-            return fail(format!("`{shown}` lies outside the {name} axis ({} to {})", show(lo), show(hi)), hint);
-        }
         let px = scale.map(n);
         Ok(Along { lo: px, mid: px, hi: px })
     }
