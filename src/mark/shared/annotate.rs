@@ -450,17 +450,16 @@ impl Look {
         let (lo, hi) = (lo.min(hi), lo.max(hi));
         // A rule's label goes above it (horizontal) or to its right (vertical), else across it;
         // a band's inside its edges, else outside them.
+        // Places across the line, in groups tried along the whole line one after the other: a
+        // rule's label above it (horizontal) or right of it (vertical), else across it; a band's
+        // inside its edges anywhere along it before outside them.
         let across = match (hi - lo < 1.0, axis) {
-            (true, PlotAxis::Y) => vec![(lo - GAP, Side::Before), (hi + GAP, Side::After)],
-            (true, PlotAxis::X) => vec![(hi + GAP, Side::After), (lo - GAP, Side::Before)],
-            (false, _) => {
-                vec![
-                    (lo + GAP, Side::After),
-                    (hi - GAP, Side::Before),
-                    (lo - GAP, Side::Before),
-                    (hi + GAP, Side::After),
-                ]
-            }
+            (true, PlotAxis::Y) => vec![vec![(lo - GAP, Side::Before), (hi + GAP, Side::After)]],
+            (true, PlotAxis::X) => vec![vec![(hi + GAP, Side::After), (lo - GAP, Side::Before)]],
+            (false, _) => vec![
+                vec![(lo + GAP, Side::After), (hi - GAP, Side::Before)],
+                vec![(lo - GAP, Side::Before), (hi + GAP, Side::After)],
+            ],
         };
         let m = crate::text::measure(content, self.size);
         let along: Vec<(f64, Side)> = match axis {
@@ -484,28 +483,36 @@ impl Look {
                 [(plot.y + INSET, Side::After), (plot.bottom() - INSET, Side::Before)].into_iter().chain(rows).collect()
             }
         };
-        along
+        let place = |(a, a_side): (f64, Side), (c, c_side): (f64, Side)| match axis {
+            PlotAxis::Y => self.text(content, Point::new(a, c), a_side.anchor(), c_side.baseline()),
+            PlotAxis::X => self.text(content, Point::new(c, a), c_side.anchor(), a_side.baseline()),
+        };
+        across
             .iter()
-            .flat_map(|&(a, a_side)| {
-                across.iter().map(move |&(c, c_side)| match axis {
-                    PlotAxis::Y => self.text(content, Point::new(a, c), a_side.anchor(), c_side.baseline()),
-                    PlotAxis::X => self.text(content, Point::new(c, a), c_side.anchor(), a_side.baseline()),
-                })
-            })
+            .flat_map(|group| along.iter().flat_map(move |&a| group.iter().map(move |&c| place(a, c))))
             .collect()
     }
 
-    /// The places of an arrow's label around its tail, the side facing away from the head first.
+    /// The places of an arrow's label in the eight directions around its tail, the one facing
+    /// most directly away from the head first.
     fn at_tail(&self, content: &str, tail: Point, head: Point) -> Vec<Item> {
         let (dx, dy) = (head.x - tail.x, head.y - tail.y);
-        let mut sides = [
-            ((-1.0, 0.0), Point::new(tail.x - GAP, tail.y), Anchor::End, Baseline::Middle),
-            ((1.0, 0.0), Point::new(tail.x + GAP, tail.y), Anchor::Start, Baseline::Middle),
-            ((0.0, -1.0), Point::new(tail.x, tail.y - GAP), Anchor::Middle, Baseline::Bottom),
-            ((0.0, 1.0), Point::new(tail.x, tail.y + GAP), Anchor::Middle, Baseline::Top),
-        ];
-        sides.sort_by(|a, b| (a.0.0 * dx + a.0.1 * dy).total_cmp(&(b.0.0 * dx + b.0.1 * dy)));
-        sides.iter().map(|&(_, at, anchor, baseline)| self.text(content, at, anchor, baseline)).collect()
+        let toward_head = |&(ux, uy): &(f64, f64)| (ux * dx + uy * dy) / ux.hypot(uy);
+        let units = [-1.0, 0.0, 1.0];
+        let mut around: Vec<(f64, f64)> =
+            units.iter().flat_map(|&ux| units.map(|uy| (ux, uy))).filter(|&u| u != (0.0, 0.0)).collect();
+        around.sort_by(|a, b| toward_head(a).total_cmp(&toward_head(b)));
+        let sign = |v: f64| if v < 0.0 { Side::Before } else { Side::After };
+        around
+            .iter()
+            .map(|&(ux, uy)| {
+                let n = ux.hypot(uy);
+                let at = Point::new(tail.x + ux / n * GAP, tail.y + uy / n * GAP);
+                let anchor = if ux == 0.0 { Anchor::Middle } else { sign(ux).anchor() };
+                let baseline = if uy == 0.0 { Baseline::Middle } else { sign(uy).baseline() };
+                self.text(content, at, anchor, baseline)
+            })
+            .collect()
     }
 }
 
