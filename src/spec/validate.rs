@@ -1140,7 +1140,7 @@ impl<'s> Walker<'s> {
         takers: &str,
     ) -> bool {
         let Some(kind) = chart.get("kind").and_then(SpannedValue::as_str) else { return false };
-        if !crate::mark::registry::kind_info(kind).is_some_and(|k| !takes(k)) {
+        if crate::mark::registry::kind_info(kind).is_none_or(takes) {
             return false;
         }
         let kinds = crate::mark::registry::names_where(takes).join(", ");

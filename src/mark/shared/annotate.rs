@@ -159,6 +159,9 @@ pub struct Layers {
 /// lines, inside the plot when there is room. Notes written at a data point have one place and
 /// are placed first, so the other labels keep clear of them.
 pub fn draw(overlay: Overlay, plot: Rect, canvas: Rect, theme: &Theme, drawn: &[&[Item]]) -> Layers {
+    if overlay.labels.is_empty() && overlay.under.is_empty() && overlay.over.is_empty() {
+        return Layers { under: None, over: Vec::new() };
+    }
     let mut obstacles = place::Obstacles::new(drawn, &overlay.over);
     let mut order: Vec<usize> = (0..overlay.labels.len()).collect();
     order.sort_by_key(|&k| overlay.labels[k].len() > 1);
