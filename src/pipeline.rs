@@ -453,6 +453,15 @@ fn chart_fields(index: usize, chart: &Value) -> Vec<(String, Vec<PathSeg>)> {
             _ => out.extend(field_refs(value, base)),
         }
     }
+    // The columns that split a faceted chart into panels.
+    if let Some(facet) = chart.get("facet") {
+        let base = vec![PathSeg::Key("chart".into()), PathSeg::Index(index), PathSeg::Key("facet".into())];
+        match facet {
+            Value::String(field) => out.push((field.clone(), base)),
+            Value::Object(map) => out.extend(named_fields(map, &["row", "column"], &base)),
+            _ => {}
+        }
+    }
     // The columns listed for hover texts.
     if let Some(list @ Value::Array(_)) = chart.get("tooltip") {
         let base = vec![PathSeg::Key("chart".into()), PathSeg::Index(index), PathSeg::Key("tooltip".into())];

@@ -243,6 +243,33 @@ impl Table {
     pub fn column_names(&self) -> Vec<&str> {
         self.columns.iter().map(|c| c.name.as_str()).collect()
     }
+
+    /// The table of `rows` only, in that order (a facet panel's rows). Text columns keep every
+    /// level of the whole table, so colours and category orders stay the same in every part;
+    /// grid axes become plain numbers.
+    pub fn take_rows(&self, rows: &[u32]) -> Table {
+        let take = |values: &[f64]| rows.iter().map(|&r| values.get(r as usize).copied().unwrap_or(f64::NAN)).collect();
+        let columns = self
+            .columns
+            .iter()
+            .map(|c| {
+                let values = match &c.values {
+                    ColumnValues::Number(v) => ColumnValues::Number(take(v)),
+                    ColumnValues::Time(v) => ColumnValues::Time(take(v)),
+                    ColumnValues::Axis(a) => ColumnValues::Number(take(a.values())),
+                    ColumnValues::Text(cats) => ColumnValues::Text(Categories {
+                        levels: cats.levels.clone(),
+                        codes: rows
+                            .iter()
+                            .map(|&r| cats.codes.get(r as usize).copied().unwrap_or(Categories::MISSING))
+                            .collect(),
+                    }),
+                };
+                Column { name: c.name.clone(), values }
+            })
+            .collect();
+        Table { columns, rows: rows.len() }
+    }
 }
 
 #[cfg(test)]
@@ -279,5 +306,21 @@ mod tests {
         let n = NonFinite::count(&[1.0, f64::NAN, f64::INFINITY, f64::NEG_INFINITY, 2.0]);
         assert_eq!(n, NonFinite { nan: 1, infinite: 2 });
         assert_eq!(n.total(), 3);
+    }
+
+    #[test]
+    fn take_rows_keeps_levels_and_order() {
+        let table = Table::from_columns([
+            ("v", ColumnValues::Number(vec![1.0, 2.0, 3.0])),
+            ("g", ColumnValues::Text(Categories::from_values([Some("a"), Some("b"), None]))),
+            ("x", ColumnValues::Axis(GridAxis::new(vec![5.0, 6.0, 7.0], 1, 3))),
+        ]);
+        let part = table.take_rows(&[2, 0]);
+        assert_eq!(part.rows, 2);
+        assert_eq!(part.column("v").and_then(Column::numbers), Some(&[3.0, 1.0][..]));
+        let g = part.column("g").and_then(Column::categories).cloned().unwrap_or_default();
+        assert_eq!(g.levels, ["a", "b"], "every level kept");
+        assert_eq!(g.codes, [Categories::MISSING, 0]);
+        assert_eq!(part.column("x").and_then(Column::numbers), Some(&[7.0, 5.0][..]));
     }
 }

@@ -110,35 +110,8 @@ pub fn draw_within(
     span: (f64, f64),
 ) -> Vec<Item> {
     let ticks = visible_ticks_within(scale, side, theme, span);
-    let mut items = Vec::new();
-    let mut marks = Vec::new();
-    let name = match side {
-        Side::Bottom => "x axis",
-        Side::Left => "y axis",
-    };
-    match side {
-        Side::Bottom => {
-            let y = snap(plot.bottom());
-            marks.push(PathCmd::MoveTo(Point::new(plot.x, y)));
-            marks.push(PathCmd::LineTo(Point::new(plot.right(), y)));
-            for t in &ticks {
-                let x = snap(t.position);
-                marks.push(PathCmd::MoveTo(Point::new(x, y)));
-                marks.push(PathCmd::LineTo(Point::new(x, y + theme.tick_length)));
-            }
-        }
-        Side::Left => {
-            let x = snap(plot.x) - 1.0;
-            marks.push(PathCmd::MoveTo(Point::new(x, plot.y)));
-            marks.push(PathCmd::LineTo(Point::new(x, plot.bottom())));
-            for t in &ticks {
-                let y = snap(t.position);
-                marks.push(PathCmd::MoveTo(Point::new(x, y)));
-                marks.push(PathCmd::LineTo(Point::new(x - theme.tick_length, y)));
-            }
-        }
-    }
-    items.push(Item::new(Role::Axis, Shape::Path(marks), Style::stroke(theme.axis, 1.0)).labelled(name));
+    let name = axis_name(side);
+    let mut items = vec![axis_line(&ticks, side, plot, theme)];
     let label_offset = theme.tick_length + gap(theme);
     for t in &ticks {
         let (at, anchor, baseline) = match side {
@@ -186,6 +159,48 @@ pub fn draw_within(
         items.push(Item::text(Role::AxisTitle, text).labelled(name));
     }
     items
+}
+
+/// The name an axis' items carry (`x axis`, `y axis`), which lint rules and the explorer read.
+fn axis_name(side: Side) -> &'static str {
+    match side {
+        Side::Bottom => "x axis",
+        Side::Left => "y axis",
+    }
+}
+
+/// The axis line and its tick marks at `ticks`.
+fn axis_line(ticks: &[Tick], side: Side, plot: Rect, theme: &Theme) -> Item {
+    let mut marks = Vec::new();
+    match side {
+        Side::Bottom => {
+            let y = snap(plot.bottom());
+            marks.push(PathCmd::MoveTo(Point::new(plot.x, y)));
+            marks.push(PathCmd::LineTo(Point::new(plot.right(), y)));
+            for t in ticks {
+                let x = snap(t.position);
+                marks.push(PathCmd::MoveTo(Point::new(x, y)));
+                marks.push(PathCmd::LineTo(Point::new(x, y + theme.tick_length)));
+            }
+        }
+        Side::Left => {
+            let x = snap(plot.x) - 1.0;
+            marks.push(PathCmd::MoveTo(Point::new(x, plot.y)));
+            marks.push(PathCmd::LineTo(Point::new(x, plot.bottom())));
+            for t in ticks {
+                let y = snap(t.position);
+                marks.push(PathCmd::MoveTo(Point::new(x, y)));
+                marks.push(PathCmd::LineTo(Point::new(x - theme.tick_length, y)));
+            }
+        }
+    }
+    Item::new(Role::Axis, Shape::Path(marks), Style::stroke(theme.axis, 1.0)).labelled(axis_name(side))
+}
+
+/// The axis line and tick marks without labels or title: the inner sides of facet panels,
+/// whose scale the outer panels label.
+pub fn draw_unlabelled(scale: &Scale, side: Side, plot: Rect, theme: &Theme) -> Vec<Item> {
+    vec![axis_line(&visible_ticks(scale, side, theme), side, plot, theme)]
 }
 
 /// An axis title with its unit: "Petal length (cm)". A title that already says the unit in

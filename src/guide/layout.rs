@@ -64,6 +64,20 @@ pub struct FrameSpec {
     pub theme: Theme,
     /// One data unit as long on x as on y: the plot shrinks along one axis, centred.
     pub equal_aspect: bool,
+    /// A plot area placed by someone else (a facet panel's): no title, caption, legends or
+    /// axis titles are drawn, and the axes are labelled only where asked.
+    pub fixed: Option<FixedPlot>,
+}
+
+/// A facet panel's plot area, placed on the whole canvas by the facet layout.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FixedPlot {
+    /// The plot area.
+    pub plot: Rect,
+    /// Whether the x axis has tick labels (else only its line and tick marks).
+    pub x_labels: bool,
+    /// Whether the y axis has tick labels (else only its line and tick marks).
+    pub y_labels: bool,
 }
 
 /// A laid-out frame: the plot area, its scales, and the guide items to draw under and over the data.
@@ -218,8 +232,56 @@ fn equal_aspect(spec: &FrameSpec, full: Rect, x: Scale, y: Scale) -> Result<(Rec
     Ok((plot, x, y))
 }
 
+/// How far the tick labels (and the title, when given) of `axis` reach outside a plot side
+/// `length` pixels long: the room a facet layout keeps beside its outer panels.
+pub fn axis_room(axis: &PositionAxis, side: Side, length: f64, title: Option<&str>, theme: &Theme) -> f64 {
+    let target = match side {
+        Side::Bottom => x_target(length, theme),
+        Side::Left => y_target(length, theme),
+    };
+    match build_scale(axis, (0.0, length.max(1.0)), target) {
+        Ok(scale) => axis::thickness(&scale, side, title, theme),
+        Err(_) => theme.font_size * 3.0,
+    }
+}
+
+/// The frame of a facet panel: scales over its fixed plot area, grid, and axes labelled only
+/// on the sides asked for.
+fn fixed_frame(spec: &FrameSpec, fixed: FixedPlot) -> Result<Frame, LayoutError> {
+    let theme = &spec.theme;
+    let mut plot = fixed.plot;
+    if plot.w < MIN_PLOT_SIDE || plot.h < MIN_PLOT_SIDE {
+        return Err(LayoutError::TooSmall { plot_width: plot.w.max(0.0), plot_height: plot.h.max(0.0) });
+    }
+    let mut x = build_scale(&spec.x, (plot.x, plot.right()), x_target(plot.w, theme))
+        .map_err(|error| LayoutError::Scale { axis: "x", error })?;
+    let mut y = build_scale(&spec.y, (plot.bottom(), plot.y), y_target(plot.h, theme))
+        .map_err(|error| LayoutError::Scale { axis: "y", error })?;
+    if spec.equal_aspect {
+        (plot, x, y) = equal_aspect(spec, plot, x, y)?;
+    }
+    let mut under = vec![Item::new(Role::Background, Shape::Rect(plot), Style::fill(theme.background))];
+    if spec.x.grid {
+        under.extend(axis::grid(&x, Side::Bottom, plot, theme));
+    }
+    if spec.y.grid {
+        under.extend(axis::grid(&y, Side::Left, plot, theme));
+    }
+    let mut over = Vec::new();
+    for (scale, side, labelled) in [(&x, Side::Bottom, fixed.x_labels), (&y, Side::Left, fixed.y_labels)] {
+        over.extend(match labelled {
+            true => axis::draw(scale, side, plot, None, theme),
+            false => axis::draw_unlabelled(scale, side, plot, theme),
+        });
+    }
+    Ok(Frame { plot, x, y, under, over, overlay: Overlay::default() })
+}
+
 /// Lay out a cartesian chart.
 pub fn cartesian(spec: &FrameSpec) -> Result<Frame, LayoutError> {
+    if let Some(fixed) = spec.fixed {
+        return fixed_frame(spec, fixed);
+    }
     let theme = &spec.theme;
     let m = theme.margin;
     let title = spec.title.as_deref().filter(|t| !t.trim().is_empty());

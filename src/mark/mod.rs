@@ -7,6 +7,7 @@
 //! that kinds only describe their own geometry. No kind imports another kind.
 
 pub mod cartesian;
+pub mod facet;
 pub mod grid;
 pub mod hierarchy;
 pub mod multivariate;
@@ -18,7 +19,7 @@ pub mod volume;
 
 pub use shared::{
     annotate, bands, categorical, derived, encode, frame, geojson, geometry, gridded, grouped, highlight, level_labels,
-    network_input, node_link, overplot, raster, size, tooltip, tree_input, trend, warning,
+    network_input, node_link, overplot, panel, raster, size, tooltip, tree_input, trend, warning,
 };
 
 use std::fmt;
@@ -128,7 +129,11 @@ pub fn draw(
 /// with its place in the spec) added here, once.
 pub fn draw_in(cx: &ChartContext<'_>) -> Result<ChartOutput, MarkError> {
     let name = &cx.chart.name;
-    let mut output = technique(&cx.chart.kind).draw(cx).map_err(|e| e.in_chart(cx.index, name))?;
+    let drawn = match &cx.chart.facet {
+        Some(facet) => facet::draw(cx, facet),
+        None => technique(&cx.chart.kind).draw(cx),
+    };
+    let mut output = drawn.map_err(|e| e.in_chart(cx.index, name))?;
     for warning in &mut output.warnings {
         if let Warning::Note(text) = warning {
             *text = format!("chart \"{name}\": {text}");
@@ -145,8 +150,12 @@ pub fn column_keys(kind: &str) -> &'static [&'static str] {
 
 /// The chart with `size` filled in by its kind's default ([`default_size`]) when the spec gives
 /// none.
+/// A faceted chart keeps `size` unset: its default depends on the number of panels.
 pub fn with_default_size(chart: &Chart) -> Chart {
     let mut chart = chart.clone();
+    if chart.facet.is_some() {
+        return chart;
+    }
     chart.size = Some(canvas_size(&chart));
     chart
 }

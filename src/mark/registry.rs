@@ -34,6 +34,20 @@ pub struct KindInfo {
     pub applies_aspect: bool,
     /// Whether the kind draws a chart's `annotate` notes (the kinds laid out in one x/y frame).
     pub draws_annotations: bool,
+    /// How the kind is drawn as facet panels (`facet = ...`), if it can be.
+    pub faceting: Faceting,
+}
+
+/// How a kind's charts split into small multiples.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Faceting {
+    /// Not at all: the kind does not draw from rows one by one (grids, trees, networks).
+    Not,
+    /// Each panel is one cartesian frame: shared scales, outer axes only.
+    Frame,
+    /// Each panel is a whole chart of its own layout (parallel coordinates, faces, ...), the
+    /// legends drawn once.
+    Canvas,
 }
 
 impl KindInfo {
@@ -48,7 +62,14 @@ impl KindInfo {
             draws_selection: false,
             applies_aspect: false,
             draws_annotations: false,
+            faceting: Faceting::Not,
         }
+    }
+
+    /// Drawn as facet panels in the given way.
+    pub const fn faceted(mut self, faceting: Faceting) -> KindInfo {
+        self.faceting = faceting;
+        self
     }
 
     /// With keys that default to conventional columns.
@@ -217,6 +238,12 @@ pub trait Technique: Sync {
     fn node_data(&self) -> Option<&str> {
         None
     }
+
+    /// For facet panels: the kind's options with what must be the same in every panel fixed
+    /// from the whole table (a histogram's bin edges), or `None` when nothing needs fixing.
+    fn facet_shared(&self, _chart: &Chart, _table: &Table) -> Result<Option<ChartKind>, MarkError> {
+        Ok(None)
+    }
 }
 
 /// The two [`Technique`] methods of a kind whose options have a `color: Option<ColorChannel>`
@@ -381,6 +408,18 @@ mod tests {
             assert!(kind_info(info.name).is_some_and(|k| std::ptr::eq(k, *info)));
         }
         assert!(kind_info("pie").is_none());
+    }
+
+    #[test]
+    fn faceted_kinds_are_the_documented_ones() {
+        assert_eq!(
+            names_where(|k| k.faceting == Faceting::Frame),
+            ["scatter", "line", "area", "bar", "histogram", "heatmap", "box", "violin"]
+        );
+        assert_eq!(
+            names_where(|k| k.faceting == Faceting::Canvas),
+            ["splom", "parallel", "daisy", "faces", "segments"]
+        );
     }
 
     #[test]

@@ -219,7 +219,7 @@ y = "petal_width"
         assert_eq!(
             diags[0].hint.as_deref(),
             Some(
-                "keys allowed here: name, data, kind, x, y, annotate, aspect, caption, color, font_size, highlight, lint, mark_color, opacity, point_size, radius, size, title, tooltip, trend"
+                "keys allowed here: name, data, kind, x, y, annotate, aspect, caption, color, facet, font_size, highlight, lint, mark_color, opacity, point_size, radius, size, title, tooltip, trend"
             )
         );
         assert_eq!(
@@ -238,7 +238,7 @@ y = "petal_width"
    |
 12 | colour = "species"
    | ^^^^^^ did you mean `color`?
-   = hint: keys allowed here: name, data, kind, x, y, annotate, aspect, caption, color, font_size, highlight, lint, mark_color, opacity, point_size, radius, size, title, tooltip, trend
+   = hint: keys allowed here: name, data, kind, x, y, annotate, aspect, caption, color, facet, font_size, highlight, lint, mark_color, opacity, point_size, radius, size, title, tooltip, trend
 
 error: `size` must be an array of 2 numbers, found a string
   --> spec.toml:13:8
@@ -478,6 +478,7 @@ radius = 3.5
 mark_color = "#336699"
 opacity = 0.7
 tooltip = ["species", "petal_length"]
+facet = { row = "sex", column = "island", resolve = { y = "independent" }, sort = "data" }
 trend = { method = "loess", span = 0.5, groups = true, equation = false }
 annotate = [{ y = 2.5, label = "target", color = "firebrick", dash = true }, { x = [5, 6.5], opacity = 0.2 }, { text = "note", at = [5, 1], anchor = "start" }, { arrow = [[4, 1], [5, 2]] }]
 
@@ -614,6 +615,14 @@ point_size = "d"
                             ..Annotation::default()
                         },
                     ],
+                    facet: Some(Facet::Detailed(FacetOptions {
+                        row: Some("sex".to_owned()),
+                        column: Some("island".to_owned()),
+                        wrap: None,
+                        resolve: Some(FacetResolve { x: None, y: Some(Sharing::Independent) }),
+                        sort: Some(FacetSort::Data),
+                    })),
+                    panel: None,
                     kind: ChartKind::Scatter(ScatterOptions {
                         x: Channel::Detailed(ChannelOptions {
                             field: "sepal_length".to_owned(),
@@ -668,6 +677,8 @@ point_size = "d"
                     lint: None,
                     tooltip: None,
                     annotate: Vec::new(),
+                    facet: None,
+                    panel: None,
                     kind: ChartKind::Line(LineOptions {
                         x: field("x"),
                         y: OneOrMany::Many(vec![
@@ -700,6 +711,8 @@ point_size = "d"
                     lint: None,
                     tooltip: None,
                     annotate: Vec::new(),
+                    facet: None,
+                    panel: None,
                     kind: ChartKind::Line(LineOptions {
                         x: Channel::Detailed(ChannelOptions {
                             field: "x".to_owned(),
@@ -733,6 +746,8 @@ point_size = "d"
                     lint: None,
                     tooltip: None,
                     annotate: Vec::new(),
+                    facet: None,
+                    panel: None,
                     kind: ChartKind::Scatter(ScatterOptions {
                         x: field("a"),
                         y: field("b"),

@@ -215,9 +215,109 @@ pub struct Chart {
     /// arrow (`arrow`), in the data's values (dates and categories as text).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub annotate: Vec<super::annotation::Annotation>,
+    /// Small multiples: one panel per value of a column, `facet = "species"` (panels wrapped
+    /// into a near-square grid), or `facet = { row = "sex", column = "island" }` for a grid of
+    /// two columns' values. Panels share their scales unless `resolve` says otherwise; each has
+    /// its value as a header, and only the outer panels carry tick labels.
+    #[serde(default)]
+    pub facet: Option<Facet>,
+    /// Set while a facet panel is drawn: the scales and plot the panel must use, and what it
+    /// saw of its own. Never read from or written to a spec.
+    #[serde(skip)]
+    #[schemars(skip)]
+    pub panel: Option<crate::mark::panel::PanelHandle>,
     /// What to draw and how.
     #[serde(flatten)]
     pub kind: ChartKind,
+}
+
+/// Small multiples of a chart: a column, or a table of options.
+#[derive(Clone, Debug, Deserialize, Serialize, JsonSchema, PartialEq)]
+#[serde(untagged)]
+pub enum Facet {
+    /// One panel per value of this column, wrapped into a near-square grid.
+    Field(String),
+    /// `{ row, column, wrap, resolve, sort }`.
+    Detailed(FacetOptions),
+}
+
+impl Facet {
+    /// The options, with a bare column read as `column` wrapped into a near-square grid.
+    pub fn options(&self) -> FacetOptions {
+        match self {
+            Facet::Field(field) => {
+                FacetOptions { row: None, column: Some(field.clone()), wrap: None, resolve: None, sort: None }
+            }
+            Facet::Detailed(options) => options.clone(),
+        }
+    }
+
+    /// Whether panels wrap into a near-square grid when `wrap` is not given (a bare column).
+    pub fn wraps_by_default(&self) -> bool {
+        matches!(self, Facet::Field(_))
+    }
+}
+
+/// Options of small multiples.
+#[derive(Clone, Debug, Deserialize, Serialize, JsonSchema, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct FacetOptions {
+    /// Column whose values make the rows of panels (headers on the right).
+    #[serde(default)]
+    #[schemars(example = &"sex")]
+    pub row: Option<String>,
+    /// Column whose values make the columns of panels (headers on top).
+    #[serde(default)]
+    #[schemars(example = &"island")]
+    pub column: Option<String>,
+    /// With `column` alone: at most this many panels side by side, the rest wrapping onto
+    /// further rows (default: all in one row), 1 to 50.
+    #[serde(default)]
+    #[schemars(range(min = 1, max = 50), example = 3)]
+    pub wrap: Option<u32>,
+    /// Whether each channel's scale is shared by all panels (default) or each panel's own:
+    /// `resolve = { y = "independent" }`. Unshared scales are reported by lint rule CM001.
+    #[serde(default)]
+    pub resolve: Option<FacetResolve>,
+    /// Panel order: `"ascending"` values (default; numbers and dates by value) or `"data"`
+    /// (order of first appearance).
+    #[serde(default)]
+    pub sort: Option<FacetSort>,
+}
+
+/// Which position scales facet panels share. Colours are always shared: one category has one
+/// colour, and one colour bar spans every panel's values.
+#[derive(Clone, Debug, Default, Deserialize, Serialize, JsonSchema, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct FacetResolve {
+    /// The x axis (default `"shared"`).
+    #[serde(default)]
+    pub x: Option<Sharing>,
+    /// The y axis (default `"shared"`).
+    #[serde(default)]
+    pub y: Option<Sharing>,
+}
+
+/// Whether panels share a scale.
+#[derive(Clone, Copy, Debug, Default, Deserialize, Serialize, JsonSchema, PartialEq, Eq)]
+#[serde(rename_all = "lowercase")]
+pub enum Sharing {
+    /// One scale over every panel's data.
+    #[default]
+    Shared,
+    /// Each panel's scale over its own data.
+    Independent,
+}
+
+/// The order of facet panels.
+#[derive(Clone, Copy, Debug, Default, Deserialize, Serialize, JsonSchema, PartialEq, Eq)]
+#[serde(rename_all = "lowercase")]
+pub enum FacetSort {
+    /// Ascending values: numbers and dates by value, text alphabetically.
+    #[default]
+    Ascending,
+    /// The order in which values first appear in the data.
+    Data,
 }
 
 /// A trend line through a scatter: a method, or a table of options.

@@ -16,6 +16,7 @@ mod common;
 mod datasets;
 mod defaults;
 mod explore;
+mod facet;
 mod flow;
 mod frame_fit;
 mod golden;

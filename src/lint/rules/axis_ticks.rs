@@ -5,7 +5,7 @@
 
 use crate::lint::chart_info::cartesian_axes;
 use crate::lint::{Category, Issue, Rule, Severity, Subject};
-use crate::scene::{Role, Shape};
+use crate::scene::{Item, Role, Shape};
 use crate::spec::{ChartKind, ScaleKind};
 
 /// Fewer labelled ticks than this leave the scale unreadable.
@@ -78,23 +78,53 @@ fn quantitative_axes(s: &Subject<'_>) -> Vec<(String, String, String)> {
     axes
 }
 
-/// The quantitative axes of the chart with their number of labelled ticks in the scene.
+/// The quantitative axes of the chart with their number of labelled ticks in the scene. A
+/// faceted chart's axes are counted in each panel that labels them (the outer panels).
 fn labelled_axes(s: &Subject<'_>) -> Vec<Ticked> {
-    quantitative_axes(s)
-        .into_iter()
-        .map(|(name, key, field)| {
-            let mut labels = 0;
-            s.output.scene.walk(|item| {
-                if item.role == Role::TickLabel
-                    && item.label.as_deref() == Some(name.as_str())
-                    && matches!(&item.shape, Shape::Text(t) if !t.content.trim().is_empty())
-                {
-                    labels += 1;
-                }
-            });
-            Ticked { name, key, field, labels }
+    let panels: Vec<&Item> =
+        s.output.scene.items.iter().filter(|i| i.label.as_deref().is_some_and(|l| l.starts_with("panel: "))).collect();
+    let mut out = Vec::new();
+    for (name, key, field) in quantitative_axes(s) {
+        if panels.is_empty() {
+            let labels = tick_labels(&s.output.scene.items, &name);
+            out.push(Ticked { name, key, field, labels });
+            continue;
+        }
+        let mut counts: Vec<usize> = panels
+            .iter()
+            .map(|p| match &p.shape {
+                Shape::Group { items, .. } => tick_labels(items, &name),
+                _ => 0,
+            })
+            .filter(|&n| n > 0)
+            .collect();
+        counts.sort_unstable();
+        counts.dedup();
+        if counts.is_empty() {
+            counts.push(0);
+        }
+        out.extend(counts.into_iter().map(|labels| Ticked {
+            name: name.clone(),
+            key: key.clone(),
+            field: field.clone(),
+            labels,
+        }));
+    }
+    out
+}
+
+/// The non-empty tick labels of axis `name` among `items` and their children.
+fn tick_labels(items: &[Item], name: &str) -> usize {
+    items
+        .iter()
+        .map(|item| match &item.shape {
+            Shape::Group { items, .. } => tick_labels(items, name),
+            Shape::Text(t) => usize::from(
+                item.role == Role::TickLabel && item.label.as_deref() == Some(name) && !t.content.trim().is_empty(),
+            ),
+            _ => 0,
         })
-        .collect()
+        .sum()
 }
 
 /// How a message names an axis: `x axis`, or `x axis of `FIELD`` for a matrix cell's axis.

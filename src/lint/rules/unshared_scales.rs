@@ -6,7 +6,8 @@
 //! with `layout = "multiples"`, whose panels all show the same field (`shared_scale = false` gives
 //! each its own scale). The other small-multiple kinds share by construction: a scatter-plot
 //! matrix uses one scale per column in every row and column of cells, and a hyperslice's panels
-//! are slices of one grid under one colour scale.
+//! are slices of one grid under one colour scale. Faceted charts (`facet = ...`) share their
+//! scales unless `resolve` makes one independent; their labelled panels are compared on x and y.
 
 use crate::lint::{Category, Issue, Rule, Severity, Subject};
 use crate::mark::grid::section::SectionLayout;
@@ -26,37 +27,89 @@ pub static RULE: Rule = Rule {
 /// The y-axis tick labels of each panel of a scene, top panel first: one list per axis line
 /// labelled `y axis`, holding the labels beside it (left of it, within its vertical extent).
 pub fn panel_tick_labels(scene: &Scene) -> Vec<Vec<String>> {
+    axis_tick_labels(scene, "y axis")
+}
+
+/// The tick labels of each axis line labelled `axis` (`"x axis"` or `"y axis"`), in the order
+/// of the lines (top to bottom, then left to right): the labels left of a y axis within its
+/// vertical extent, or below an x axis within its horizontal extent.
+pub fn axis_tick_labels(scene: &Scene, axis: &str) -> Vec<Vec<String>> {
+    let vertical = axis == "y axis";
+    // An axis line as (position across it, start, end along it).
     let mut axes: Vec<(f64, f64, f64)> = Vec::new();
     let mut labels: Vec<(f64, f64, String)> = Vec::new();
     scene.walk(|item| {
-        if item.label.as_deref() != Some("y axis") {
+        if item.label.as_deref() != Some(axis) {
             return;
         }
         match (&item.role, &item.shape) {
             (Role::Axis, Shape::Path(cmds)) => {
                 if let (Some(PathCmd::MoveTo(a)), Some(PathCmd::LineTo(b))) = (cmds.first(), cmds.get(1)) {
-                    axes.push((a.x, a.y.min(b.y), a.y.max(b.y)));
+                    axes.push(if vertical {
+                        (a.x, a.y.min(b.y), a.y.max(b.y))
+                    } else {
+                        (a.y, a.x.min(b.x), a.x.max(b.x))
+                    });
                 }
             }
             (Role::TickLabel, Shape::Text(t)) if !t.content.trim().is_empty() => {
-                labels.push((t.at.x, t.at.y, t.content.clone()));
+                labels.push(if vertical {
+                    (t.at.x, t.at.y, t.content.clone())
+                } else {
+                    (t.at.y, t.at.x, t.content.clone())
+                });
             }
             _ => {}
         }
     });
-    axes.sort_by(|a, b| a.1.total_cmp(&b.1));
+    axes.sort_by(|a, b| a.1.total_cmp(&b.1).then(a.0.total_cmp(&b.0)));
     axes.iter()
-        .map(|&(x, top, bottom)| {
+        .map(|&(across, start, end)| {
             labels
                 .iter()
-                .filter(|(lx, ly, _)| *lx <= x && *ly >= top - 1.0 && *ly <= bottom + 1.0)
+                .filter(|(l_across, l_along, _)| {
+                    let beside =
+                        if vertical { *l_across <= across } else { *l_across >= across && *l_across <= across + 40.0 };
+                    beside && *l_along >= start - 1.0 && *l_along <= end + 1.0
+                })
                 .map(|(_, _, text)| text.clone())
                 .collect()
         })
         .collect()
 }
 
+/// CM001 for a faceted chart: the panels that label an axis should label it alike.
+fn check_facets(s: &Subject<'_>) -> Vec<Issue> {
+    let mut issues = Vec::new();
+    for (axis, key) in [("x axis", "x"), ("y axis", "y")] {
+        let panels: Vec<Vec<String>> =
+            axis_tick_labels(&s.output.scene, axis).into_iter().filter(|p| !p.is_empty()).collect();
+        let Some(first) = panels.first() else { continue };
+        let differing = panels.iter().filter(|p| *p != first).count();
+        if differing == 0 {
+            continue;
+        }
+        issues.push(Issue::new(
+            axis,
+            "facet.resolve",
+            format!(
+                "the facet panels do not share their {key} scale ({differing} of {} labelled panels differ from the \
+                 first), so equal positions in different panels mean different values",
+                panels.len()
+            ),
+            format!(
+                "remove `resolve.{key} = \"independent\"` so every panel uses one scale; if the panels' ranges differ \
+                 too much for that, say in the title that each panel has its own {key} scale"
+            ),
+        ));
+    }
+    issues
+}
+
 fn check(s: &Subject<'_>) -> Vec<Issue> {
+    if s.chart.facet.is_some() {
+        return check_facets(s);
+    }
     let ChartKind::Section(options) = &s.chart.kind else { return Vec::new() };
     if options.layout != Some(SectionLayout::Multiples) {
         return Vec::new();

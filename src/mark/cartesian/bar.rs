@@ -190,8 +190,11 @@ pub fn draw(chart: &Chart, options: &BarOptions, table: &Table) -> Result<ChartO
     let (d0, d1) = frame.y.domain();
     let base = 0.0f64.clamp(d0.min(d1), d0.max(d1));
     let base_px = frame.y.map(base);
+    // Bands by category name: a facet panel's axis may hold categories the panel has no bar for.
+    let band_index = |b: &Bar| x_keys.labels.get(b.x).and_then(|l| band.band_of(l)).unwrap_or(b.x);
     let slot_of = |b: &Bar| {
-        if stacked { (band.start(b.x), band.bandwidth()) } else { bands::dodged(band, b.x, &groups.labels, b.group) }
+        let x = band_index(b);
+        if stacked { (band.start(x), band.bandwidth()) } else { bands::dodged(band, x, &groups.labels, b.group) }
     };
     let (lo, hi) = (d0.min(d1), d0.max(d1));
     let mut marks = Vec::with_capacity(bars.len() + 1);
@@ -432,7 +435,8 @@ fn sort_categories(bars: &mut [Bar], keys: &mut bands::Keys, sort: BarSort) {
 }
 
 /// `kind = "bar"`.
-pub static KIND: KindInfo = KindInfo::new("bar", &["x", "y", "color"]).drawing_annotations();
+pub static KIND: KindInfo =
+    KindInfo::new("bar", &["x", "y", "color"]).faceted(crate::mark::registry::Faceting::Frame).drawing_annotations();
 
 impl Technique for BarOptions {
     fn info(&self) -> &'static KindInfo {

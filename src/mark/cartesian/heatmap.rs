@@ -16,6 +16,7 @@ use crate::guide::axis::title_with_unit;
 use crate::guide::color::contrast_ratio;
 use crate::guide::layout::{Domain, PositionAxis};
 use crate::guide::legend::Legend;
+use crate::guide::scale::Scale;
 use crate::mark::derived::{Derived, DerivedColumn};
 use crate::mark::encode::{self, MISSING_LABEL};
 use crate::mark::registry::{AxisSpec, ChartContext, ColourSpec, KindInfo, Technique};
@@ -148,6 +149,8 @@ pub fn draw(chart: &Chart, options: &HeatmapOptions, table: &Table) -> Result<Ch
     cells = cells.permuted(&x_order, &y_order);
 
     let (lo, hi) = encode::finite_extent(cells.values.iter().flatten().flatten().map(|c| c.0)).unwrap_or((0.0, 1.0));
+    // Facet panels share one colour range.
+    let (lo, hi) = chart.panel.as_ref().and_then(|p| p.color).unwrap_or((lo, hi));
     let scheme = z_opts.as_ref().and_then(|z| z.scheme.as_deref());
     let map = encode::continuous_map(&["z", "scheme"], scheme)?;
     let midpoint = z_opts.as_ref().and_then(|z| z.midpoint);
@@ -176,8 +179,19 @@ pub fn draw(chart: &Chart, options: &HeatmapOptions, table: &Table) -> Result<Ch
     let (frame, theme) =
         frame::cartesian(chart, axis(&x_opts, x_side.labels.clone()), axis(&y_opts, y_axis_labels), legends)?;
 
-    // Cells fill their bands without gaps: bands step evenly across the plot.
-    let (nx, ny) = (x_side.labels.len(), y_side.labels.len());
+    // Cells fill their bands without gaps: bands step evenly across the plot. A facet panel's
+    // axes may hold more categories than the panel has, so cells are placed by name.
+    let band_count = |scale: &Scale, own: usize| if let Scale::Band(b) = scale { b.len() } else { own };
+    let (nx, ny) = (band_count(&frame.x, x_side.labels.len()), band_count(&frame.y, y_side.labels.len()));
+    let column_of = |i: usize| match &frame.x {
+        Scale::Band(b) => b.band_of(&x_side.labels[i]).unwrap_or(i),
+        _ => i,
+    };
+    // The y bands run upwards; row `j` counts from the top.
+    let row_of = |j: usize| match &frame.y {
+        Scale::Band(b) => b.band_of(&y_side.labels[j]).map_or(j, |k| ny - 1 - k),
+        _ => j,
+    };
     let plot = frame.plot;
     let (w, h) = (plot.w / nx as f64, plot.h / ny as f64);
     let label_size = theme.font_size * LABEL_SCALE;
@@ -197,7 +211,7 @@ pub fn draw(chart: &Chart, options: &HeatmapOptions, table: &Table) -> Result<Ch
         for (i, cell) in row.iter().enumerate() {
             let Some((value, members)) = cell else { continue };
             let fill = map.at(((value - c_lo) / span).clamp(0.0, 1.0));
-            let rect = Rect::new(plot.x + w * i as f64, plot.y + h * j as f64, w, h);
+            let rect = Rect::new(plot.x + w * column_of(i) as f64, plot.y + h * row_of(j) as f64, w, h);
             let tooltip = format!(
                 "{}: {}\n{}: {}\n{value_name}: {value} ({} rows)",
                 x_opts.field,
@@ -427,7 +441,8 @@ fn derived_table(x_field: &str, y_field: &str, x: &Side, y: &Side, cells: &Cells
 }
 
 /// `kind = "heatmap"`.
-pub static KIND: KindInfo = KindInfo::new("heatmap", &["x", "y", "z"]).drawing_annotations();
+pub static KIND: KindInfo =
+    KindInfo::new("heatmap", &["x", "y", "z"]).faceted(crate::mark::registry::Faceting::Frame).drawing_annotations();
 
 impl Technique for HeatmapOptions {
     fn info(&self) -> &'static KindInfo {

@@ -383,6 +383,30 @@ fn check_column(options: &HistogramOptions, column: &Column) -> Result<(), MarkE
     Ok(())
 }
 
+/// The options with the bins of the whole table fixed (a step, no rounding, and the edges'
+/// span as the x domain), so that every facet panel bins its rows alike.
+fn shared_bins(chart: &Chart, options: &HistogramOptions, table: &Table) -> Result<HistogramOptions, MarkError> {
+    let mut x_opts = options.x.options();
+    let x_col = encode::column(chart, "x", &x_opts.field, table)?;
+    check_column(options, x_col)?;
+    let values = x_col.numbers().unwrap_or(&[]);
+    let rows: Vec<u32> = (0..table.rows as u32)
+        .filter(|&r| values.get(r as usize).is_some_and(|v| v.is_finite()))
+        .filter(|&r| x_opts.domain.is_none_or(|[a, b]| (a.min(b)..=a.max(b)).contains(&values[r as usize])))
+        .collect();
+    let edges = edges(options, values, &rows, x_opts.domain)?;
+    let (Some(&first), Some(&last)) = (edges.first(), edges.last()) else { return Ok(options.clone()) };
+    let mut shared = options.clone();
+    if edges.len() >= 2 {
+        shared.step = Some(edges[1] - edges[0]);
+        shared.bins = None;
+        shared.nice = Some(false);
+        x_opts.domain = Some([first, last]);
+        shared.x = Channel::Detailed(x_opts);
+    }
+    Ok(shared)
+}
+
 /// The bin edges: from `step` or the bin rule, nice or exact, over the domain or the data.
 fn edges(
     options: &HistogramOptions,
@@ -396,7 +420,8 @@ fn edges(
     };
     let nice = options.nice.unwrap_or(true);
     if let Some(step) = options.step {
-        let bins = ((hi - lo) / step).ceil();
+        // A span that is a whole number of steps up to rounding is that many bins.
+        let bins = ((hi - lo) / step - 1e-9).ceil();
         if !(bins <= MAX_BINS as f64) {
             return Err(MarkError::at(
                 &["step"],
@@ -617,7 +642,10 @@ fn derived_table(binned: &Binned, heights: &[Vec<f64>], groups: Option<(&str, &[
 }
 
 /// `kind = "histogram"`.
-pub static KIND: KindInfo = KindInfo::new("histogram", &["x", "color"]).drawing_selections().drawing_annotations();
+pub static KIND: KindInfo = KindInfo::new("histogram", &["x", "color"])
+    .drawing_selections()
+    .faceted(crate::mark::registry::Faceting::Frame)
+    .drawing_annotations();
 
 impl Technique for HistogramOptions {
     fn info(&self) -> &'static KindInfo {
@@ -626,6 +654,10 @@ impl Technique for HistogramOptions {
 
     fn draw(&self, cx: &ChartContext<'_>) -> Result<ChartOutput, MarkError> {
         draw(&cx.chart, self, cx.table, cx.highlight)
+    }
+
+    fn facet_shared(&self, chart: &Chart, table: &Table) -> Result<Option<crate::spec::ChartKind>, MarkError> {
+        Ok(Some(crate::spec::ChartKind::Histogram(shared_bins(chart, self, table)?)))
     }
 
     fn cartesian_axes(&self) -> Vec<AxisSpec> {

@@ -213,6 +213,7 @@ pub fn draw(
 pub static KIND: KindInfo = KindInfo::new("scatter", &["x", "y", "color", "point_size"])
     .drawing_selections()
     .taking_aspect()
+    .faceted(crate::mark::registry::Faceting::Frame)
     .drawing_annotations();
 
 impl Technique for ScatterOptions {

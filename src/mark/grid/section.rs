@@ -249,6 +249,7 @@ fn multiples(
             legends: Vec::new(),
             theme: panel_theme.clone(),
             equal_aspect: false,
+            fixed: None,
         };
         let frame = layout::cartesian(&spec).map_err(|e| MarkError::layout(e))?;
         let dy = title_h + panel_h * k as f64;

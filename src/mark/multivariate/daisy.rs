@@ -358,7 +358,10 @@ fn derived_vertices(
 }
 
 /// `kind = "daisy"`.
-pub static KIND: KindInfo = KindInfo::new("daisy", &["columns", "color"]).sized(DEFAULT_SIZE).drawing_selections();
+pub static KIND: KindInfo = KindInfo::new("daisy", &["columns", "color"])
+    .sized(DEFAULT_SIZE)
+    .drawing_selections()
+    .faceted(crate::mark::registry::Faceting::Canvas);
 
 impl Technique for DaisyOptions {
     fn info(&self) -> &'static KindInfo {

@@ -338,8 +338,10 @@ impl FaceGrid {
 }
 
 /// `kind = "faces"`.
-pub static KIND: KindInfo =
-    KindInfo::new("faces", &["columns", "features", "label", "color"]).sized(DEFAULT_SIZE).drawing_selections();
+pub static KIND: KindInfo = KindInfo::new("faces", &["columns", "features", "label", "color"])
+    .sized(DEFAULT_SIZE)
+    .drawing_selections()
+    .faceted(crate::mark::registry::Faceting::Canvas);
 
 impl Technique for FacesOptions {
     fn info(&self) -> &'static KindInfo {

@@ -372,7 +372,10 @@ fn derived_vertices(
 }
 
 /// `kind = "parallel"`.
-pub static KIND: KindInfo = KindInfo::new("parallel", &["columns", "color"]).sized(DEFAULT_SIZE).drawing_selections();
+pub static KIND: KindInfo = KindInfo::new("parallel", &["columns", "color"])
+    .sized(DEFAULT_SIZE)
+    .drawing_selections()
+    .faceted(crate::mark::registry::Faceting::Canvas);
 
 impl Technique for ParallelOptions {
     fn info(&self) -> &'static KindInfo {

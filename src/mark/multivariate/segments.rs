@@ -369,8 +369,10 @@ impl Disk {
 }
 
 /// `kind = "segments"`.
-pub static KIND: KindInfo =
-    KindInfo::new("segments", &["columns", "order_by"]).sized(DEFAULT_SIZE).drawing_selections();
+pub static KIND: KindInfo = KindInfo::new("segments", &["columns", "order_by"])
+    .sized(DEFAULT_SIZE)
+    .drawing_selections()
+    .faceted(crate::mark::registry::Faceting::Canvas);
 
 impl Technique for SegmentsOptions {
     fn info(&self) -> &'static KindInfo {

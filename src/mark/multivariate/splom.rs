@@ -718,7 +718,10 @@ fn density_counts(
 }
 
 /// `kind = "splom"`.
-pub static KIND: KindInfo = KindInfo::new("splom", &["columns", "color"]).sized(DEFAULT_SIZE).drawing_selections();
+pub static KIND: KindInfo = KindInfo::new("splom", &["columns", "color"])
+    .sized(DEFAULT_SIZE)
+    .drawing_selections()
+    .faceted(crate::mark::registry::Faceting::Canvas);
 
 impl Technique for SplomOptions {
     fn info(&self) -> &'static KindInfo {

@@ -206,6 +206,23 @@ pub fn shared_domains(charts: &[Chart], tables: &BTreeMap<String, Table>) -> BTr
     out
 }
 
+/// Give the chart's categorical colour encoding without a `domain` its table's categories as
+/// the domain, so parts of the table drawn apart (facet panels) colour each category alike.
+/// Returns the domain's labels in order (`None` without a categorical colour encoding).
+pub fn fix_domain(chart: &mut Chart, table: &Table) -> Option<Vec<String>> {
+    let (channel, _) = channel_mut(chart)?;
+    let mut options = channel.options();
+    let column = table.column(&options.field)?;
+    if !is_categorical(&options, column) {
+        return None;
+    }
+    if options.domain.is_none() {
+        options.domain = Some(categories_of(column).levels.into_iter().map(CategoryValue::Text).collect());
+        *channel = ColorChannel::Detailed(options.clone());
+    }
+    options.domain.as_ref().map(|d| d.iter().map(label_of).collect())
+}
+
 /// Give every categorical colour encoding without a `domain` the spec-wide order of its
 /// column's categories from [`shared_domains`], so a category has one colour in every chart.
 pub fn share_domains(charts: &mut [Chart], tables: &BTreeMap<String, Table>) {

@@ -480,6 +480,9 @@ pub fn color_encoding(
     let values = col.numbers().unwrap_or(&[]).to_vec();
     let map = continuous_map(&["color", "scheme"], options.scheme.as_deref())?;
     let (mut lo, mut hi) = extent(&values, rows).unwrap_or((0.0, 1.0));
+    if let Some(shared) = chart.panel.as_ref().and_then(|p| p.color) {
+        (lo, hi) = shared;
+    }
     if map.is_diverging() {
         let mid = options.midpoint.unwrap_or((lo + hi) / 2.0);
         let half = (hi - mid).abs().max((mid - lo).abs());

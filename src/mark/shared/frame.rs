@@ -2,7 +2,7 @@
 //! the laid-out frame, and the final scene with the data marks clipped to the plot.
 
 use crate::guide::Theme;
-use crate::guide::layout::{self, Frame, FrameSpec, PositionAxis};
+use crate::guide::layout::{self, FixedPlot, Frame, FrameSpec, PositionAxis};
 use crate::guide::legend::truncate_to_width;
 use crate::guide::legend::{self, Legend};
 use crate::mark::{FRAME_SIZE, MarkError, annotate};
@@ -14,15 +14,31 @@ use crate::spec::Chart;
 
 /// Lay out the frame of chart `index` around its axes (widened to take in its annotations) and
 /// legends, with its annotations placed in it.
+///
+/// A facet panel ([`Chart::panel`]) takes the domains and plot area its layout fixed, and
+/// records its axes and legends instead of drawing the legends.
 pub fn cartesian(
     chart: &Chart,
     mut x: PositionAxis,
     mut y: PositionAxis,
-    legends: Vec<Legend>,
+    mut legends: Vec<Legend>,
 ) -> Result<(Frame, Theme), MarkError> {
     annotate::widen(chart, &mut x, &mut y);
     let [width, height] = chart.size.unwrap_or(FRAME_SIZE);
     let theme = Theme::with_font_size(chart.font_size.unwrap_or(12.0));
+    let mut fixed = None;
+    if let Some(panel) = &chart.panel {
+        panel.saw_axes(&x, &y);
+        panel.saw_legends(&legends);
+        legends.clear();
+        if let Some(domain) = &panel.x {
+            x.domain = domain.clone();
+        }
+        if let Some(domain) = &panel.y {
+            y.domain = domain.clone();
+        }
+        fixed = panel.plot.map(|plot| FixedPlot { plot, x_labels: panel.x_labels, y_labels: panel.y_labels });
+    }
     let mut frame = layout::cartesian(&FrameSpec {
         width,
         height,
@@ -33,6 +49,7 @@ pub fn cartesian(
         legends,
         theme: theme.clone(),
         equal_aspect: chart.aspect == Some(crate::spec::Aspect::Equal),
+        fixed,
     })
     .map_err(|e| MarkError::layout(e))?;
     frame.overlay = annotate::resolve(chart, &frame, &theme)?;
@@ -172,7 +189,12 @@ pub struct PanelCanvas {
 
 impl PanelCanvas {
     /// Measure the canvas of `chart` with `legends` on the right.
-    pub fn new(chart: &Chart, legends: Vec<Legend>) -> PanelCanvas {
+    /// A facet panel records its legends instead, for its layout to draw them once.
+    pub fn new(chart: &Chart, mut legends: Vec<Legend>) -> PanelCanvas {
+        if let Some(panel) = &chart.panel {
+            panel.saw_legends(&legends);
+            legends.clear();
+        }
         let [width, height] = chart.size.unwrap_or(FRAME_SIZE);
         let theme = Theme::with_font_size(chart.font_size.unwrap_or(12.0));
         let title_h = chart.title.as_ref().map(|_| theme.title_size * 1.8).unwrap_or(0.0);

@@ -19,6 +19,7 @@ pub mod level_labels;
 pub mod network_input;
 pub mod node_link;
 pub mod overplot;
+pub mod panel;
 pub mod raster;
 pub mod size;
 pub mod tooltip;
