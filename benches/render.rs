@@ -51,6 +51,8 @@ fn scatter_chart() -> Chart {
         aspect: None,
         highlight: None,
         lint: None,
+        tooltip: None,
+        annotate: Vec::new(),
         kind: ChartKind::Scatter(ScatterOptions {
             x: Channel::Field("x".into()),
             y: Channel::Field("y".into()),
@@ -59,6 +61,7 @@ fn scatter_chart() -> Chart {
             radius: None,
             mark_color: None,
             opacity: None,
+            trend: None,
         }),
     }
 }

@@ -201,6 +201,14 @@ pub fn bounds(text: &Text) -> Rect {
     Rect::new(minx, miny, maxx - minx, maxy - miny)
 }
 
+/// Whether two glyph boxes overlap enough to hurt reading: by more than half a pixel inwards
+/// from every side (lint rule LB002 reports such pairs; label placement keeps clear of them).
+pub fn boxes_overlap(a: &Rect, b: &Rect) -> bool {
+    let shrink = |r: &Rect| Rect::new(r.x + 0.5, r.y + 0.5, (r.w - 1.0).max(0.0), (r.h - 1.0).max(0.0));
+    let (a, b) = (shrink(a), shrink(b));
+    a.w > 0.0 && b.w > 0.0 && a.intersects(&b)
+}
+
 /// Collects a glyph outline into a tiny-skia path, mapping font units to canvas units.
 struct Outline<'a> {
     builder: &'a mut tiny_skia::PathBuilder,

@@ -96,6 +96,22 @@ pub struct Frame {
     pub under: Vec<Item>,
     /// Axes, titles, caption and legends, drawn after the data.
     pub over: Vec<Item>,
+    /// The chart's annotations in pixels, drawn with the data (empty from [`cartesian`]; the
+    /// kind's frame fills it).
+    pub overlay: Overlay,
+}
+
+/// Notes drawn with the data (a chart's `annotate`), resolved to pixels: shapes under and over
+/// the data, both clipped to the plot, and text labels, each given as the placements it may take,
+/// best first (the drawing picks the first clear of other text).
+#[derive(Clone, Debug, Default)]
+pub struct Overlay {
+    /// Drawn under the data (shaded bands).
+    pub under: Vec<Item>,
+    /// Drawn over the data (rules, arrows).
+    pub over: Vec<Item>,
+    /// Text items, each as its candidate placements in order of preference.
+    pub labels: Vec<Vec<Item>>,
 }
 
 /// Why a frame could not be laid out.
@@ -279,7 +295,7 @@ fn fixed_frame(spec: &FrameSpec, fixed: FixedPlot) -> Result<Frame, LayoutError>
             false => axis::draw_unlabelled(scale, side, plot, theme),
         });
     }
-    Ok(Frame { plot, x, y, under, over })
+    Ok(Frame { plot, x, y, under, over, overlay: Overlay::default() })
 }
 
 /// Lay out a cartesian chart.
@@ -388,5 +404,5 @@ pub fn cartesian(spec: &FrameSpec) -> Result<Frame, LayoutError> {
         ));
     }
     over.extend(legend::draw_stack(&spec.legends, Point::new(spec.width - m - legend_width, top), theme, legend_room));
-    Ok(Frame { plot, x, y, under, over })
+    Ok(Frame { plot, x, y, under, over, overlay: Overlay::default() })
 }

@@ -77,8 +77,9 @@ pub fn overlap_area(a: &Rect, b: &Rect) -> f64 {
     w * h
 }
 
-/// Pairs of texts whose glyph boxes overlap by more than half a pixel on each side, as indices
-/// into `texts`. Sweeps boxes sorted by their left edge, so it stays fast for thousands of labels.
+/// Pairs of texts whose glyph boxes overlap by more than half a pixel on each side
+/// ([`crate::text::boxes_overlap`]), as indices into `texts`. Sweeps boxes sorted by their left
+/// edge, so it stays fast for thousands of labels.
 pub fn overlapping_pairs(texts: &[PlacedText<'_>]) -> Vec<(usize, usize)> {
     let boxes: Vec<Rect> = texts.iter().map(|t| shrink(&t.bounds, 0.5)).collect();
     let mut order: Vec<usize> = (0..boxes.len()).collect();
@@ -89,7 +90,7 @@ pub fn overlapping_pairs(texts: &[PlacedText<'_>]) -> Vec<(usize, usize)> {
             if boxes[j].x >= boxes[i].right() {
                 break;
             }
-            if boxes[i].w > 0.0 && boxes[j].w > 0.0 && boxes[i].intersects(&boxes[j]) {
+            if crate::text::boxes_overlap(&texts[i].bounds, &texts[j].bounds) {
                 pairs.push((i.min(j), i.max(j)));
             }
         }

@@ -18,7 +18,7 @@ pub mod vector;
 pub mod volume;
 
 pub use shared::{
-    bands, categorical, derived, encode, frame, geojson, geometry, gridded, grouped, highlight, level_labels,
+    annotate, bands, categorical, derived, encode, frame, geojson, geometry, gridded, grouped, highlight, level_labels,
     network_input, node_link, overplot, panel, raster, size, tooltip, tree_input, trend, warning,
 };
 
@@ -79,6 +79,12 @@ impl MarkError {
     /// if empty).
     pub fn at(keys: &[&str], message: impl Into<String>, hint: impl Into<String>) -> MarkError {
         let path = keys.iter().map(|k| PathSeg::Key(k.to_string())).collect();
+        MarkError { message: message.into(), hint: hint.into(), path, placed: false }
+    }
+
+    /// An error about the chart being drawn, pointing at `path` within it (keys and list
+    /// positions, e.g. `annotate[2].x`).
+    pub fn at_path(path: Vec<PathSeg>, message: impl Into<String>, hint: impl Into<String>) -> MarkError {
         MarkError { message: message.into(), hint: hint.into(), path, placed: false }
     }
 

@@ -3,8 +3,8 @@
 //! invocation below, as `lint::rules::ALL` lists rules.
 //!
 //! Everything that used to match on the kind — the spec's kind names, the keys naming columns,
-//! conventional default columns, default canvas sizes, which kinds draw selections or take
-//! `aspect`, what lint reads of the encodings, the node table of network kinds, the explorer's
+//! conventional default columns, default canvas sizes, which kinds draw selections, take
+//! `aspect` or draw annotations, what lint reads of the encodings, the node table of network kinds, the explorer's
 //! interactive geometry — is read from here.
 
 use super::{ChartOutput, MarkError};
@@ -32,6 +32,8 @@ pub struct KindInfo {
     pub draws_selection: bool,
     /// Whether the kind applies `aspect = "equal"` (one x/y frame, or given node positions).
     pub applies_aspect: bool,
+    /// Whether the kind draws a chart's `annotate` notes (the kinds laid out in one x/y frame).
+    pub draws_annotations: bool,
     /// How the kind is drawn as facet panels (`facet = ...`), if it can be.
     pub faceting: Faceting,
 }
@@ -59,6 +61,7 @@ impl KindInfo {
             default_size: FRAME_SIZE,
             draws_selection: false,
             applies_aspect: false,
+            draws_annotations: false,
             faceting: Faceting::Not,
         }
     }
@@ -90,6 +93,12 @@ impl KindInfo {
     /// Applying `aspect = "equal"`.
     pub const fn taking_aspect(mut self) -> KindInfo {
         self.applies_aspect = true;
+        self
+    }
+
+    /// Drawing the chart's `annotate` notes in its x/y frame.
+    pub const fn drawing_annotations(mut self) -> KindInfo {
+        self.draws_annotations = true;
         self
     }
 }
@@ -414,7 +423,7 @@ mod tests {
     }
 
     #[test]
-    fn selection_and_aspect_kinds_are_the_documented_ones() {
+    fn selection_aspect_and_annotation_kinds_are_the_documented_ones() {
         assert_eq!(
             names_where(|k| k.draws_selection),
             ["scatter", "histogram", "box", "violin", "splom", "parallel", "daisy", "faces", "segments"]
@@ -422,6 +431,25 @@ mod tests {
         assert_eq!(
             names_where(|k| k.applies_aspect),
             ["scatter", "line", "interp1d", "contour", "image", "scattered", "graph", "linkmap", "flow"]
+        );
+        assert_eq!(
+            names_where(|k| k.draws_annotations),
+            [
+                "scatter",
+                "line",
+                "area",
+                "bar",
+                "histogram",
+                "heatmap",
+                "box",
+                "violin",
+                "interp1d",
+                "contour",
+                "image",
+                "section",
+                "scattered",
+                "flow"
+            ]
         );
     }
 }

@@ -6,6 +6,7 @@
 //! once. The parsed [`SpecDoc`] is kept so later stages can point at the spec too
 //! (see [`SpecDoc::span_of`] and [`chart_path`]).
 
+pub mod annotation;
 pub mod defaults;
 pub mod diagnostic;
 pub(crate) mod foreign;
@@ -16,6 +17,7 @@ pub mod transform;
 pub mod types;
 pub mod validate;
 
+pub use annotation::{Annotation, AxisPlace, AxisValue, TextAnchor};
 pub use diagnostic::{Diagnostic, Severity, SourceFile, render_all};
 pub use schema::spec_schema;
 pub use source::{PathSeg, SpannedValue, SpecDoc, TableEntry, ValueKind};
@@ -217,7 +219,7 @@ y = "petal_width"
         assert_eq!(
             diags[0].hint.as_deref(),
             Some(
-                "keys allowed here: name, data, kind, x, y, aspect, caption, color, facet, font_size, highlight, lint, mark_color, opacity, point_size, radius, size, title, tooltip, trend"
+                "keys allowed here: name, data, kind, x, y, annotate, aspect, caption, color, facet, font_size, highlight, lint, mark_color, opacity, point_size, radius, size, title, tooltip, trend"
             )
         );
         assert_eq!(
@@ -236,7 +238,7 @@ y = "petal_width"
    |
 12 | colour = "species"
    | ^^^^^^ did you mean `color`?
-   = hint: keys allowed here: name, data, kind, x, y, aspect, caption, color, facet, font_size, highlight, lint, mark_color, opacity, point_size, radius, size, title, tooltip, trend
+   = hint: keys allowed here: name, data, kind, x, y, annotate, aspect, caption, color, facet, font_size, highlight, lint, mark_color, opacity, point_size, radius, size, title, tooltip, trend
 
 error: `size` must be an array of 2 numbers, found a string
   --> spec.toml:13:8
@@ -478,6 +480,7 @@ opacity = 0.7
 tooltip = ["species", "petal_length"]
 facet = { row = "sex", column = "island", resolve = { y = "independent" }, sort = "data" }
 trend = { method = "loess", span = 0.5, groups = true, equation = false }
+annotate = [{ y = 2.5, label = "target", color = "firebrick", dash = true }, { x = [5, 6.5], opacity = 0.2 }, { text = "note", at = [5, 1], anchor = "start" }, { arrow = [[4, 1], [5, 2]] }]
 
 [[chart]]
 name = "prices.v2"
@@ -585,6 +588,33 @@ point_size = "d"
                     font_size: Some(12.0),
                     aspect: Some(Aspect::Equal),
                     tooltip: Some(Tooltip::Fields(vec!["species".to_owned(), "petal_length".to_owned()])),
+                    annotate: vec![
+                        Annotation {
+                            y: Some(AxisPlace::At(AxisValue::Number(2.5))),
+                            label: Some("target".to_owned()),
+                            color: Some("firebrick".to_owned()),
+                            dash: Some(true),
+                            ..Annotation::default()
+                        },
+                        Annotation {
+                            x: Some(AxisPlace::Range([AxisValue::Number(5.0), AxisValue::Number(6.5)])),
+                            opacity: Some(0.2),
+                            ..Annotation::default()
+                        },
+                        Annotation {
+                            text: Some("note".to_owned()),
+                            at: Some([AxisValue::Number(5.0), AxisValue::Number(1.0)]),
+                            anchor: Some(TextAnchor::Start),
+                            ..Annotation::default()
+                        },
+                        Annotation {
+                            arrow: Some([
+                                [AxisValue::Number(4.0), AxisValue::Number(1.0)],
+                                [AxisValue::Number(5.0), AxisValue::Number(2.0)],
+                            ]),
+                            ..Annotation::default()
+                        },
+                    ],
                     facet: Some(Facet::Detailed(FacetOptions {
                         row: Some("sex".to_owned()),
                         column: Some("island".to_owned()),
@@ -646,6 +676,7 @@ point_size = "d"
                     highlight: None,
                     lint: None,
                     tooltip: None,
+                    annotate: Vec::new(),
                     facet: None,
                     panel: None,
                     kind: ChartKind::Line(LineOptions {
@@ -679,6 +710,7 @@ point_size = "d"
                     highlight: None,
                     lint: None,
                     tooltip: None,
+                    annotate: Vec::new(),
                     facet: None,
                     panel: None,
                     kind: ChartKind::Line(LineOptions {
@@ -713,6 +745,7 @@ point_size = "d"
                     highlight: None,
                     lint: None,
                     tooltip: None,
+                    annotate: Vec::new(),
                     facet: None,
                     panel: None,
                     kind: ChartKind::Scatter(ScatterOptions {

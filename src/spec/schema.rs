@@ -284,8 +284,8 @@ mod tests {
         walk(&schema, &mut count);
         // Spec, DataSource, Selection, LintConfig, ChannelOptions, ColorOptions, SizeOptions,
         // FaceFeatures, TreeSource, NodeTable, TransformStep, TrendOptions, LineBand, FacetOptions,
-        // FacetResolve and one branch per kind.
-        assert_eq!(count, 15 + crate::mark::registry::KINDS.len());
+        // FacetResolve, Annotation and one branch per kind.
+        assert_eq!(count, 16 + crate::mark::registry::KINDS.len());
         // Maps stay open: any data source name, any column in inline rows.
         assert_eq!(schema["properties"]["data"]["additionalProperties"]["$ref"], "#/$defs/DataSource");
         assert_eq!(def(&schema, "DataSource")["properties"]["values"]["items"]["additionalProperties"], true);

@@ -210,6 +210,11 @@ pub struct Chart {
     #[serde(default)]
     #[schemars(example = &["name", "value"])]
     pub tooltip: Option<Tooltip>,
+    /// Notes over the data of the kinds drawn in one x/y frame, each a `[[chart.annotate]]`
+    /// table: a rule (`y = 50`), a band (`x = [a, b]`), text at a point (`text`, `at`) or an
+    /// arrow (`arrow`), in the data's values (dates and categories as text).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub annotate: Vec<super::annotation::Annotation>,
     /// Small multiples: one panel per value of a column, `facet = "species"` (panels wrapped
     /// into a near-square grid), or `facet = { row = "sex", column = "island" }` for a grid of
     /// two columns' values. Panels share their scales unless `resolve` says otherwise; each has

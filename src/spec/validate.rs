@@ -9,13 +9,16 @@
 //! picked by the value's type. `pattern` is not evaluated (chart names are checked by hand).
 
 use std::collections::HashMap;
+use std::ops::Range;
 
 use serde_json::Value;
 
+use super::annotation::Annotation;
 use super::diagnostic::Diagnostic;
 use super::schema::schema_ref;
 use super::source::{PathSeg, SpannedValue, SpecDoc, TableEntry, ValueKind, display_key, display_path};
 use super::suggest::did_you_mean;
+use crate::mark::registry::KindInfo;
 
 /// Deepest schema nesting followed; the spec's own schema is far shallower.
 const MAX_SCHEMA_DEPTH: usize = 64;
@@ -1023,6 +1026,7 @@ impl<'s> Walker<'s> {
             self.check_highlight(chart, highlight, selections);
         }
         self.check_aspect(chart);
+        self.check_annotate(i, chart);
         for e in chart.entries() {
             let tables: Vec<(String, &SpannedValue)> = match &e.value.kind {
                 ValueKind::Table(_) => vec![(display_key(&e.key), &e.value)],
@@ -1124,26 +1128,64 @@ impl<'s> Walker<'s> {
         }
     }
 
-    /// `highlight` must name a selection over the chart's own data, on a kind that draws it.
+    /// An error at `span` when the chart's kind does not take a key (`takes` says which kinds
+    /// do): "{what} `KIND` charts", with the kinds that take it (`takers`) in the hint. Whether
+    /// the kind refused it.
+    fn refused_by_kind(
+        &mut self,
+        chart: &SpannedValue,
+        span: Range<usize>,
+        what: &str,
+        takes: fn(&KindInfo) -> bool,
+        takers: &str,
+    ) -> bool {
+        let Some(kind) = chart.get("kind").and_then(SpannedValue::as_str) else { return false };
+        if crate::mark::registry::kind_info(kind).is_none_or(takes) {
+            return false;
+        }
+        let kinds = crate::mark::registry::names_where(takes).join(", ");
+        self.diags.push(
+            Diagnostic::error(format!("{what} `{kind}` charts")).at(span).with_hint(format!("{takers}: {kinds}")),
+        );
+        true
+    }
+
     /// `aspect = "equal"` only where one x/y frame (or given node positions) is drawn.
     fn check_aspect(&mut self, chart: &SpannedValue) {
         let Some(entry) = chart.entry("aspect") else { return };
-        let equal = entry.value.as_str() == Some("equal");
-        if let Some(kind) = chart.get("kind").and_then(SpannedValue::as_str)
-            && equal
-            && crate::mark::registry::kind_info(kind).is_some_and(|k| !k.applies_aspect)
-        {
-            self.diags.push(
-                Diagnostic::error(format!("`aspect = \"equal\"` is not applied by `{kind}` charts"))
-                    .at(entry.key_span.clone())
-                    .with_hint(format!(
-                        "charts with one x/y plot: {}",
-                        crate::mark::registry::names_where(|k| k.applies_aspect).join(", ")
-                    )),
-            );
+        if entry.value.as_str() == Some("equal") {
+            let what = "`aspect = \"equal\"` is not applied by";
+            self.refused_by_kind(chart, entry.key_span.clone(), what, |k| k.applies_aspect, "charts with one x/y plot");
         }
     }
 
+    /// `annotate` only where one x/y frame is drawn, each of its tables one form of annotation
+    /// (the chart's `i`-th).
+    fn check_annotate(&mut self, i: usize, chart: &SpannedValue) {
+        let Some(entry) = chart.entry("annotate") else { return };
+        let takers = "charts with one x/y plot, which draw annotations";
+        if self.refused_by_kind(
+            chart,
+            entry.key_span.clone(),
+            "`annotate` is not drawn by",
+            |k| k.draws_annotations,
+            takers,
+        ) {
+            return;
+        }
+        for (j, table) in entry.value.as_array().unwrap_or(&[]).iter().enumerate() {
+            // A table whose keys or values the schema refused is reported already.
+            let Ok(note) = serde_json::from_value::<Annotation>(table.to_json()) else { continue };
+            let Err(e) = note.form() else { continue };
+            let span = e.key.and_then(|k| table.entry(k)).map_or(table.span.clone(), |k| k.key_span.clone());
+            let path =
+                [PathSeg::Key("chart".into()), PathSeg::Index(i), PathSeg::Key("annotate".into()), PathSeg::Index(j)];
+            let message = format!("{} {}", self.owner(&path), e.message);
+            self.diags.push(Diagnostic::error(message).at(span).with_hint(e.hint));
+        }
+    }
+
+    /// `highlight` must name a selection over the chart's own data, on a kind that draws it.
     fn check_highlight(
         &mut self,
         chart: &SpannedValue,
@@ -1153,17 +1195,8 @@ impl<'s> Walker<'s> {
         let names: Vec<&str> = selections.iter().map(|(n, _)| *n).collect();
         let Some(wanted) = highlight.as_str() else { return };
         let key_span = chart.entry("highlight").map_or(highlight.span.clone(), |e| e.key_span.clone());
-        if let Some(kind) = chart.get("kind").and_then(SpannedValue::as_str)
-            && crate::mark::registry::kind_info(kind).is_some_and(|k| !k.draws_selection)
-        {
-            self.diags.push(
-                Diagnostic::error(format!("`highlight` is not drawn by `{kind}` charts")).at(key_span).with_hint(
-                    format!(
-                        "charts that draw selections: {}",
-                        crate::mark::registry::names_where(|k| k.draws_selection).join(", ")
-                    ),
-                ),
-            );
+        let what = "`highlight` is not drawn by";
+        if self.refused_by_kind(chart, key_span, what, |k| k.draws_selection, "charts that draw selections") {
             return;
         }
         if !names.contains(&wanted) {

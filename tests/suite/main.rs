@@ -2,6 +2,7 @@
 //! command-line tool. Keeping them in one binary links the heavy dependency set once, not once
 //! per file.
 
+mod annotate;
 mod architecture;
 mod area;
 mod bad_input;

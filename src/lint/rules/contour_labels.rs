@@ -49,7 +49,9 @@ pub fn contour_key(scene: &crate::scene::Scene) -> ContourKey {
                 }
             }
         }
-        (Role::Annotation, Shape::Text(t)) if !t.content.trim().is_empty() => key.labels += 1,
+        (Role::Annotation, Shape::Text(t)) if !t.content.trim().is_empty() && !crate::mark::annotate::is_note(item) => {
+            key.labels += 1
+        }
         (Role::Legend, Shape::Image(_)) => key.colour_bar = true,
         (Role::Legend, Shape::Rect(_)) if item.style.fill.is_some() => steps += 1,
         _ => {}

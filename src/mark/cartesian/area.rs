@@ -384,7 +384,8 @@ fn derived_table(
 }
 
 /// `kind = "area"`.
-pub static KIND: KindInfo = KindInfo::new("area", &["x", "y", "color"]).faceted(crate::mark::registry::Faceting::Frame);
+pub static KIND: KindInfo =
+    KindInfo::new("area", &["x", "y", "color"]).faceted(crate::mark::registry::Faceting::Frame).drawing_annotations();
 
 impl Technique for AreaOptions {
     fn info(&self) -> &'static KindInfo {

@@ -476,7 +476,8 @@ fn sort_categories(bars: &mut [Bar], keys: &mut bands::Keys, sort: BarSort) {
 }
 
 /// `kind = "bar"`.
-pub static KIND: KindInfo = KindInfo::new("bar", &["x", "y", "color"]).faceted(crate::mark::registry::Faceting::Frame);
+pub static KIND: KindInfo =
+    KindInfo::new("bar", &["x", "y", "color"]).faceted(crate::mark::registry::Faceting::Frame).drawing_annotations();
 
 impl Technique for BarOptions {
     fn info(&self) -> &'static KindInfo {

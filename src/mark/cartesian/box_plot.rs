@@ -216,8 +216,10 @@ fn mean_mark(layout: &Layout, grouped: &Grouped, g: &Group, context: bool) -> It
 }
 
 /// `kind = "box"`.
-pub static KIND: KindInfo =
-    KindInfo::new("box", &["x", "y", "color"]).drawing_selections().faceted(crate::mark::registry::Faceting::Frame);
+pub static KIND: KindInfo = KindInfo::new("box", &["x", "y", "color"])
+    .drawing_selections()
+    .faceted(crate::mark::registry::Faceting::Frame)
+    .drawing_annotations();
 
 impl Technique for BoxOptions {
     fn info(&self) -> &'static KindInfo {

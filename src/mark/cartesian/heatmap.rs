@@ -441,7 +441,8 @@ fn derived_table(x_field: &str, y_field: &str, x: &Side, y: &Side, cells: &Cells
 }
 
 /// `kind = "heatmap"`.
-pub static KIND: KindInfo = KindInfo::new("heatmap", &["x", "y", "z"]).faceted(crate::mark::registry::Faceting::Frame);
+pub static KIND: KindInfo =
+    KindInfo::new("heatmap", &["x", "y", "z"]).faceted(crate::mark::registry::Faceting::Frame).drawing_annotations();
 
 impl Technique for HeatmapOptions {
     fn info(&self) -> &'static KindInfo {

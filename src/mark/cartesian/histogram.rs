@@ -642,8 +642,10 @@ fn derived_table(binned: &Binned, heights: &[Vec<f64>], groups: Option<(&str, &[
 }
 
 /// `kind = "histogram"`.
-pub static KIND: KindInfo =
-    KindInfo::new("histogram", &["x", "color"]).drawing_selections().faceted(crate::mark::registry::Faceting::Frame);
+pub static KIND: KindInfo = KindInfo::new("histogram", &["x", "color"])
+    .drawing_selections()
+    .faceted(crate::mark::registry::Faceting::Frame)
+    .drawing_annotations();
 
 impl Technique for HistogramOptions {
     fn info(&self) -> &'static KindInfo {

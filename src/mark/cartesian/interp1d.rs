@@ -295,7 +295,7 @@ fn hermite_beziers(curve: &Interpolant, to_px: &impl Fn(f64, f64) -> Point) -> V
 }
 
 /// `kind = "interp1d"`.
-pub static KIND: KindInfo = KindInfo::new("interp1d", &["x", "y", "slopes"]).taking_aspect();
+pub static KIND: KindInfo = KindInfo::new("interp1d", &["x", "y", "slopes"]).taking_aspect().drawing_annotations();
 
 impl Technique for Interp1dOptions {
     fn info(&self) -> &'static KindInfo {

@@ -476,7 +476,8 @@ fn dropped_between(kept: &[u32], all: &[u32], x: Option<&[f64]>, y: Option<&[f64
 /// `kind = "line"`.
 pub static KIND: KindInfo = KindInfo::new("line", &["x", "y", "series", "color", "band"])
     .taking_aspect()
-    .faceted(crate::mark::registry::Faceting::Frame);
+    .faceted(crate::mark::registry::Faceting::Frame)
+    .drawing_annotations();
 
 impl Technique for LineOptions {
     fn info(&self) -> &'static KindInfo {

@@ -213,7 +213,8 @@ pub fn draw(
 pub static KIND: KindInfo = KindInfo::new("scatter", &["x", "y", "color", "point_size"])
     .drawing_selections()
     .taking_aspect()
-    .faceted(crate::mark::registry::Faceting::Frame);
+    .faceted(crate::mark::registry::Faceting::Frame)
+    .drawing_annotations();
 
 impl Technique for ScatterOptions {
     fn info(&self) -> &'static KindInfo {

@@ -312,8 +312,10 @@ fn half_width_at(half: &[(f64, f64)], v: f64) -> f64 {
 }
 
 /// `kind = "violin"`.
-pub static KIND: KindInfo =
-    KindInfo::new("violin", &["x", "y", "color"]).drawing_selections().faceted(crate::mark::registry::Faceting::Frame);
+pub static KIND: KindInfo = KindInfo::new("violin", &["x", "y", "color"])
+    .drawing_selections()
+    .faceted(crate::mark::registry::Faceting::Frame)
+    .drawing_annotations();
 
 impl Technique for ViolinOptions {
     fn info(&self) -> &'static KindInfo {

@@ -232,7 +232,8 @@ pub fn band_colors(map: &ContinuousMap, edges: &[f64], midpoint: Option<f64>) ->
 }
 
 /// `kind = "contour"`.
-pub static KIND: KindInfo = KindInfo::new("contour", &["x", "y", "z"]).conventions(defaults::GRID).taking_aspect();
+pub static KIND: KindInfo =
+    KindInfo::new("contour", &["x", "y", "z"]).conventions(defaults::GRID).taking_aspect().drawing_annotations();
 
 impl Technique for ContourOptions {
     fn info(&self) -> &'static KindInfo {

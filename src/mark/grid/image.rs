@@ -91,7 +91,8 @@ pub fn draw(chart: &Chart, options: &ImageOptions, table: &Table) -> Result<Char
 }
 
 /// `kind = "image"`.
-pub static KIND: KindInfo = KindInfo::new("image", &["x", "y", "z"]).conventions(defaults::GRID).taking_aspect();
+pub static KIND: KindInfo =
+    KindInfo::new("image", &["x", "y", "z"]).conventions(defaults::GRID).taking_aspect().drawing_annotations();
 
 impl Technique for ImageOptions {
     fn info(&self) -> &'static KindInfo {

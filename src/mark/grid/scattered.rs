@@ -273,7 +273,8 @@ fn fill_raster(tin: &Triangulation, plot: Rect, x: &Scale, y: &Scale, color_of: 
 }
 
 /// `kind = "scattered"`.
-pub static KIND: KindInfo = KindInfo::new("scattered", &["x", "y", "z"]).conventions(defaults::GRID).taking_aspect();
+pub static KIND: KindInfo =
+    KindInfo::new("scattered", &["x", "y", "z"]).conventions(defaults::GRID).taking_aspect().drawing_annotations();
 
 impl Technique for ScatteredOptions {
     fn info(&self) -> &'static KindInfo {

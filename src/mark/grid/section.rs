@@ -163,6 +163,13 @@ pub fn draw(chart: &Chart, options: &SectionOptions, table: &Table) -> Result<Ch
                 .collect();
             frame::scene(chart, frame, &theme, marks)
         }
+        SectionLayout::Multiples if !chart.annotate.is_empty() => {
+            return Err(MarkError::at(
+                &["annotate"],
+                "`annotate` draws on one frame, but `layout = \"multiples\"` draws a frame per section",
+                "draw the sections overlaid (`layout = \"overlay\"`, the default) to annotate them",
+            ));
+        }
         SectionLayout::Multiples => {
             let shared = options.shared_scale.unwrap_or(true);
             multiples(chart, &cuts, &colors, position_axis, value_axis, shared, stroke_width, &label)?
@@ -264,7 +271,8 @@ fn multiples(
 }
 
 /// `kind = "section"`.
-pub static KIND: KindInfo = KindInfo::new("section", &["x", "y", "z"]).conventions(defaults::GRID);
+pub static KIND: KindInfo =
+    KindInfo::new("section", &["x", "y", "z"]).conventions(defaults::GRID).drawing_annotations();
 
 impl Technique for SectionOptions {
     fn info(&self) -> &'static KindInfo {

@@ -5,14 +5,15 @@ use crate::guide::Theme;
 use crate::guide::layout::{self, FixedPlot, Frame, FrameSpec, PositionAxis};
 use crate::guide::legend::truncate_to_width;
 use crate::guide::legend::{self, Legend};
-use crate::mark::{FRAME_SIZE, MarkError};
+use crate::mark::{FRAME_SIZE, MarkError, annotate};
 use crate::scene::{
     Anchor, Baseline, Color, Item, LineBatch, PathCmd, PerPoint, Point, PointBatch, Rect, Role, Scene, Shape, Style,
     Text,
 };
 use crate::spec::Chart;
 
-/// Lay out the frame of chart `index` around its axes and legends.
+/// Lay out the frame of chart `index` around its axes (widened to take in its annotations) and
+/// legends, with its annotations placed in it.
 ///
 /// A facet panel ([`Chart::panel`]) takes the domains and plot area its layout fixed, and
 /// records its axes and legends instead of drawing the legends.
@@ -22,6 +23,7 @@ pub fn cartesian(
     mut y: PositionAxis,
     mut legends: Vec<Legend>,
 ) -> Result<(Frame, Theme), MarkError> {
+    annotate::widen(chart, &mut x, &mut y);
     let [width, height] = chart.size.unwrap_or(FRAME_SIZE);
     let theme = Theme::with_font_size(chart.font_size.unwrap_or(12.0));
     let mut fixed = None;
@@ -42,7 +44,7 @@ pub fn cartesian(
             overhang: panel.overhang,
         });
     }
-    let frame = layout::cartesian(&FrameSpec {
+    let mut frame = layout::cartesian(&FrameSpec {
         width,
         height,
         title: chart.title.clone(),
@@ -55,14 +57,20 @@ pub fn cartesian(
         fixed,
     })
     .map_err(|e| MarkError::layout(e))?;
+    frame.overlay = annotate::resolve(chart, &frame, &theme)?;
     Ok((frame, theme))
 }
 
-/// The chart's scene: background and grid, the marks clipped to the plot, then axes and legends.
+/// The chart's scene: background and grid, annotated bands, the marks clipped to the plot, the
+/// other annotations, then axes and legends.
 pub fn scene(chart: &Chart, frame: Frame, theme: &Theme, marks: Vec<Item>) -> Scene {
     let [width, height] = chart.size.unwrap_or(FRAME_SIZE);
+    let canvas = Rect::new(0.0, 0.0, width, height);
+    let notes = annotate::draw(frame.overlay, frame.plot, canvas, theme, &[&marks, &frame.over]);
     let mut items = frame.under;
+    items.extend(notes.under);
     items.push(Item::group(Role::DataMark, marks, Some(frame.plot)));
+    items.extend(notes.over);
     items.extend(frame.over);
     Scene { width, height, background: theme.background, title: chart.title.clone(), items }
 }

@@ -1,8 +1,10 @@
 //! Pieces the kinds share: categories in bands (`bands`), channels and the non-finite policy (`encode`), the cartesian frame,
 //! selections drawn (`highlight`), derived output, categorical colours, gridded input, trees and
-//! networks read from tables, marker sizes, rasters, contour labels, node-link drawing, hover texts (`tooltip`) and trend lines (`trend`).
+//! networks read from tables, marker sizes, rasters, contour labels, node-link drawing, hover texts (`tooltip`),
+//! trend lines (`trend`) and annotations (`annotate`).
 //! Nothing here imports a kind.
 
+pub mod annotate;
 pub mod bands;
 pub mod categorical;
 pub mod derived;

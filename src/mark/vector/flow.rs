@@ -887,7 +887,7 @@ impl Traces {
 
 /// `kind = "flow"`.
 pub static KIND: KindInfo =
-    KindInfo::new("flow", &["x", "y", "u", "v", "t"]).conventions(defaults::FLOW).taking_aspect();
+    KindInfo::new("flow", &["x", "y", "u", "v", "t"]).conventions(defaults::FLOW).taking_aspect().drawing_annotations();
 
 impl Technique for FlowOptions {
     fn info(&self) -> &'static KindInfo {
