@@ -53,6 +53,8 @@ fn scatter_chart() -> Chart {
         lint: None,
         tooltip: None,
         annotate: Vec::new(),
+        facet: None,
+        panel: None,
         kind: ChartKind::Scatter(ScatterOptions {
             x: Channel::Field("x".into()),
             y: Channel::Field("y".into()),

@@ -816,7 +816,10 @@ pub fn render_all(
     // Check every canvas before any drawing allocates it.
     let mut problems = Vec::new();
     for (index, chart) in &selected {
-        let [w, h] = mark::canvas_size(chart);
+        let [w, h] = match loaded.tables.get(&chart.data) {
+            Some(table) => mark::canvas_size_in(chart, table),
+            None => mark::canvas_size(chart),
+        };
         if options.formats.png
             && let Err(e) = render::png::check_canvas(w, h, options.scale)
         {

@@ -165,7 +165,17 @@ pub fn default_size(kind: &ChartKind) -> [f64; 2] {
     technique(kind).default_size()
 }
 
-/// The canvas size a chart draws at: its `size`, else its kind's default.
+/// The canvas size a chart draws at from `table`: as [`canvas_size`], except that a faceted
+/// chart without `size` grows with its panels.
+pub fn canvas_size_in(chart: &Chart, table: &Table) -> [f64; 2] {
+    match (&chart.facet, chart.size) {
+        (Some(facet), None) => facet::default_size(chart, facet, table).unwrap_or_else(|_| canvas_size(chart)),
+        _ => canvas_size(chart),
+    }
+}
+
+/// The canvas size a chart draws at: its `size`, else its kind's default (for a faceted chart,
+/// whose default depends on its data, see [`canvas_size_in`]).
 pub fn canvas_size(chart: &Chart) -> [f64; 2] {
     chart.size.unwrap_or_else(|| default_size(&chart.kind))
 }

@@ -133,7 +133,8 @@ fn every_kind_draws_at_the_size_the_canvas_check_assumes() {
     for (i, chart) in loaded.spec.chart.iter().enumerate() {
         let unsized_chart = dataink::spec::Chart { size: None, ..chart.clone() };
         let out = pipeline::draw_chart(&loaded, i, &unsized_chart).unwrap_or_else(|e| panic!("{e}"));
-        let [w, h] = dataink::mark::canvas_size(&unsized_chart);
+        let table = loaded.tables.get(&chart.data).unwrap_or_else(|| panic!("{} has its data", chart.name));
+        let [w, h] = dataink::mark::canvas_size_in(&unsized_chart, table);
         assert_eq!([out.scene.width, out.scene.height], [w, h], "{}", chart.name);
         kinds.insert(chart.kind.name());
     }

@@ -63,6 +63,15 @@ pub fn draw(cx: &ChartContext<'_>, facet: &Facet) -> Result<ChartOutput, MarkErr
     }
 }
 
+/// The canvas of a faceted chart without `size`: room for its panels (from the facet columns'
+/// values in `table`), their headers and, when the spec encodes colour or a selection, a legend.
+pub fn default_size(chart: &Chart, facet: &Facet, table: &Table) -> Result<[f64; 2], MarkError> {
+    let kind = technique(&chart.kind);
+    let split = split::split(facet, table)?;
+    let legends = !kind.colour_encodings().is_empty() || chart.highlight.is_some();
+    Ok(grid::default_size(&split, kind.info().faceting == Faceting::Frame, legends))
+}
+
 /// A faceted chart split into its panels' tables, ready to draw.
 struct Parts<'a> {
     /// The chart being faceted.
@@ -134,9 +143,12 @@ impl<'a> Parts<'a> {
             .collect()
     }
 
-    /// The canvas: the spec's `size`, else room for the panels.
-    fn size(&self, cartesian: bool, legends: bool) -> [f64; 2] {
-        self.cx.chart.size.unwrap_or_else(|| grid::default_size(self.split, cartesian, legends))
+    /// The canvas: the spec's `size`, else room for the panels ([`default_size`]).
+    fn size(&self) -> [f64; 2] {
+        let chart = &self.cx.chart;
+        let kind = technique(&chart.kind);
+        let legends = !kind.colour_encodings().is_empty() || chart.highlight.is_some();
+        chart.size.unwrap_or_else(|| grid::default_size(self.split, kind.info().faceting == Faceting::Frame, legends))
     }
 }
 
@@ -152,7 +164,7 @@ fn frame_panels(parts: &Parts<'_>, x_independent: bool, y_independent: bool) -> 
     let legends = merge::union_legends(measured.iter().map(|(_, s)| s.legends.as_slice()), &parts.colour_order);
     drop(measured);
     let mut chart = parts.cx.chart.clone();
-    chart.size = Some(parts.size(true, !legends.is_empty()));
+    chart.size = Some(parts.size());
     let axes = grid::GridAxes { x: &x, y: &y, x_independent, y_independent };
     let layout = grid::layout(&chart, parts.split, Some(&axes), &legends)?;
     let size = chart.size.unwrap_or(FRAME_SIZE);
@@ -181,7 +193,7 @@ fn canvas_panels(parts: &Parts<'_>) -> Result<ChartOutput, MarkError> {
     let columns = merge::union_columns(measured.iter().map(|(_, s)| s.columns.as_slice()));
     drop(measured);
     let mut chart = parts.cx.chart.clone();
-    chart.size = Some(parts.size(false, !legends.is_empty()));
+    chart.size = Some(parts.size());
     let layout = grid::layout(&chart, parts.split, None, &legends)?;
     let size = chart.size.unwrap_or(FRAME_SIZE);
     let areas = layout.areas.clone();
