@@ -261,3 +261,32 @@ fn end_labels_of_neighbouring_panels_keep_apart() {
         assert!(ticks(items, "x axis").len() >= 2, "{name} labels its x axis");
     }
 }
+
+#[test]
+fn the_explorer_brushes_a_faceted_scatter_panel_by_panel() {
+    use dataink::explore::brush::Mode;
+    use dataink::explore::{Session, Target};
+    let data = iris();
+    let fx = Fixture::new(&spec(&format!("{SCATTER}facet = \"species\"")), &[("iris.csv", &data)]);
+    let mut session = Session::new(fx.load().unwrap_or_else(|e| panic!("{e}")), 1.0);
+    let plots = session.charts[0].geometry.plots.clone();
+    assert_eq!(plots.len(), 3, "one brushable plot per panel");
+    assert!(plots.windows(2).all(|w| w[0].rect.right() < w[1].rect.x), "side by side, apart");
+    // Brush all of the last (virginica) panel's plot: every row whose petals lie in the shared
+    // ranges is selected — all 150, as every panel spans every species' values.
+    let p = plots[2].rect;
+    let (a, b) = (dataink::scene::Point::new(p.x, p.y), dataink::scene::Point::new(p.right(), p.bottom()));
+    let target = session.target_at(0, dataink::scene::Point::new(p.x + 1.0, p.y + 1.0));
+    assert_eq!(target, Some(Target::Plot(2)));
+    session.brush(0, Target::Plot(2), a, b, Mode::Replace);
+    let lit = session.mask("iris").map(|m| m.iter().filter(|&&on| on).count());
+    assert_eq!(lit, Some(150));
+    // Petal lengths below 2.5 cm: only the setosa rows.
+    let x_at = |v: f64| plots[0].x.scale.map(v);
+    let from = dataink::scene::Point::new(x_at(0.0), p.y);
+    let to = dataink::scene::Point::new(x_at(2.5), p.bottom());
+    session.brush(0, Target::Plot(0), from, to, Mode::Replace);
+    let mask = session.mask("iris").unwrap_or_default();
+    assert_eq!(mask.iter().filter(|&&on| on).count(), 50);
+    assert!(mask[..50].iter().all(|&on| on), "the setosa rows");
+}
