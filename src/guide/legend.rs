@@ -121,7 +121,8 @@ impl Legend {
         }
     }
 
-    fn title(&self) -> &str {
+    /// The legend's title.
+    pub fn title(&self) -> &str {
         match self {
             Legend::Categorical { title, .. }
             | Legend::ColorBar { title, .. }

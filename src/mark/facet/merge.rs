@@ -69,7 +69,7 @@ pub fn union_legends<'a>(lists: impl Iterator<Item = &'a [Legend]>, order: &[Str
     let mut out: Vec<Legend> = Vec::new();
     for list in lists {
         for legend in list {
-            let found = out.iter_mut().find(|l| title(l) == title(legend) && same_kind(l, legend));
+            let found = out.iter_mut().find(|l| l.title() == legend.title() && same_kind(l, legend));
             match (found, legend) {
                 (None, _) => out.push(legend.clone()),
                 (Some(Legend::Categorical { entries, .. }), Legend::Categorical { entries: more, .. }) => {
@@ -88,16 +88,6 @@ pub fn union_legends<'a>(lists: impl Iterator<Item = &'a [Legend]>, order: &[Str
         }
     }
     out
-}
-
-fn title(legend: &Legend) -> &str {
-    match legend {
-        Legend::Categorical { title, .. }
-        | Legend::ColorBar { title, .. }
-        | Legend::Steps { title, .. }
-        | Legend::Notes { title, .. }
-        | Legend::Size { title, .. } => title,
-    }
 }
 
 fn same_kind(a: &Legend, b: &Legend) -> bool {

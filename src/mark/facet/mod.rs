@@ -66,10 +66,15 @@ pub fn draw(cx: &ChartContext<'_>, facet: &Facet) -> Result<ChartOutput, MarkErr
 /// The canvas of a faceted chart without `size`: room for its panels (from the facet columns'
 /// values in `table`), their headers and, when the spec encodes colour or a selection, a legend.
 pub fn default_size(chart: &Chart, facet: &Facet, table: &Table) -> Result<[f64; 2], MarkError> {
+    Ok(sized_for(chart, &split::split(facet, table)?))
+}
+
+/// The default canvas of `chart` split as `split`: legend room when the spec encodes colour or
+/// draws a selection.
+fn sized_for(chart: &Chart, split: &Split) -> [f64; 2] {
     let kind = technique(&chart.kind);
-    let split = split::split(facet, table)?;
     let legends = !kind.colour_encodings().is_empty() || chart.highlight.is_some();
-    Ok(grid::default_size(&split, kind.info().faceting == Faceting::Frame, legends))
+    grid::default_size(split, kind.info().faceting == Faceting::Frame, legends)
 }
 
 /// A faceted chart split into its panels' tables, ready to draw.
@@ -145,10 +150,7 @@ impl<'a> Parts<'a> {
 
     /// The canvas: the spec's `size`, else room for the panels ([`default_size`]).
     fn size(&self) -> [f64; 2] {
-        let chart = &self.cx.chart;
-        let kind = technique(&chart.kind);
-        let legends = !kind.colour_encodings().is_empty() || chart.highlight.is_some();
-        chart.size.unwrap_or_else(|| grid::default_size(self.split, kind.info().faceting == Faceting::Frame, legends))
+        self.cx.chart.size.unwrap_or_else(|| sized_for(&self.cx.chart, self.split))
     }
 }
 
