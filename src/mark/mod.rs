@@ -64,6 +64,8 @@ pub struct MarkError {
     pub path: Vec<PathSeg>,
     /// Whether the chart's name and index have been added.
     placed: bool,
+    /// Not a failure: a facet panel measured (see [`MarkError::measured`]).
+    measured: bool,
 }
 
 impl fmt::Display for MarkError {
@@ -79,13 +81,24 @@ impl MarkError {
     /// if empty).
     pub fn at(keys: &[&str], message: impl Into<String>, hint: impl Into<String>) -> MarkError {
         let path = keys.iter().map(|k| PathSeg::Key(k.to_string())).collect();
-        MarkError { message: message.into(), hint: hint.into(), path, placed: false }
+        MarkError { message: message.into(), hint: hint.into(), path, placed: false, measured: false }
     }
 
     /// An error about the chart being drawn, pointing at `path` within it (keys and list
     /// positions, e.g. `annotate[2].x`).
     pub fn at_path(path: Vec<PathSeg>, message: impl Into<String>, hint: impl Into<String>) -> MarkError {
-        MarkError { message: message.into(), hint: hint.into(), path, placed: false }
+        MarkError { message: message.into(), hint: hint.into(), path, placed: false, measured: false }
+    }
+
+    /// Not a failure: a facet panel's measuring pass ([`panel::Panel::measuring`]) stops here,
+    /// once its frame has recorded its axes and legends, without drawing its marks.
+    pub(crate) fn measured() -> MarkError {
+        MarkError { measured: true, ..MarkError::at(&[], "a facet panel measured, not drawn", "") }
+    }
+
+    /// Whether this is the stop of a facet panel's measuring pass, not a failure.
+    pub(crate) fn is_measured(&self) -> bool {
+        self.measured
     }
 
     /// A layout error of the chart being drawn.

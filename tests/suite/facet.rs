@@ -290,3 +290,34 @@ fn the_explorer_brushes_a_faceted_scatter_panel_by_panel() {
     assert_eq!(mask.iter().filter(|&&on| on).count(), 50);
     assert!(mask[..50].iter().all(|&on| on), "the setosa rows");
 }
+
+#[test]
+fn the_derived_table_gives_each_row_its_own_facet_value() {
+    // Faceted by species without colouring by it: the facet column is added to the CSV.
+    let data = iris();
+    let fx = Fixture::new(
+        &spec("kind = \"scatter\"\nx = \"petal_length\"\ny = \"petal_width\"\nfacet = \"species\"\n"),
+        &[("iris.csv", &data)],
+    );
+    let loaded = fx.load().unwrap_or_else(|e| panic!("{e}"));
+    let out = fx.draw().unwrap_or_else(|e| panic!("{e}")).remove(0);
+    let csv = out.derived.to_csv(&loaded.tables["iris"]);
+    let mut lines = csv.lines();
+    let header: Vec<&str> = lines.next().unwrap_or_default().split(',').collect();
+    assert_eq!(header[0], "species", "{header:?}");
+    let row_at = header.iter().position(|h| *h == "row").expect("a row column");
+    let species: Vec<String> = String::from_utf8(data)
+        .unwrap_or_default()
+        .lines()
+        .skip(1)
+        .map(|l| l.rsplit(',').next().unwrap_or_default().trim_matches('"').to_string())
+        .collect();
+    let mut n = 0;
+    for line in lines {
+        let cells: Vec<&str> = line.split(',').collect();
+        let row: usize = cells[row_at].parse().expect("a row number");
+        assert_eq!(cells[0], species[row], "row {row}");
+        n += 1;
+    }
+    assert_eq!(n, 150);
+}

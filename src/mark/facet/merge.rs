@@ -135,7 +135,9 @@ pub fn concat_derived(outputs: &[ChartOutput], split: &Split, table_rows: usize)
         if by_rows {
             rows.extend(o.derived.rows.iter().map(|&r| panel.rows.get(r as usize).copied().unwrap_or(u32::MAX)));
         }
-        for (k, field) in facet_fields.iter().enumerate() {
+        // Rows of the whole table read their facet values from it; only output rows that are
+        // not table rows (bins, groups) need them written out.
+        for (k, field) in facet_fields.iter().enumerate().filter(|_| !by_rows) {
             let value = if Some(*field) == split.row_field.as_ref() { &panel.row_value } else { &panel.column_value };
             facet_values[k].extend(std::iter::repeat_n(value.clone().unwrap_or_default(), n));
         }
@@ -174,7 +176,8 @@ pub fn concat_derived(outputs: &[ChartOutput], split: &Split, table_rows: usize)
     let mut derived = Derived { rows, columns };
     for (field, values) in facet_fields.into_iter().zip(facet_values) {
         if !names.contains(field) {
-            derived.columns.insert(0, (field.clone(), DerivedColumn::Text(values)));
+            let column = if by_rows { DerivedColumn::Source(field.clone()) } else { DerivedColumn::Text(values) };
+            derived.columns.insert(0, (field.clone(), column));
         }
     }
     derived

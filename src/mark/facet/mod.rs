@@ -1,8 +1,8 @@
 //! Small multiples (`facet = ...`): a chart's rows split by the values of one or two columns,
 //! each part drawn as a panel by the chart's own kind, on one canvas.
 //!
-//! A cartesian kind ([`Faceting::Frame`]) is drawn twice per panel. The first pass records each
-//! panel's axes and legends (through [`Panel`]); the union of the domains becomes the shared
+//! A cartesian kind ([`Faceting::Frame`]) goes through each panel twice. The first pass records
+//! each panel's axes and legends (through [`Panel`]) and stops before any mark is built; the union of the domains becomes the shared
 //! scale of every channel that `resolve` does not make independent, and the legends are drawn
 //! once beside the grid. The second pass draws each panel at its place on the whole canvas with
 //! those scales, its tick labels only on the outer sides of the grid. Kinds with their own
@@ -110,9 +110,9 @@ impl<'a> Parts<'a> {
         Parts { cx, split, base, tables, highlights, colour_order: Vec::new() }
     }
 
-    /// Draw panel `i` at canvas size `size` with the instructions of `panel`; returns what
-    /// it drew and what it saw.
-    fn draw(&self, i: usize, panel: Panel, size: [f64; 2]) -> Result<(ChartOutput, Seen), MarkError> {
+    /// Draw panel `i` at canvas size `size` with the instructions of `panel`; returns what it
+    /// drew (`None` when the panel only measured) and what it saw.
+    fn run(&self, i: usize, panel: Panel, size: [f64; 2]) -> Result<(Option<ChartOutput>, Seen), MarkError> {
         let handle = PanelHandle(Arc::new(panel));
         let mut chart = self.base.clone();
         chart.title = None;
@@ -127,23 +127,33 @@ impl<'a> Parts<'a> {
             nodes: self.cx.nodes,
             view: None,
         };
-        let output = technique(&cx.chart.kind).draw(&cx).map_err(|mut e| {
-            e.message = format!("panel {}: {}", self.split.panel_name(&self.split.panels[i]), e.message);
-            e
-        })?;
-        Ok((output, handle.seen()))
+        match technique(&cx.chart.kind).draw(&cx) {
+            Ok(output) => Ok((Some(output), handle.seen())),
+            Err(e) if e.is_measured() => Ok((None, handle.seen())),
+            Err(mut e) => {
+                e.message = format!("panel {}: {}", self.split.panel_name(&self.split.panels[i]), e.message);
+                Err(e)
+            }
+        }
+    }
+
+    /// What every panel sees at the measuring size, in parallel. A cartesian panel stops once
+    /// its frame has recorded its axes (`measuring`); other kinds draw in full.
+    fn measure_all(&self, measuring: bool) -> Result<Vec<Seen>, MarkError> {
+        (0..self.split.panels.len())
+            .into_par_iter()
+            .map(|i| Ok(self.run(i, Panel { measuring, ..Panel::default() }, FRAME_SIZE)?.1))
+            .collect()
     }
 
     /// Draw every panel in parallel.
-    fn draw_all(
-        &self,
-        panel: impl Fn(usize) -> (Panel, [f64; 2]) + Sync,
-    ) -> Result<Vec<(ChartOutput, Seen)>, MarkError> {
+    fn draw_all(&self, panel: impl Fn(usize) -> (Panel, [f64; 2]) + Sync) -> Result<Vec<ChartOutput>, MarkError> {
         (0..self.split.panels.len())
             .into_par_iter()
             .map(|i| {
                 let (p, size) = panel(i);
-                self.draw(i, p, size)
+                let (output, _) = self.run(i, p, size)?;
+                output.ok_or_else(|| MarkError::at(&["facet"], "a facet panel measured instead of drawing", ""))
             })
             .collect()
     }
@@ -156,15 +166,14 @@ impl<'a> Parts<'a> {
 
 /// Panels that are one cartesian frame each, sharing their scales unless told otherwise.
 fn frame_panels(parts: &Parts<'_>, x_independent: bool, y_independent: bool) -> Result<ChartOutput, MarkError> {
-    let measured = parts.draw_all(|_| (Panel::default(), FRAME_SIZE))?;
+    let measured = parts.measure_all(true)?;
     let (Some(x), Some(y)) = (
-        merge::union_axis(measured.iter().filter_map(|(_, s)| s.x.as_ref())),
-        merge::union_axis(measured.iter().filter_map(|(_, s)| s.y.as_ref())),
+        merge::union_axis(measured.iter().filter_map(|s| s.x.as_ref())),
+        merge::union_axis(measured.iter().filter_map(|s| s.y.as_ref())),
     ) else {
         return Err(MarkError::at(&["facet"], "the chart's panels drew no axes to share", ""));
     };
-    let legends = merge::union_legends(measured.iter().map(|(_, s)| s.legends.as_slice()), &parts.colour_order);
-    drop(measured);
+    let legends = merge::union_legends(measured.iter().map(|s| s.legends.as_slice()), &parts.colour_order);
     let mut chart = parts.cx.chart.clone();
     chart.size = Some(parts.size());
     let axes = grid::GridAxes { x: &x, y: &y, x_independent, y_independent };
@@ -184,24 +193,21 @@ fn frame_panels(parts: &Parts<'_>, x_independent: bool, y_independent: bool) -> 
         };
         (panel, size)
     })?;
-    let outputs: Vec<ChartOutput> = drawn.into_iter().map(|(o, _)| o).collect();
-    Ok(compose(parts, &chart, size, layout, outputs, |o| o.scene.items))
+    Ok(compose(parts, &chart, size, layout, drawn, |o| o.scene.items))
 }
 
 /// Panels that are whole charts of their own layout, moved into place.
 fn canvas_panels(parts: &Parts<'_>) -> Result<ChartOutput, MarkError> {
-    let measured = parts.draw_all(|_| (Panel::default(), FRAME_SIZE))?;
-    let legends = merge::union_legends(measured.iter().map(|(_, s)| s.legends.as_slice()), &parts.colour_order);
-    let columns = merge::union_columns(measured.iter().map(|(_, s)| s.columns.as_slice()));
-    drop(measured);
+    let measured = parts.measure_all(false)?;
+    let legends = merge::union_legends(measured.iter().map(|s| s.legends.as_slice()), &parts.colour_order);
+    let columns = merge::union_columns(measured.iter().map(|s| s.columns.as_slice()));
     let mut chart = parts.cx.chart.clone();
     chart.size = Some(parts.size());
     let layout = grid::layout(&chart, parts.split, None, &legends)?;
     let size = chart.size.unwrap_or(FRAME_SIZE);
     let areas = layout.areas.clone();
-    let drawn =
+    let mut outputs =
         parts.draw_all(|i| (Panel { columns: columns.clone(), ..Panel::default() }, [areas[i].w, areas[i].h]))?;
-    let mut outputs: Vec<ChartOutput> = drawn.into_iter().map(|(o, _)| o).collect();
     for (output, area) in outputs.iter_mut().zip(&areas) {
         // The panel's own interactive geometry is in its own coordinates; none is offered.
         output.geometry = Default::default();

@@ -161,7 +161,7 @@ fn levels(table: &Table, field: &str, key: &str, sort: FacetSort) -> Result<Leve
         )
     })?;
     let levels = match column.categories() {
-        Some(cats) => text_levels(column, cats, sort),
+        Some(cats) => text_levels(cats, sort),
         None => number_levels(column, sort),
     }
     .ok_or_else(|| {
@@ -182,11 +182,13 @@ fn levels(table: &Table, field: &str, key: &str, sort: FacetSort) -> Result<Leve
 }
 
 /// Text values: used levels, alphabetically or in order of appearance.
-fn text_levels(column: &Column, cats: &crate::data::Categories, sort: FacetSort) -> Option<Levels> {
+fn text_levels(cats: &crate::data::Categories, sort: FacetSort) -> Option<Levels> {
+    // Blank text is a missing value, as everywhere else.
+    let blank: Vec<bool> = cats.levels.iter().map(|l| l.trim().is_empty()).collect();
     let mut used = vec![false; cats.levels.len()];
-    for (r, &code) in cats.codes.iter().enumerate() {
-        if code != crate::data::Categories::MISSING && column.key(r).is_some() {
-            used[code as usize] = true;
+    for &code in &cats.codes {
+        if let Some(u) = used.get_mut(code as usize) {
+            *u = !blank[code as usize];
         }
     }
     let mut order: Vec<usize> = (0..cats.levels.len()).filter(|&i| used[i]).collect();
@@ -200,12 +202,7 @@ fn text_levels(column: &Column, cats: &crate::data::Categories, sort: FacetSort)
     for (k, &level) in order.iter().enumerate() {
         index[level] = Some(k as u32);
     }
-    let of_row = cats
-        .codes
-        .iter()
-        .enumerate()
-        .map(|(r, &c)| index.get(c as usize).copied().flatten().filter(|_| column.key(r).is_some()))
-        .collect();
+    let of_row = cats.codes.iter().map(|&c| index.get(c as usize).copied().flatten()).collect();
     let labels = order.iter().map(|&i| cats.levels[i].trim().to_string()).collect();
     Some(Levels { of_row, labels })
 }

@@ -30,6 +30,9 @@ pub fn cartesian(
     if let Some(panel) = &chart.panel {
         panel.saw_axes(&x, &y);
         panel.saw_legends(&legends);
+        if panel.measuring {
+            return Err(MarkError::measured());
+        }
         legends.clear();
         if let Some(domain) = &panel.x {
             x.domain = domain.clone();

@@ -31,6 +31,10 @@ pub struct Panel {
     pub y_labels: bool,
     /// How far tick labels may reach past the plot's ends without running into a neighbour.
     pub overhang: (f64, f64),
+    /// Whether this is the measuring pass of a cartesian panel: its frame records the axes and
+    /// legends and stops the kind there ([`crate::mark::MarkError::measured`]), so no mark is
+    /// built only to be thrown away.
+    pub measuring: bool,
     /// What the panel drew, recorded as it drew it.
     pub(crate) seen: Mutex<Seen>,
 }
