@@ -123,14 +123,19 @@ fn add_span(brush: &mut Brush, field: &str, scale: &Scale, a: f64, b: f64) {
     }
 }
 
-/// The brush of a rectangle dragged from `a` to `b` in a plot (clamped to the plot area).
+/// The brush of a rectangle dragged from `a` to `b` in a plot (clamped to the plot area), over
+/// the plot's columns (only x on a histogram: its heights are counts, not a column).
 pub fn brush_in_plot(plot: &Plot, a: Point, b: Point) -> Brush {
     let r = plot.rect;
     let cx = |x: f64| x.clamp(r.x, r.right());
     let cy = |y: f64| y.clamp(r.y, r.bottom());
     let mut brush = Brush::default();
-    add_span(&mut brush, &plot.x.field, &plot.x.scale, cx(a.x), cx(b.x));
-    add_span(&mut brush, &plot.y.field, &plot.y.scale, cy(a.y), cy(b.y));
+    if let Some(x) = &plot.x {
+        add_span(&mut brush, &x.field, &x.scale, cx(a.x), cx(b.x));
+    }
+    if let Some(y) = &plot.y {
+        add_span(&mut brush, &y.field, &y.scale, cy(a.y), cy(b.y));
+    }
     brush
 }
 
@@ -405,14 +410,14 @@ mod tests {
     fn plot() -> Plot {
         Plot {
             rect: Rect::new(0.0, 0.0, 100.0, 100.0),
-            x: PlotScale {
+            x: Some(PlotScale {
                 field: "a".into(),
                 scale: Scale::Linear(LinearScale::new((0.0, 4.0), (0.0, 100.0), false, 0).unwrap()),
-            },
-            y: PlotScale {
+            }),
+            y: Some(PlotScale {
                 field: "b".into(),
                 scale: Scale::Linear(LinearScale::new((0.0, 40.0), (100.0, 0.0), false, 0).unwrap()),
-            },
+            }),
         }
     }
 

@@ -222,8 +222,8 @@ impl Session {
         for (mode, b) in set.brushes() {
             for plot in &v.geometry.plots {
                 let r = plot.rect;
-                let xs = span(b, &plot.x.field, &plot.x.scale, (r.x, r.right()));
-                let ys = span(b, &plot.y.field, &plot.y.scale, (r.y, r.bottom()));
+                let xs = plot.x.as_ref().and_then(|x| span(b, &x.field, &x.scale, (r.x, r.right())));
+                let ys = plot.y.as_ref().and_then(|y| span(b, &y.field, &y.scale, (r.y, r.bottom())));
                 if xs.is_none() && ys.is_none() {
                     continue;
                 }
@@ -266,8 +266,7 @@ impl Session {
     fn fields_of<'a>(&self, v: &'a ChartView) -> Vec<&'a str> {
         let mut out: Vec<&str> = Vec::new();
         for p in &v.geometry.plots {
-            out.push(&p.x.field);
-            out.push(&p.y.field);
+            out.extend(p.scales().map(|(s, _)| s.field.as_str()));
         }
         out.extend(v.geometry.axes.iter().map(|a| a.field.as_str()));
         out
@@ -286,8 +285,9 @@ impl Session {
         let Some(v) = self.charts.get(chart) else { return };
         let mut changes = Vec::new();
         if let Some(plot) = view::plot_at(&v.geometry, p).and_then(|i| v.geometry.plots.get(i)) {
-            changes.extend(view::zoomed(&plot.x.scale, p.x, factor).map(|d| (plot.x.field.clone(), d)));
-            changes.extend(view::zoomed(&plot.y.scale, p.y, factor).map(|d| (plot.y.field.clone(), d)));
+            for (s, at) in plot.x.iter().map(|s| (s, p.x)).chain(plot.y.iter().map(|s| (s, p.y))) {
+                changes.extend(view::zoomed(&s.scale, at, factor).map(|d| (s.field.clone(), d)));
+            }
         } else if let Some(axis) = view::axis_at(&v.geometry, p).and_then(|i| v.geometry.axes.get(i)) {
             changes.extend(view::zoomed(&axis.scale, p.y, factor).map(|d| (axis.field.clone(), d)));
         }
@@ -299,8 +299,10 @@ impl Session {
         let Some(v) = self.charts.get(chart) else { return };
         let mut changes = Vec::new();
         if let Some(plot) = view::plot_at(&v.geometry, from).and_then(|i| v.geometry.plots.get(i)) {
-            changes.extend(view::panned(&plot.x.scale, from.x, to.x).map(|d| (plot.x.field.clone(), d)));
-            changes.extend(view::panned(&plot.y.scale, from.y, to.y).map(|d| (plot.y.field.clone(), d)));
+            let moves = plot.x.iter().map(|s| (s, from.x, to.x)).chain(plot.y.iter().map(|s| (s, from.y, to.y)));
+            for (s, a, b) in moves {
+                changes.extend(view::panned(&s.scale, a, b).map(|d| (s.field.clone(), d)));
+            }
         } else if let Some(axis) = view::axis_at(&v.geometry, from).and_then(|i| v.geometry.axes.get(i)) {
             changes.extend(view::panned(&axis.scale, from.y, to.y).map(|d| (axis.field.clone(), d)));
         }
@@ -597,8 +599,8 @@ mod tests {
         assert!(s.charts.iter().all(|v| v.error.is_none() && v.lit == (40, 40)), "{:?}", s.charts[0].error);
         let plot = s.charts[0].geometry.plots[0].clone();
         // a in [5, 35] and b in [0, 30]: rows 5..=35 whose b = 7i mod 40 is at most 30.
-        let (x0, x1) = (plot.x.scale.map(5.0), plot.x.scale.map(35.0));
-        let (y0, y1) = (plot.y.scale.map(0.0), plot.y.scale.map(30.0));
+        let (x0, x1) = (plot.x.as_ref().unwrap().scale.map(5.0), plot.x.as_ref().unwrap().scale.map(35.0));
+        let (y0, y1) = (plot.y.as_ref().unwrap().scale.map(0.0), plot.y.as_ref().unwrap().scale.map(30.0));
         s.brush(0, Target::Plot(0), Point::new(x0, y0), Point::new(x1, y1), Mode::Replace);
         s.end_brush(0);
         let expected: Vec<bool> = (0..40).map(|i| (5..=35).contains(&i) && (i * 7) % 40 <= 30).collect();
@@ -679,14 +681,14 @@ mod tests {
         let mut s = session();
         let plot = s.charts[0].geometry.plots[0].clone();
         let c = Point::new(plot.rect.x + plot.rect.w / 2.0, plot.rect.y + plot.rect.h / 2.0);
-        let before = plot.x.scale.domain();
+        let before = plot.x.as_ref().unwrap().scale.domain();
         s.zoom(0, c, 0.5);
-        let after = s.charts[0].geometry.plots[0].x.scale.domain();
+        let after = s.charts[0].geometry.plots[0].x.as_ref().unwrap().scale.domain();
         assert!((after.1 - after.0) < 0.6 * (before.1 - before.0), "{before:?} → {after:?}");
         s.pan(0, c, Point::new(c.x + 20.0, c.y));
-        assert!(s.charts[0].geometry.plots[0].x.scale.domain().0 < after.0);
+        assert!(s.charts[0].geometry.plots[0].x.as_ref().unwrap().scale.domain().0 < after.0);
         s.reset_view(0);
-        assert_eq!(s.charts[0].geometry.plots[0].x.scale.domain(), before);
+        assert_eq!(s.charts[0].geometry.plots[0].x.as_ref().unwrap().scale.domain(), before);
         assert!(s.hover(0, Point::new(-5.0, -5.0)).is_none());
     }
 }

@@ -61,10 +61,10 @@ impl<'a> Positions<'a> {
 }
 
 /// The row drawn nearest to `p` in `plot`, if one lies within `reach` canvas units. Ties go to
-/// the row drawn last (on top).
+/// the row drawn last (on top). `None` in plots that do not place rows by both columns.
 pub fn nearest_point(plot: &Plot, table: &Table, p: Point, reach: f64) -> Option<u32> {
-    let (px, py) =
-        (Positions::new(table, &plot.x.field, &plot.x.scale), Positions::new(table, &plot.y.field, &plot.y.scale));
+    let (x, y) = (plot.x.as_ref()?, plot.y.as_ref()?);
+    let (px, py) = (Positions::new(table, &x.field, &x.scale), Positions::new(table, &y.field, &y.scale));
     let mut best: Option<(f64, usize)> = None;
     for row in 0..table.rows {
         let Some(y) = py.at(row).filter(|y| (y - p.y).abs() <= reach) else { continue };
@@ -252,8 +252,8 @@ mod tests {
         ]);
         let plot = Plot {
             rect: Rect::new(0.0, 0.0, 100.0, 100.0),
-            x: PlotScale { field: "a".into(), scale: lin((0.0, 4.0), (0.0, 100.0)) },
-            y: PlotScale { field: "b".into(), scale: lin((0.0, 4.0), (100.0, 0.0)) },
+            x: Some(PlotScale { field: "a".into(), scale: lin((0.0, 4.0), (0.0, 100.0)) }),
+            y: Some(PlotScale { field: "b".into(), scale: lin((0.0, 4.0), (100.0, 0.0)) }),
         };
         assert_eq!(nearest_point(&plot, &t, Point::new(52.0, 48.0), 6.0), Some(1));
         assert_eq!(nearest_point(&plot, &t, Point::new(10.0, 10.0), 6.0), None);

@@ -4,6 +4,7 @@
 //! their axes.
 
 use crate::common::{Fixture, lint_codes, lint_findings, plot, tick_labels};
+use dataink::guide::scale::Scale;
 use dataink::mark::{ChartOutput, DerivedColumn};
 use dataink::scene::{Item, PathCmd, Point, Rect, Role, Shape, path_points};
 
@@ -533,11 +534,69 @@ fn a_brush_in_the_explorer_relights_the_selected_rows_in_boxes_and_violins() {
     );
     // Brush v in [3, 8] in the scatter: 11 rows, lit in the box and violin charts too.
     let plot = s.charts[0].geometry.plots[0].clone();
-    let (a, b) = (plot.x.scale.map(3.0), plot.x.scale.map(8.0));
-    let (c, d) = (plot.y.scale.map(3.0), plot.y.scale.map(8.0));
+    let (x, y) = (plot.x.as_ref().unwrap(), plot.y.as_ref().unwrap());
+    let (a, b) = (x.scale.map(3.0), x.scale.map(8.0));
+    let (c, d) = (y.scale.map(3.0), y.scale.map(8.0));
     s.brush(0, Target::Plot(0), Point::new(a, c), Point::new(b, d), Mode::Replace);
     s.end_brush(0);
     for v in &s.charts {
         assert_eq!(v.lit, (11, 19), "chart {}", v.name);
     }
+}
+
+#[test]
+fn the_explorer_brushes_boxes_histograms_and_heatmaps_by_the_columns_they_place() {
+    use dataink::explore::brush::Mode;
+    use dataink::explore::{Session, Target};
+    let charts: String = [
+        ("b", "box", "x = \"k\"\ny = \"v\"\n"),
+        ("h", "histogram", "x = \"v\"\n"),
+        ("m", "heatmap", "x = \"k\"\ny = \"k\"\n"),
+    ]
+    .iter()
+    .map(|(name, kind, keys)| format!("[[chart]]\nname = \"{name}\"\nkind = \"{kind}\"\ndata = \"d\"\n{keys}\n"))
+    .collect();
+    let fx = Fixture::new(&format!("[data.d]\npath = \"d.csv\"\n\n{charts}"), &[("d.csv", TWO.as_bytes())]);
+    let mut s = Session::new(fx.load().unwrap_or_else(|e| panic!("{e}")), 1.0);
+    let lit = |s: &Session| s.mask("d").map_or(19, |m| m.iter().filter(|&&on| on).count());
+
+    // The box chart: its categories across, its values up.
+    let plot = s.charts[0].geometry.plots[0].clone();
+    let (x, y) = (plot.x.clone().expect("categories brush"), plot.y.clone().expect("values brush"));
+    assert_eq!((x.field.as_str(), y.field.as_str()), ("k", "v"));
+    // Over category b only (its band centre), values 3 to 8: 3.9, 4.4, 5.0, 6.6, 7.7.
+    let Scale::Band(band) = &x.scale else { panic!("a band scale across") };
+    let bx = band.center(band.band_of("b").unwrap());
+    let from = Point::new(bx - 5.0, y.scale.map(8.0));
+    let to = Point::new(bx + 5.0, y.scale.map(3.0));
+    s.brush(0, Target::Plot(0), from, to, Mode::Replace);
+    s.end_brush(0);
+    assert_eq!(lit(&s), 5);
+
+    // The histogram: counts are not a column, so a drag selects by v alone, whatever its height.
+    let plot = s.charts[1].geometry.plots[0].clone();
+    assert!(plot.y.is_none(), "counts place no column");
+    let x = plot.x.clone().expect("values brush");
+    let r = plot.rect;
+    s.brush(
+        1,
+        Target::Plot(0),
+        Point::new(x.scale.map(0.0), r.y),
+        Point::new(x.scale.map(2.0), r.y + 1.0),
+        Mode::Replace,
+    );
+    s.end_brush(1);
+    // v in [0, 2]: 1, 2 (a) and 0.3, 1.2, 0.9 (b).
+    assert_eq!(lit(&s), 5);
+
+    // The heatmap (k against k): a drag over the cell (b, b) selects category b (11 rows).
+    let plot = s.charts[2].geometry.plots[0].clone();
+    let centre_of_b = |scale: Option<dataink::mark::geometry::PlotScale>| {
+        let Some(Scale::Band(band)) = scale.map(|s| s.scale) else { panic!("a band scale") };
+        band.center(band.band_of("b").unwrap())
+    };
+    let (bx, by) = (centre_of_b(plot.x.clone()), centre_of_b(plot.y.clone()));
+    s.brush(2, Target::Plot(0), Point::new(bx - 3.0, by - 3.0), Point::new(bx + 3.0, by + 3.0), Mode::Replace);
+    s.end_brush(2);
+    assert_eq!(lit(&s), 11);
 }

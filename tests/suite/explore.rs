@@ -107,9 +107,10 @@ fn a_drag_in_a_splom_cell_selects_the_rows_in_its_ranges_and_the_parallel_view_a
         .geometry
         .plots
         .iter()
-        .find(|p| p.x.field == "a" && p.y.field == "b")
+        .find(|p| p.x.as_ref().is_some_and(|x| x.field == "a") && p.y.as_ref().is_some_and(|y| y.field == "b"))
         .expect("a cell plotting b against a")
         .clone();
+    let (x_scale, y_scale) = (&plot.x.as_ref().unwrap().scale, &plot.y.as_ref().unwrap().scale);
     let r = plot.rect;
     let (a, b) = ((r.x + r.w * 0.25, r.y + r.h * 0.2), (r.x + r.w * 0.7, r.y + r.h * 0.75));
     let (from, to) = (screen(&h, 0, a.0, a.1), screen(&h, 0, b.0, b.1));
@@ -123,10 +124,10 @@ fn a_drag_in_a_splom_cell_selects_the_rows_in_its_ranges_and_the_parallel_view_a
     assert_eq!(mode, Mode::Replace);
     // The ranges are the pixel rectangle read through the cell's scales (to within a pixel).
     let (ra, rb) = (brush.ranges["a"], brush.ranges["b"]);
-    let px_a = (plot.x.scale.invert(1.0).unwrap() - plot.x.scale.invert(0.0).unwrap()).abs();
-    let px_b = (plot.y.scale.invert(1.0).unwrap() - plot.y.scale.invert(0.0).unwrap()).abs();
-    let want_a = [plot.x.scale.invert(a.0).unwrap(), plot.x.scale.invert(b.0).unwrap()];
-    let want_b = [plot.y.scale.invert(b.1).unwrap(), plot.y.scale.invert(a.1).unwrap()];
+    let px_a = (x_scale.invert(1.0).unwrap() - x_scale.invert(0.0).unwrap()).abs();
+    let px_b = (y_scale.invert(1.0).unwrap() - y_scale.invert(0.0).unwrap()).abs();
+    let want_a = [x_scale.invert(a.0).unwrap(), x_scale.invert(b.0).unwrap()];
+    let want_b = [y_scale.invert(b.1).unwrap(), y_scale.invert(a.1).unwrap()];
     for (got, want, px) in [(ra, want_a, px_a), (rb, want_b, px_b)] {
         assert!((got[0] - want[0]).abs() <= px && (got[1] - want[1]).abs() <= px, "{got:?} vs {want:?}");
     }

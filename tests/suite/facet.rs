@@ -282,7 +282,7 @@ fn the_explorer_brushes_a_faceted_scatter_panel_by_panel() {
     let lit = session.mask("iris").map(|m| m.iter().filter(|&&on| on).count());
     assert_eq!(lit, Some(150));
     // Petal lengths below 2.5 cm: only the setosa rows.
-    let x_at = |v: f64| plots[0].x.scale.map(v);
+    let x_at = |v: f64| plots[0].x.as_ref().map_or(f64::NAN, |x| x.scale.map(v));
     let from = dataink::scene::Point::new(x_at(0.0), p.y);
     let to = dataink::scene::Point::new(x_at(2.5), p.bottom());
     session.brush(0, Target::Plot(0), from, to, Mode::Replace);

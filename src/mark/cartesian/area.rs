@@ -17,6 +17,7 @@ use crate::guide::layout::{Domain, PositionAxis};
 use crate::guide::legend::Symbol;
 use crate::mark::derived::{Derived, DerivedColumn};
 use crate::mark::encode;
+use crate::mark::geometry::{Geometry, Plot};
 use crate::mark::registry::{AxisSpec, ChartContext, KindInfo, Technique};
 use crate::mark::warning::Warning;
 use crate::mark::{ChartOutput, MarkError, categorical, frame};
@@ -210,10 +211,13 @@ pub fn draw(chart: &Chart, options: &AreaOptions, table: &Table) -> Result<Chart
             marks.push(Item::new(Role::DataMark, Shape::Path(top), line).labelled(format!("{label} (top)")));
         }
     }
+    // Stacked heights are sums, not the column's values: a brush selects by x alone then.
+    let y_placed = (offset == StackOffset::None).then_some((y_opts.field.as_str(), y_col));
+    let geometry = Geometry::of_plot(Plot::of_frame(&frame, Some((&x_opts.field, x_col)), y_placed));
     let scene = frame::scene(chart, frame, &theme, marks);
     let x_field = (x_opts.field.as_str(), x_col.is_time());
     let derived = derived_table(x_field, color.as_ref().map(ColorChannel::field), &positions, &series, &bounds);
-    Ok(ChartOutput { scene, derived, warnings, geojson: None, geometry: Default::default() })
+    Ok(ChartOutput { scene, derived, warnings, geojson: None, geometry })
 }
 
 /// Errors for columns an area chart cannot draw.

@@ -129,14 +129,14 @@ pub fn draw(
             grouped::quoted(&notch_past_box)
         )));
     }
-    let scene = layout.scene(chart, marks, &mut warnings);
+    let (scene, geometry) = layout.scene(chart, &grouped, table, marks, &mut warnings);
     let mut extra = Vec::new();
     if notch {
         extra.push(("notch_low", DerivedColumn::Number(grouped.list.iter().map(|g| g.stats.notch.0).collect())));
         extra.push(("notch_high", DerivedColumn::Number(grouped.list.iter().map(|g| g.stats.notch.1).collect())));
     }
     let derived = grouped.derived(extra);
-    Ok(ChartOutput { scene, derived, warnings, geojson: None, geometry: Default::default() })
+    Ok(ChartOutput { scene, derived, warnings, geojson: None, geometry })
 }
 
 /// The marks of one box, and whether its notch had to be cut at the quartiles.

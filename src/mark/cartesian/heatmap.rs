@@ -19,6 +19,7 @@ use crate::guide::legend::Legend;
 use crate::guide::scale::Scale;
 use crate::mark::derived::{Derived, DerivedColumn};
 use crate::mark::encode::{self, MISSING_LABEL};
+use crate::mark::geometry::{Geometry, Plot};
 use crate::mark::registry::{AxisSpec, ChartContext, ColourSpec, KindInfo, Technique};
 use crate::mark::{ChartOutput, MarkError, frame};
 use crate::scene::{Anchor, Baseline, Color, Item, Rect, Role, Shape, Style, Text};
@@ -246,9 +247,12 @@ pub fn draw(chart: &Chart, options: &HeatmapOptions, table: &Table) -> Result<Ch
         }
     }
     marks.extend(labels);
+    // Category axes brush their categories; binned axes (labelled by ranges) place no column.
+    let geometry =
+        Geometry::of_plot(Plot::of_frame(&frame, Some((&x_opts.field, x_col)), Some((&y_opts.field, y_col))));
     let scene = frame::scene(chart, frame, &theme, marks);
     let derived = derived_table(&x_opts.field, &y_opts.field, &x_side, &y_side, &cells);
-    Ok(ChartOutput { scene, derived, warnings, geojson: None, geometry: Default::default() })
+    Ok(ChartOutput { scene, derived, warnings, geojson: None, geometry })
 }
 
 /// Decimals of cell labels: counts none, other values about three significant digits of the

@@ -18,6 +18,7 @@ use crate::guide::layout::{Domain, PositionAxis};
 use crate::guide::legend::{Legend, Symbol};
 use crate::mark::derived::{Derived, DerivedColumn};
 use crate::mark::encode;
+use crate::mark::geometry::{Geometry, Plot};
 use crate::mark::registry::{AxisSpec, ChartContext, KindInfo, Technique};
 use crate::mark::warning::Warning;
 use crate::mark::{ChartOutput, MarkError, categorical, frame, highlight};
@@ -335,9 +336,10 @@ pub fn draw(
             binned.bins()
         )));
     }
+    let geometry = Geometry::of_plot(Plot::of_frame(&frame, Some((&x_opts.field, x_col)), None));
     let scene = frame::scene(chart, frame, &theme, marks);
     let derived = derived_table(&binned, &group_heights, color.as_ref().map(|c| (c.field(), groups.as_slice())));
-    Ok(ChartOutput { scene, derived, warnings, geojson: None, geometry: Default::default() })
+    Ok(ChartOutput { scene, derived, warnings, geojson: None, geometry })
 }
 
 /// How many bars share a bin side by side.

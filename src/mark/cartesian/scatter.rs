@@ -185,11 +185,11 @@ pub fn draw(
         marks.extend(crate::mark::trend::marks(&trend.options(), &fitted, &frame, &theme)?);
     }
     warnings.extend((frame::raster_note(&marks)).into_iter().map(Warning::from));
-    let plot = Plot {
-        rect: frame.plot,
-        x: PlotScale { field: x_opts.field.clone(), scale: frame.x.clone() },
-        y: PlotScale { field: y_opts.field.clone(), scale: frame.y.clone() },
-    };
+    let plot = Plot::xy(
+        frame.plot,
+        PlotScale { field: x_opts.field.clone(), scale: frame.x.clone() },
+        PlotScale { field: y_opts.field.clone(), scale: frame.y.clone() },
+    );
     let scene = frame::scene(chart, frame, &theme, marks);
 
     let mut derived = Derived::over(rows);

@@ -201,10 +201,10 @@ pub fn draw(
     let (counts, note) = layout.counts(&grouped);
     marks.extend(counts);
     warnings.extend(note);
-    let scene = layout.scene(chart, marks, &mut warnings);
+    let (scene, geometry) = layout.scene(chart, &grouped, table, marks, &mut warnings);
     let bandwidths = densities.iter().map(|d| d.bandwidth.unwrap_or(f64::NAN)).collect();
     let derived = grouped.derived(vec![("bandwidth", DerivedColumn::Number(bandwidths))]);
-    Ok(ChartOutput { scene, derived, warnings, geojson: None, geometry: Default::default() })
+    Ok(ChartOutput { scene, derived, warnings, geojson: None, geometry })
 }
 
 /// `v` rounded to two significant digits, for the note.

@@ -228,11 +228,11 @@ pub fn draw(
                 diagonals.push((i, cell, grid.x[i].clone(), std::sync::OnceLock::new()));
             }
             if i != j {
-                geometry.plots.push(Plot {
-                    rect: cell,
-                    x: PlotScale { field: columns[j].0.field.clone(), scale: grid.x[j].clone() },
-                    y: PlotScale { field: columns[i].0.field.clone(), scale: grid.y[i].clone() },
-                });
+                geometry.plots.push(Plot::xy(
+                    cell,
+                    PlotScale { field: columns[j].0.field.clone(), scale: grid.x[j].clone() },
+                    PlotScale { field: columns[i].0.field.clone(), scale: grid.y[i].clone() },
+                ));
             }
             items.push(Item::new(Role::Grid, Shape::Rect(cell), Style::stroke(theme.grid, 1.0)).labelled("cell"));
             if i == j {

@@ -1,8 +1,10 @@
 //! What a drawn chart exposes for interaction: where its plots and axes are and the scales that
 //! map data onto them, so that a pointer position can be turned back into data values (brushing,
-//! hover, zoom). Filled by the kinds that the explorer brushes and navigates (`scatter`, `splom`,
-//! `parallel`, `hypertree`); empty for the others.
+//! hover, zoom). Filled by the kinds that the explorer brushes and navigates (the cartesian
+//! kinds, `splom`, `parallel`, `hypertree`); empty for the others.
 
+use crate::data::Column;
+use crate::guide::layout::Frame;
 use crate::guide::scale::Scale;
 use crate::scene::{Point, Rect};
 
@@ -15,15 +17,62 @@ pub struct PlotScale {
     pub scale: Scale,
 }
 
-/// A cartesian plot area: a scatter chart's plot, or one off-diagonal cell of a splom.
+impl PlotScale {
+    /// `scale` as the scale of column `field`, if it places that column's own values: a
+    /// continuous scale over numbers, or a band scale over text or over numbers whose bands are
+    /// their values written out (so a brush's categories select the rows drawn in them). `None`
+    /// for a band scale of binned or formatted values.
+    pub fn of_column(field: &str, scale: &Scale, column: &Column) -> Option<PlotScale> {
+        let places = match scale {
+            Scale::Band(band) => match column.numbers() {
+                None => column.categories().is_some(),
+                Some(values) => band
+                    .categories()
+                    .iter()
+                    .all(|c| c.trim().parse::<f64>().is_ok_and(|v| values.iter().any(|x| *x == v))),
+            },
+            _ => column.numbers().is_some(),
+        };
+        places.then(|| PlotScale { field: field.to_string(), scale: scale.clone() })
+    }
+}
+
+/// A cartesian plot area: a scatter chart's plot, one off-diagonal cell of a splom, the frame of
+/// a histogram, bar, area, line, box, violin or heatmap chart.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Plot {
     /// The plot area in canvas units.
     pub rect: Rect,
-    /// Horizontal scale.
-    pub x: PlotScale,
-    /// Vertical scale (upwards).
-    pub y: PlotScale,
+    /// Horizontal scale, when it places a column's values (a horizontal bar's summed lengths
+    /// place none: a brush cannot select rows by them).
+    pub x: Option<PlotScale>,
+    /// Vertical scale (upwards), when it places a column's values (a histogram's counts, an
+    /// area's stacked totals place none).
+    pub y: Option<PlotScale>,
+}
+
+impl Plot {
+    /// The plot of `frame`, brushed through the columns its x and y scales place (`None`: the
+    /// axis places no column, e.g. counts or sums).
+    pub fn of_frame(frame: &Frame, x: Option<(&str, &Column)>, y: Option<(&str, &Column)>) -> Plot {
+        Plot {
+            rect: frame.plot,
+            x: x.and_then(|(field, column)| PlotScale::of_column(field, &frame.x, column)),
+            y: y.and_then(|(field, column)| PlotScale::of_column(field, &frame.y, column)),
+        }
+    }
+
+    /// A plot whose two scales place columns.
+    pub fn xy(rect: Rect, x: PlotScale, y: PlotScale) -> Plot {
+        Plot { rect, x: Some(x), y: Some(y) }
+    }
+
+    /// The scales that place columns, each with the canvas span it runs along (left to right,
+    /// top to bottom).
+    pub fn scales(&self) -> impl Iterator<Item = (&PlotScale, (f64, f64))> {
+        let r = self.rect;
+        self.x.iter().map(move |x| (x, (r.x, r.right()))).chain(self.y.iter().map(move |y| (y, (r.y, r.bottom()))))
+    }
 }
 
 /// One vertical axis of parallel coordinates.
@@ -105,6 +154,12 @@ pub struct Geometry {
 }
 
 impl Geometry {
+    /// The geometry of a chart with one plot; empty when the plot places no column.
+    pub fn of_plot(plot: Plot) -> Geometry {
+        let plots = if plot.x.is_some() || plot.y.is_some() { vec![plot] } else { Vec::new() };
+        Geometry { plots, ..Geometry::default() }
+    }
+
     /// Whether the chart exposes nothing to interact with.
     pub fn is_empty(&self) -> bool {
         self.plots.is_empty() && self.axes.is_empty() && self.disk.is_none()

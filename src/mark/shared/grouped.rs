@@ -15,6 +15,7 @@ use crate::layout::split_mix::mix64;
 use crate::mark::bands::{self, Keys};
 use crate::mark::derived::{Derived, DerivedColumn};
 use crate::mark::encode::{self, ColorEncoding};
+use crate::mark::geometry::{Geometry, Plot};
 use crate::mark::registry::AxisSpec;
 use crate::mark::warning::Warning;
 use crate::mark::{MarkError, frame, highlight};
@@ -621,10 +622,25 @@ impl Layout {
     }
 
     /// The chart's scene with `marks` in the plot, noting in `warnings` a selection's points
-    /// that the SVG carries as a raster (a selection of more rows than a vector layer holds).
-    pub fn scene(self, chart: &Chart, marks: Vec<Item>, warnings: &mut Vec<Warning>) -> Scene {
+    /// that the SVG carries as a raster (a selection of more rows than a vector layer holds),
+    /// and its plot for the explorer: brushed by the values' column and the categories' column.
+    pub fn scene(
+        self,
+        chart: &Chart,
+        grouped: &Grouped,
+        table: &Table,
+        marks: Vec<Item>,
+        warnings: &mut Vec<Warning>,
+    ) -> (Scene, Geometry) {
         warnings.extend(frame::raster_note(&marks).map(Warning::from));
-        frame::scene(chart, self.frame, &self.theme, marks)
+        let values = table.column(&grouped.y.field).map(|c| (grouped.y.field.as_str(), c));
+        let categories = grouped.x_channel.as_ref().and_then(|x| table.column(&x.field).map(|c| (x.field.as_str(), c)));
+        let (x, y) = match self.orientation {
+            Orientation::Vertical => (categories, values),
+            Orientation::Horizontal => (values, categories),
+        };
+        let plot = Plot::of_frame(&self.frame, x, y);
+        (frame::scene(chart, self.frame, &self.theme, marks), Geometry::of_plot(plot))
     }
 }
 
