@@ -321,3 +321,37 @@ fn the_derived_table_gives_each_row_its_own_facet_value() {
     }
     assert_eq!(n, 150);
 }
+
+#[test]
+fn a_size_encoding_maps_one_value_to_one_marker_size_in_every_panel() {
+    // Petal widths run to 0.6 cm in setosa and to 2.5 cm in virginica: one mapping for all.
+    let out = draw_ok(
+        "kind = \"scatter\"\nx = \"petal_length\"\ny = \"sepal_length\"\npoint_size = \"petal_width\"\nfacet = \"species\"\n",
+    );
+    let widths: Vec<f64> = String::from_utf8(iris())
+        .unwrap_or_default()
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').nth(3).and_then(|v| v.parse().ok()).unwrap_or(f64::NAN))
+        .collect();
+    fn points(items: &[Item], into: &mut Vec<(u32, f64)>) {
+        for item in items {
+            match &item.shape {
+                Shape::Points(batch) if item.role == Role::DataMark => {
+                    into.extend(item.rows.iter().enumerate().map(|(k, &r)| (r, batch.radius.at(k).unwrap_or(f64::NAN))))
+                }
+                Shape::Group { items, .. } => points(items, into),
+                _ => {}
+            }
+        }
+    }
+    let mut drawn = Vec::new();
+    points(&out.scene.items, &mut drawn);
+    assert_eq!(drawn.len(), 150);
+    // Area proportional to the value: r² / value is one constant, 12² / 2.5 (the largest width
+    // gets the default largest radius, 12 px).
+    for (row, r) in drawn {
+        let w = widths[row as usize];
+        assert!((r * r / w - 144.0 / 2.5).abs() < 1e-6, "row {row}: width {w} drawn with radius {r}");
+    }
+}

@@ -107,6 +107,9 @@ pub fn draw(
             )));
         }
         max_size = rows.iter().filter_map(|&r| values.get(r as usize)).fold(0.0, |a, &b| a.max(b));
+        if let Some(panel) = &chart.panel {
+            max_size = panel.share_size_max(max_size);
+        }
     }
     if rows.is_empty() {
         return Err(encode::no_rows(chart, table, warnings.first()));

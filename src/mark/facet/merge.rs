@@ -9,6 +9,7 @@ use crate::mark::warning::{ColumnLoss, Warning};
 use crate::scene::{Item, Shape};
 
 use super::split::Split;
+use crate::mark::panel::Seen;
 
 /// One axis whose domain covers every panel's: continuous extents joined, categories in the
 /// order they appear panel by panel.
@@ -92,6 +93,20 @@ pub fn union_legends<'a>(lists: impl Iterator<Item = &'a [Legend]>, order: &[Str
 
 fn same_kind(a: &Legend, b: &Legend) -> bool {
     std::mem::discriminant(a) == std::mem::discriminant(b)
+}
+
+/// The size encoding every panel shares: the largest of the panels' largest values, and the size
+/// legend in `legends` replaced by the one of the panel that has it (drawn on that mapping).
+/// `None` when no panel has a size encoding.
+pub fn share_size(legends: &mut [Legend], seen: &[Seen]) -> Option<f64> {
+    let widest = (0..seen.len())
+        .filter(|&i| seen[i].size_max.is_some())
+        .max_by(|&a, &b| seen[a].size_max.unwrap_or(0.0).total_cmp(&seen[b].size_max.unwrap_or(0.0)))?;
+    let own = seen[widest].legends.iter().find(|l| matches!(l, Legend::Size { .. }));
+    if let (Some(own), Some(slot)) = (own, legends.iter_mut().find(|l| matches!(l, Legend::Size { .. }))) {
+        *slot = own.clone();
+    }
+    seen[widest].size_max
 }
 
 /// The range of the continuous colour scale every panel uses: the joined colour bar's.

@@ -173,7 +173,8 @@ fn frame_panels(parts: &Parts<'_>, x_independent: bool, y_independent: bool) -> 
     ) else {
         return Err(MarkError::at(&["facet"], "the chart's panels drew no axes to share", ""));
     };
-    let legends = merge::union_legends(measured.iter().map(|s| s.legends.as_slice()), &parts.colour_order);
+    let mut legends = merge::union_legends(measured.iter().map(|s| s.legends.as_slice()), &parts.colour_order);
+    let size_max = merge::share_size(&mut legends, &measured);
     let mut chart = parts.cx.chart.clone();
     chart.size = Some(parts.size());
     let axes = grid::GridAxes { x: &x, y: &y, x_independent, y_independent };
@@ -185,6 +186,7 @@ fn frame_panels(parts: &Parts<'_>, x_independent: bool, y_independent: bool) -> 
             x: (!x_independent).then(|| x.domain.clone()),
             y: (!y_independent).then(|| y.domain.clone()),
             color,
+            size_max,
             plot: Some(layout.areas[i]),
             x_labels: layout.x_labels[i],
             y_labels: layout.y_labels[i],

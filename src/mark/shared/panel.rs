@@ -31,6 +31,9 @@ pub struct Panel {
     pub y_labels: bool,
     /// How far tick labels may reach past the plot's ends without running into a neighbour.
     pub overhang: (f64, f64),
+    /// The value every panel maps to its largest marker (`None`: the panel's own largest), so a
+    /// marker's size means the same in every panel.
+    pub size_max: Option<f64>,
     /// Whether this is the measuring pass of a cartesian panel: its frame records the axes and
     /// legends and stops the kind there ([`crate::mark::MarkError::measured`]), so no mark is
     /// built only to be thrown away.
@@ -50,6 +53,8 @@ pub struct Seen {
     pub legends: Vec<Legend>,
     /// Its column axes, by column (kinds with one axis per column).
     pub columns: Vec<(String, PositionAxis)>,
+    /// The largest value of its size encoding, if it has one.
+    pub size_max: Option<f64>,
 }
 
 impl Panel {
@@ -69,6 +74,13 @@ impl Panel {
                 axis.domain = domain.clone();
             }
         }
+    }
+
+    /// Record the largest value of the panel's size encoding, and give the value every panel
+    /// maps to its largest marker, if set.
+    pub fn share_size_max(&self, own: f64) -> f64 {
+        self.seen.lock().unwrap_or_else(|e| e.into_inner()).size_max = Some(own);
+        self.size_max.unwrap_or(own)
     }
 
     /// Record the panel's legends.
