@@ -102,7 +102,8 @@ impl Categories {
 
     /// Build categories from optional strings.
     pub fn from_values<'a>(values: impl IntoIterator<Item = Option<&'a str>>) -> Categories {
-        let mut index = std::collections::HashMap::<&'a str, u32>::new();
+        // A fast hash, seeded at random per process so crafted cells cannot collide on purpose.
+        let mut index = std::collections::HashMap::<&'a str, u32, foldhash::fast::RandomState>::default();
         let mut cats = Categories::default();
         for value in values {
             let code = match value {
