@@ -266,7 +266,7 @@ impl Session {
     fn fields_of<'a>(&self, v: &'a ChartView) -> Vec<&'a str> {
         let mut out: Vec<&str> = Vec::new();
         for p in &v.geometry.plots {
-            out.extend(p.scales().map(|(s, _)| s.field.as_str()));
+            out.extend(p.scales().map(|s| s.field.as_str()));
         }
         out.extend(v.geometry.axes.iter().map(|a| a.field.as_str()));
         out

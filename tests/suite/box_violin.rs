@@ -513,20 +513,25 @@ fn lint_reads_the_value_axis_and_leaves_baselines_to_bars() {
     assert!(cut.contains(&"DI005"), "{cut:?}");
 }
 
+/// An explorer session over the data `TWO` with one chart per `(name, kind, keys)`.
+fn session_over_two(charts: &[(&str, &str, &str)]) -> dataink::explore::Session {
+    let charts: String = charts
+        .iter()
+        .map(|(name, kind, keys)| format!("[[chart]]\nname = \"{name}\"\nkind = \"{kind}\"\ndata = \"d\"\n{keys}\n"))
+        .collect();
+    let fx = Fixture::new(&format!("[data.d]\npath = \"d.csv\"\n\n{charts}"), &[("d.csv", TWO.as_bytes())]);
+    dataink::explore::Session::new(fx.load().unwrap_or_else(|e| panic!("{e}")), 1.0)
+}
+
 #[test]
 fn a_brush_in_the_explorer_relights_the_selected_rows_in_boxes_and_violins() {
     use dataink::explore::brush::Mode;
-    use dataink::explore::{Session, Target};
-    let charts: String = [
+    use dataink::explore::Target;
+    let mut s = session_over_two(&[
         ("s", "scatter", "x = \"v\"\ny = \"v\"\n"),
         ("b", "box", "x = \"k\"\ny = \"v\"\n"),
         ("w", "violin", "x = \"k\"\ny = \"v\"\n"),
-    ]
-    .iter()
-    .map(|(name, kind, keys)| format!("[[chart]]\nname = \"{name}\"\nkind = \"{kind}\"\ndata = \"d\"\n{keys}\n"))
-    .collect();
-    let fx = Fixture::new(&format!("[data.d]\npath = \"d.csv\"\n\n{charts}"), &[("d.csv", TWO.as_bytes())]);
-    let mut s = Session::new(fx.load().unwrap_or_else(|e| panic!("{e}")), 1.0);
+    ]);
     assert!(
         s.charts.iter().all(|v| v.error.is_none() && v.lit == (19, 19)),
         "{:?}",
@@ -548,16 +553,11 @@ fn a_brush_in_the_explorer_relights_the_selected_rows_in_boxes_and_violins() {
 fn the_explorer_brushes_boxes_histograms_and_heatmaps_by_the_columns_they_place() {
     use dataink::explore::brush::Mode;
     use dataink::explore::{Session, Target};
-    let charts: String = [
+    let mut s = session_over_two(&[
         ("b", "box", "x = \"k\"\ny = \"v\"\n"),
         ("h", "histogram", "x = \"v\"\n"),
         ("m", "heatmap", "x = \"k\"\ny = \"k\"\n"),
-    ]
-    .iter()
-    .map(|(name, kind, keys)| format!("[[chart]]\nname = \"{name}\"\nkind = \"{kind}\"\ndata = \"d\"\n{keys}\n"))
-    .collect();
-    let fx = Fixture::new(&format!("[data.d]\npath = \"d.csv\"\n\n{charts}"), &[("d.csv", TWO.as_bytes())]);
-    let mut s = Session::new(fx.load().unwrap_or_else(|e| panic!("{e}")), 1.0);
+    ]);
     let lit = |s: &Session| s.mask("d").map_or(19, |m| m.iter().filter(|&&on| on).count());
 
     // The box chart: its categories across, its values up.

@@ -152,9 +152,12 @@ pub fn concat_derived(outputs: &[ChartOutput], split: &Split, table_rows: usize)
         }
         // Rows of the whole table read their facet values from it; only output rows that are
         // not table rows (bins, groups) need them written out.
-        for (k, field) in facet_fields.iter().enumerate().filter(|_| !by_rows) {
-            let value = if Some(*field) == split.row_field.as_ref() { &panel.row_value } else { &panel.column_value };
-            facet_values[k].extend(std::iter::repeat_n(value.clone().unwrap_or_default(), n));
+        if !by_rows {
+            for (k, field) in facet_fields.iter().enumerate() {
+                let value =
+                    if Some(*field) == split.row_field.as_ref() { &panel.row_value } else { &panel.column_value };
+                facet_values[k].extend(std::iter::repeat_n(value.clone().unwrap_or_default(), n));
+            }
         }
         for name in &names {
             let own = o.derived.columns.iter().find(|(c, _)| c == name).map(|(_, c)| c);

@@ -26,15 +26,28 @@ impl PlotScale {
         let places = match scale {
             Scale::Band(band) => match column.numbers() {
                 None => column.categories().is_some(),
-                Some(values) => band
-                    .categories()
-                    .iter()
-                    .all(|c| c.trim().parse::<f64>().is_ok_and(|v| values.iter().any(|x| *x == v))),
+                Some(values) => bands_are_values(band.categories(), values),
             },
             _ => column.numbers().is_some(),
         };
         places.then(|| PlotScale { field: field.to_string(), scale: scale.clone() })
     }
+}
+
+/// Whether every band label is a number that `values` holds: one pass over the values, each
+/// looked up among the (few) sorted labels.
+fn bands_are_values(labels: &[String], values: &[f64]) -> bool {
+    let Ok(mut wanted) = labels.iter().map(|c| c.trim().parse::<f64>()).collect::<Result<Vec<f64>, _>>() else {
+        return false;
+    };
+    wanted.sort_by(f64::total_cmp);
+    let mut found = vec![false; wanted.len()];
+    for v in values {
+        if let Ok(k) = wanted.binary_search_by(|w| w.total_cmp(v)) {
+            found[k] = true;
+        }
+    }
+    found.iter().all(|&f| f)
 }
 
 /// A cartesian plot area: a scatter chart's plot, one off-diagonal cell of a splom, the frame of
@@ -67,11 +80,9 @@ impl Plot {
         Plot { rect, x: Some(x), y: Some(y) }
     }
 
-    /// The scales that place columns, each with the canvas span it runs along (left to right,
-    /// top to bottom).
-    pub fn scales(&self) -> impl Iterator<Item = (&PlotScale, (f64, f64))> {
-        let r = self.rect;
-        self.x.iter().map(move |x| (x, (r.x, r.right()))).chain(self.y.iter().map(move |y| (y, (r.y, r.bottom()))))
+    /// The scales that place columns: x, then y.
+    pub fn scales(&self) -> impl Iterator<Item = &PlotScale> {
+        self.x.iter().chain(self.y.iter())
     }
 }
 
@@ -163,5 +174,22 @@ impl Geometry {
     /// Whether the chart exposes nothing to interact with.
     pub fn is_empty(&self) -> bool {
         self.plots.is_empty() && self.axes.is_empty() && self.disk.is_none()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn number_bands_place_their_column_only_when_every_label_is_one_of_its_values() {
+        let labels = |l: &[&str]| l.iter().map(|s| s.to_string()).collect::<Vec<_>>();
+        let years = [1972.0, 1970.0, 1971.0, 1970.0];
+        assert!(bands_are_values(&labels(&["1970", "1971", " 1972"]), &years));
+        // A formatted label ("1.97k") or a binned one ("1970–1980") is not a value.
+        assert!(!bands_are_values(&labels(&["1.97k", "1971"]), &years));
+        assert!(!bands_are_values(&labels(&["1970–1980"]), &years));
+        // A label whose value no row holds would select nothing where rows are drawn.
+        assert!(!bands_are_values(&labels(&["1970", "1973"]), &years));
     }
 }
