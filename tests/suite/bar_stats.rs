@@ -282,8 +282,7 @@ fn labels_beyond_whiskers_and_with_set_decimals() {
 #[test]
 fn normalised_stack_labels_are_percentages_summing_to_100() {
     let csv = "k,g,v\na,p,1\na,q,2\na,r,5\nb,p,3\nb,q,1\n";
-    let out =
-        draw_ok(csv, "x = \"k\"\ny = \"v\"\ncolor = \"g\"\nstack = \"normalize\"\nlabels = true\n");
+    let out = draw_ok(csv, "x = \"k\"\ny = \"v\"\ncolor = \"g\"\nstack = \"normalize\"\nlabels = true\n");
     let l = labels(&out);
     let texts: Vec<&str> = l.iter().map(|t| t.content.as_str()).collect();
     assert_eq!(texts, ["12.5%", "25.0%", "62.5%", "75.0%", "25.0%"]);
@@ -323,4 +322,11 @@ fn labelled_charts_lint_clean_of_text_overlaps() {
     let csv = "k,v\na,50\na,52\nb,60\nb,62\n";
     let codes = lint_codes(spec, &[("d.csv", csv.as_bytes())]);
     assert!(codes.contains(&"DI001"), "{codes:?}");
+    // Bars of means from zero are honest: DI001 measures them by their means, not sums.
+    let spec = spec
+        .replace(", zero = false", "")
+        .replace("error = \"sem\"\n", "error = \"sem\"\norientation = \"horizontal\"\n");
+    let csv = "k,v\na,5\na,7\na,6\nb,-3\nb,-5\nb,-2\nc,12\nc,9\nd,1\n";
+    let codes = lint_codes(&spec, &[("d.csv", csv.as_bytes())]);
+    assert!(!codes.contains(&"DI001"), "{codes:?}");
 }

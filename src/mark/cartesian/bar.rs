@@ -99,6 +99,12 @@ impl BarAggregate {
         }
     }
 
+    /// The value of a bar of these rows' values (non-finite ones left out); `None` for none.
+    /// Lint rules measure drawn bars against it.
+    pub fn value_of(self, values: impl IntoIterator<Item = f64>) -> Option<f64> {
+        Summary::of(values).map(|s| self.of(&s))
+    }
+
     /// The bar's value from its rows' statistics.
     fn of(self, s: &Summary) -> f64 {
         match self {
