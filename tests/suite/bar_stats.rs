@@ -1,30 +1,10 @@
 //! Bars of means, medians and counts with whiskers (`aggregate`, `error`) and value labels
 //! (`labels`), against hand-computed numbers and geometry.
 
-use crate::common::{Fixture, bars, lint_codes, numbers, plot};
+use crate::bar::{draw_err, draw_ok};
+use crate::common::{axis_titles, bars, lint_codes, numbers, path_points, plot};
 use dataink::mark::ChartOutput;
-use dataink::scene::{Color, Item, PathCmd, Role, Shape, Text};
-
-fn spec(extra: &str) -> String {
-    format!(
-        "[data.d]\npath = \"d.csv\"\n\n[[chart]]\nname = \"b\"\nkind = \"bar\"\ndata = \"d\"\ntitle = \"t\"\nsize = [600, 400]\n{extra}"
-    )
-}
-
-fn draw(csv: &str, extra: &str) -> Result<ChartOutput, String> {
-    Fixture::new(&spec(extra), &[("d.csv", csv.as_bytes())]).draw().map(|mut v| v.remove(0))
-}
-
-fn draw_ok(csv: &str, extra: &str) -> ChartOutput {
-    draw(csv, extra).unwrap_or_else(|e| panic!("{e}"))
-}
-
-fn draw_err(csv: &str, extra: &str) -> String {
-    match draw(csv, extra) {
-        Ok(_) => panic!("expected an error"),
-        Err(e) => e,
-    }
-}
+use dataink::scene::{Color, Item, Shape, Text};
 
 /// The whiskers: (label, vertices).
 fn whiskers(out: &ChartOutput) -> Vec<(String, Vec<(f64, f64)>)> {
@@ -33,14 +13,7 @@ fn whiskers(out: &ChartOutput) -> Vec<(String, Vec<(f64, f64)>)> {
         if let (Some(label), Shape::Path(cmds)) = (item.label.as_deref(), &item.shape)
             && label.starts_with("error: ")
         {
-            let points = cmds
-                .iter()
-                .filter_map(|c| match c {
-                    PathCmd::MoveTo(p) | PathCmd::LineTo(p) => Some((p.x, p.y)),
-                    _ => None,
-                })
-                .collect();
-            found.push((label.to_string(), points));
+            found.push((label.to_string(), path_points(cmds)));
         }
     });
     found
@@ -55,16 +28,6 @@ fn labels(out: &ChartOutput) -> Vec<Text> {
         }
     });
     found
-}
-
-fn axis_titles(out: &ChartOutput) -> Vec<String> {
-    let mut titles = Vec::new();
-    out.scene.walk(|item: &Item| {
-        if let (Role::AxisTitle, Shape::Text(t)) = (&item.role, &item.shape) {
-            titles.push(t.content.clone());
-        }
-    });
-    titles
 }
 
 /// Group a: 2, 4, 4, 4, 5, 5, 7, 9 (mean 5, squared deviations 32, sd √(32/7), n 8); group b:

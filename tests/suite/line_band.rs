@@ -115,12 +115,7 @@ fn a_spread_band_averages_the_rows_at_each_x() {
     assert_eq!(b[0].len(), 4);
     let p = plot(&out);
     assert!(b[0].iter().all(|&(_, y)| y >= p.y - 1e-9 && y <= p.bottom() + 1e-9));
-    let mut titles = Vec::new();
-    out.scene.walk(|item: &Item| {
-        if let (dataink::scene::Role::AxisTitle, Shape::Text(t)) = (&item.role, &item.shape) {
-            titles.push(t.content.clone());
-        }
-    });
+    let titles = crate::common::axis_titles(&out);
     assert!(titles.contains(&"Mean of y ± 95% CI".to_string()), "{titles:?}");
     let csv = out.derived.to_csv(&Default::default());
     // The x column is read from the source table, which `to_csv` is not given here.
