@@ -91,6 +91,14 @@ pub struct LineBandOptions {
 }
 
 impl LineOptions {
+    /// Whether the line draws the mean of the rows at each x (a band computed from their spread).
+    pub fn averages_rows(&self) -> bool {
+        matches!(
+            &self.band,
+            Some(LineBand::Spread(_)) | Some(LineBand::Detailed(LineBandOptions { spread: Some(_), .. }))
+        )
+    }
+
     /// The column splitting the rows into series: `series`, else the `color` encoding's field.
     pub fn split_field(&self) -> Option<&str> {
         self.series.as_deref().or(self.color.as_ref().map(ColorChannel::field))
