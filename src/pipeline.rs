@@ -450,6 +450,8 @@ fn chart_fields(index: usize, chart: &Value) -> Vec<(String, Vec<PathSeg>)> {
             ("tree", Value::Object(map)) => out.extend(named_fields(map, &["id", "parent", "path"], &base)),
             // A line's band edges.
             ("band", Value::Object(map)) => out.extend(named_fields(map, &["lower", "upper"], &base)),
+            // A band computed from the rows (`band = "ci95"`) names no column.
+            ("band", Value::String(_)) => {}
             _ => out.extend(field_refs(value, base)),
         }
     }

@@ -94,6 +94,32 @@ pub fn format_log_tick(v: f64) -> String {
     with_sign(v < 0.0, body)
 }
 
+/// Values written on or beside marks (bar labels), in one style for all of them: plain digits,
+/// an SI suffix or a common exponent, chosen from the largest magnitude as [`format_ticks`]
+/// chooses. `decimals` is the number of digits after the point as written (of the mantissa under
+/// a suffix or exponent); by default about three significant digits of the largest magnitude
+/// ([`decimals_for_three_digits`]), and no more than any value needs, so whole numbers get none.
+/// Unlike tick labels, equal-looking labels of distinct values are allowed: every label has the
+/// same precision.
+pub fn format_labels(values: &[f64], decimals: Option<usize>) -> Vec<String> {
+    let max_abs = values.iter().filter(|v| v.is_finite()).fold(0.0f64, |m, v| m.max(v.abs()));
+    let style = choose_style(max_abs, None);
+    let decimals = decimals.map(|d| d.min(MAX_DECIMALS)).unwrap_or_else(|| {
+        let needed = values.iter().map(|v| decimals_for(in_units(v.abs(), style))).max().unwrap_or(0);
+        decimals_for_three_digits(in_units(max_abs, style)).min(needed)
+    });
+    values.iter().map(|&v| render(v, style, decimals)).collect()
+}
+
+/// Decimals that give about three significant digits to a number of magnitude `largest`: 2 for
+/// 1.23, 0 for 123 and above, at most 6; 0 for zero or a non-finite magnitude.
+pub fn decimals_for_three_digits(largest: f64) -> usize {
+    if largest == 0.0 || !largest.is_finite() {
+        return 0;
+    }
+    (2 - largest.abs().log10().floor() as i64).clamp(0, 6) as usize
+}
+
 /// An integer exponent in superscript digits: `-3` → `⁻³`.
 pub fn superscript(exp: i32) -> String {
     exp.to_string()

@@ -283,9 +283,9 @@ mod tests {
         let mut count = 0;
         walk(&schema, &mut count);
         // Spec, DataSource, Selection, LintConfig, ChannelOptions, ColorOptions, SizeOptions,
-        // FaceFeatures, TreeSource, NodeTable, TransformStep, TrendOptions, LineBand, FacetOptions,
-        // FacetResolve, Annotation and one branch per kind.
-        assert_eq!(count, 16 + crate::mark::registry::KINDS.len());
+        // FaceFeatures, TreeSource, NodeTable, TransformStep, TrendOptions, LineBandOptions,
+        // BarLabelOptions, FacetOptions, FacetResolve, Annotation and one branch per kind.
+        assert_eq!(count, 17 + crate::mark::registry::KINDS.len());
         // Maps stay open: any data source name, any column in inline rows.
         assert_eq!(schema["properties"]["data"]["additionalProperties"]["$ref"], "#/$defs/DataSource");
         assert_eq!(def(&schema, "DataSource")["properties"]["values"]["items"]["additionalProperties"], true);

@@ -5,22 +5,22 @@ use crate::common::{Fixture, bars, derived_column, numbers, plot, tick_labels};
 use dataink::mark::{ChartOutput, DerivedColumn};
 use dataink::scene::{Item, Role, Shape};
 
-/// A bar chart of `d.csv` (written from `csv`) with extra chart keys.
+/// A bar chart of `d.csv` (written from `csv`) with extra chart keys (600 × 400 px).
 fn spec(extra: &str) -> String {
     format!(
         "[data.d]\npath = \"d.csv\"\n\n[[chart]]\nname = \"b\"\nkind = \"bar\"\ndata = \"d\"\nsize = [600, 400]\n{extra}"
     )
 }
 
-fn draw(csv: &str, extra: &str) -> Result<ChartOutput, String> {
+pub fn draw(csv: &str, extra: &str) -> Result<ChartOutput, String> {
     Fixture::new(&spec(extra), &[("d.csv", csv.as_bytes())]).draw().map(|mut v| v.remove(0))
 }
 
-fn draw_ok(csv: &str, extra: &str) -> ChartOutput {
+pub fn draw_ok(csv: &str, extra: &str) -> ChartOutput {
     draw(csv, extra).unwrap_or_else(|e| panic!("{e}"))
 }
 
-fn draw_err(csv: &str, extra: &str) -> String {
+pub fn draw_err(csv: &str, extra: &str) -> String {
     match draw(csv, extra) {
         Ok(_) => panic!("expected an error"),
         Err(e) => e,

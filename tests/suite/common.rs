@@ -8,7 +8,7 @@ use dataink::data::PathPolicy;
 use dataink::lint::{ChartLint, Finding};
 use dataink::mark::{ChartOutput, DerivedColumn};
 use dataink::pipeline::{self, Loaded};
-use dataink::scene::{Item, Rect, Role, Shape};
+use dataink::scene::{Item, PathCmd, Rect, Role, Shape};
 
 /// A temporary folder holding a spec file and its data files.
 pub struct Fixture {
@@ -204,4 +204,25 @@ pub fn texts(out: &ChartOutput, name: &str) -> Vec<String> {
         DerivedColumn::Text(v) => v.clone(),
         other => panic!("derived column {name} is not text: {other:?}"),
     }
+}
+
+/// The points of a path's moves and lines, in order.
+pub fn path_points(cmds: &[PathCmd]) -> Vec<(f64, f64)> {
+    cmds.iter()
+        .filter_map(|c| match c {
+            PathCmd::MoveTo(p) | PathCmd::LineTo(p) => Some((p.x, p.y)),
+            _ => None,
+        })
+        .collect()
+}
+
+/// The texts of the axis titles of a chart.
+pub fn axis_titles(out: &ChartOutput) -> Vec<String> {
+    let mut titles = Vec::new();
+    out.scene.walk(|item: &Item| {
+        if let (Role::AxisTitle, Shape::Text(t)) = (&item.role, &item.shape) {
+            titles.push(t.content.clone());
+        }
+    });
+    titles
 }

@@ -403,6 +403,10 @@ fn di007_a_line_through_repeated_x_values() {
     );
     assert!(found[0].hint.contains(r#"groupby = ["x", "g"]"#), "{}", found[0].hint);
     assert!(line_codes("1,2,a\n1,5,b\n2,3,a\n2,6,b\n3,2,a\n3,7,b\n", "series = \"g\"").is_empty());
+    // A band of the rows' spread draws their mean at each x: nothing zigzags.
+    assert!(line_codes(rows, "band = \"ci95\"").is_empty());
+    assert!(line_codes(rows, "band = { spread = \"minmax\" }").is_empty());
+    assert!(found[0].hint.contains("band = \"ci95\""), "{}", found[0].hint);
 }
 
 /// A bar chart whose x categories are `labels`.

@@ -7,6 +7,7 @@ mod architecture;
 mod area;
 mod bad_input;
 mod bar;
+mod bar_stats;
 mod big_scatter;
 mod box_violin;
 mod charts;

@@ -55,7 +55,8 @@ fn check(s: &Subject<'_>) -> Vec<Issue> {
             && let Shape::Rect(r) = &item.shape
             && !item.rows.is_empty()
         {
-            let value = item.rows.iter().filter_map(|&row| values.get(row as usize)).sum();
+            let rows = item.rows.iter().filter_map(|&row| values.get(row as usize).copied());
+            let value = options.aggregate.unwrap_or_default().value_of(rows).unwrap_or(0.0);
             // A horizontal bar's ends, mirrored so that "up" is away from the baseline as for
             // a vertical one.
             let (top, bottom) = if horizontal { (-r.right(), -r.x) } else { (r.y, r.bottom()) };

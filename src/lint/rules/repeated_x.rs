@@ -66,6 +66,10 @@ fn repeats(s: &Subject<'_>, x: &str, series: Option<&str>) -> Option<Repeats> {
 
 fn check(s: &Subject<'_>) -> Vec<Issue> {
     let ChartKind::Line(o) = &s.chart.kind else { return Vec::new() };
+    if o.averages_rows() {
+        // A spread band draws one point per x: the mean of the rows there.
+        return Vec::new();
+    }
     let x = o.x.field();
     let split = o.split_field();
     let Some(r) = repeats(s, x, split) else { return Vec::new() };
@@ -94,7 +98,8 @@ fn check(s: &Subject<'_>) -> Vec<Issue> {
         ),
         format!(
             "aggregate to one row per x first, e.g. `transform = [{{ aggregate = {{ mean_{y} = \"mean({y})\" }}, \
-             groupby = [{}] }}]` and plot `y = \"mean_{y}\"`{split}",
+             groupby = [{}] }}]` and plot `y = \"mean_{y}\"`, or let the line draw their mean with its \
+             95% confidence band (`band = \"ci95\"`){split}",
             groupby.join(", ")
         ),
     )]

@@ -16,9 +16,10 @@ use crate::mark::derived::{Derived, DerivedColumn};
 use crate::mark::encode;
 use crate::mark::grouped::Orientation;
 use crate::mark::registry::{AxisSpec, ChartContext, KindInfo, Technique};
+use crate::mark::spread::{Spread, Summary};
 use crate::mark::warning::Warning;
 use crate::mark::{ChartOutput, MarkError, bands, frame};
-use crate::scene::{Color, Item, PathCmd, Point, Rect, Role, Shape, Style};
+use crate::scene::{Anchor, Baseline, Color, Item, PathCmd, Point, Rect, Role, Shape, Style, Text};
 use crate::spec::{Channel, Chart, ColorChannel, ScaleKind};
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
@@ -54,6 +55,103 @@ pub struct BarOptions {
     /// (categories down the left, the first on top, bars running right: room for long names).
     #[serde(default)]
     pub orientation: Option<Orientation>,
+    /// How the rows of a bar combine into its length: `"sum"` (default), `"mean"`, `"median"`
+    /// or `"count"` (the number of rows with a finite y).
+    #[serde(default)]
+    pub aggregate: Option<BarAggregate>,
+    /// Whiskers with caps around each bar, from the rows it combines: `"stdev"` (± one sample
+    /// standard deviation), `"sem"` (± the standard error), `"ci95"` (a 95% confidence
+    /// interval, Student's t with n − 1 degrees of freedom) need `aggregate = "mean"`;
+    /// `"minmax"` (the range of the rows) needs `"mean"` or `"median"`. Not with `stack`; a bar
+    /// of one row gets no whisker.
+    #[serde(default)]
+    pub error: Option<Spread>,
+    /// Each bar's value written at its end: `true`, or `{ position, decimals }`. Inside the bar
+    /// in black or white, whichever contrasts more with it, where it fits, else just beyond the
+    /// end; stacked segments are labelled in their middle where the label fits.
+    #[serde(default)]
+    pub labels: Option<BarLabels>,
+}
+
+/// How a bar combines its rows.
+#[derive(Clone, Copy, Debug, Default, Deserialize, Serialize, JsonSchema, PartialEq, Eq)]
+#[serde(rename_all = "lowercase")]
+pub enum BarAggregate {
+    /// The sum of the values.
+    #[default]
+    Sum,
+    /// The arithmetic mean.
+    Mean,
+    /// The median.
+    Median,
+    /// The number of rows.
+    Count,
+}
+
+impl BarAggregate {
+    /// The spec's word for it.
+    fn name(self) -> &'static str {
+        match self {
+            BarAggregate::Sum => "sum",
+            BarAggregate::Mean => "mean",
+            BarAggregate::Median => "median",
+            BarAggregate::Count => "count",
+        }
+    }
+
+    /// The value of a bar of these rows' values (non-finite ones left out); `None` for none.
+    /// Lint rules measure drawn bars against it.
+    pub fn value_of(self, values: impl IntoIterator<Item = f64>) -> Option<f64> {
+        Summary::of(values).map(|s| self.of(&s))
+    }
+
+    /// The bar's value from its rows' statistics.
+    fn of(self, s: &Summary) -> f64 {
+        match self {
+            BarAggregate::Sum => s.sum,
+            BarAggregate::Mean => s.mean,
+            BarAggregate::Median => s.median,
+            BarAggregate::Count => s.n as f64,
+        }
+    }
+}
+
+/// Value labels on bars: on or off, or how to place and write them.
+#[derive(Clone, Debug, Deserialize, Serialize, JsonSchema, PartialEq)]
+#[serde(untagged)]
+pub enum BarLabels {
+    /// `true`: labels placed automatically with the default number of decimals.
+    Show(bool),
+    /// `{ position, decimals }`.
+    Detailed(BarLabelOptions),
+}
+
+/// How bar labels are placed and written.
+#[derive(Clone, Debug, Default, Deserialize, Serialize, JsonSchema, PartialEq)]
+pub struct BarLabelOptions {
+    /// `"auto"` (default: inside where the label fits, else outside), `"inside"` (only inside;
+    /// a label that does not fit is left out) or `"outside"` (just beyond the bar's end, or its
+    /// whisker's). Stacked segments are always labelled inside.
+    #[serde(default)]
+    pub position: Option<LabelPosition>,
+    /// Digits after the decimal point, at most 12 (default: about three significant digits of
+    /// the largest value, none for whole numbers).
+    #[serde(default)]
+    #[schemars(extend("maximum" = 12), example = 1)]
+    pub decimals: Option<u32>,
+}
+
+/// Where a bar's label goes.
+#[derive(Clone, Copy, Debug, Default, Deserialize, Serialize, JsonSchema, PartialEq, Eq)]
+#[serde(rename_all = "lowercase")]
+pub enum LabelPosition {
+    /// Inside where it fits, else outside.
+    #[default]
+    Auto,
+    /// Inside the bar, at its end.
+    Inside,
+    /// Beyond the bar's end.
+    Outside,
 }
 
 /// How a bar chart's colour groups share a category.
@@ -84,16 +182,46 @@ pub enum BarSort {
 
 /// Bars narrower than this many pixels get a warning: they are hard to see and compare.
 const NARROW_BAR: f64 = 2.0;
+/// Font size of bar labels, relative to the chart's font size.
+const LABEL_SCALE: f64 = 0.9;
+/// Pixels between a label and the end of its bar (or whisker), and around it inside a bar.
+const LABEL_GAP: f64 = 4.0;
+/// What the label of a whisker starts with; the rest is its bar's label.
+pub const ERROR_PREFIX: &str = "error: ";
+/// The label of a bar's value label in the scene.
+pub const VALUE_LABEL: &str = "bar value";
 
-/// One drawn bar: its category and group, the sum of its rows' values, where it starts and
-/// ends on the value axis (0 and the sum unless stacked) and its rows.
+/// One drawn bar: its category and group, its value (the rows' sum, mean, median or count),
+/// where it starts and ends on the value axis (0 and the value unless stacked), its whisker's
+/// interval, if any, and its rows.
 struct Bar {
     x: usize,
     group: usize,
-    sum: f64,
+    value: f64,
     from: f64,
     to: f64,
+    interval: Option<(f64, f64)>,
     rows: Vec<u32>,
+}
+
+/// Label settings checked against the chart: where labels go and their decimals.
+#[derive(Clone, Copy)]
+struct LabelPlan {
+    position: LabelPosition,
+    decimals: Option<usize>,
+}
+
+/// A bar placed in the frame, in pixels: `across` its start and width across the category
+/// axis; `start` and `end` along the value axis (clamped to the domain), `dir` the direction
+/// from start to end (±1), `whisker` its interval's ends and `cut` whether it reaches past the
+/// domain.
+struct Placed {
+    across: (f64, f64),
+    start: f64,
+    end: f64,
+    dir: f64,
+    whisker: Option<(f64, f64)>,
+    cut: bool,
 }
 
 /// Draw a bar chart.
@@ -116,6 +244,9 @@ pub fn draw(chart: &Chart, options: &BarOptions, table: &Table) -> Result<ChartO
         ));
     }
     let stacked = stack != BarStack::Dodge;
+    let aggregate = options.aggregate.unwrap_or_default();
+    let error = check_error(options.error, aggregate, stack)?;
+    let label_plan = check_labels(options.labels.as_ref(), stacked)?;
     let color = bands::grouping_channel(chart, options.color.as_ref(), table, "bars")?;
     let color_col = match &color {
         Some(c) => Some(encode::column(chart, "color", c.field(), table)?),
@@ -157,7 +288,7 @@ pub fn draw(chart: &Chart, options: &BarOptions, table: &Table) -> Result<ChartO
         ));
     }
 
-    // Sum the rows of each (category, group) slot.
+    // Combine the rows of each (category, group) slot.
     let values = y_col.numbers().unwrap_or(&[]);
     let mut slot_rows: Vec<Vec<u32>> = vec![Vec::new(); slots];
     for (k, &r) in rows.iter().enumerate() {
@@ -169,19 +300,29 @@ pub fn draw(chart: &Chart, options: &BarOptions, table: &Table) -> Result<ChartO
     let mut bars: Vec<Bar> = slot_rows
         .into_iter()
         .enumerate()
-        .filter(|(_, rows)| !rows.is_empty())
-        .map(|(slot, rows)| {
-            let sum = rows.iter().filter_map(|&r| values.get(r as usize)).sum();
-            Bar { x: slot / ng, group: slot % ng, sum, from: 0.0, to: sum, rows }
+        .filter_map(|(slot, rows)| {
+            let summary = Summary::of(rows.iter().filter_map(|&r| values.get(r as usize).copied()))?;
+            let value = aggregate.of(&summary);
+            let interval = error.and_then(|e| e.interval(&summary, value));
+            Some(Bar { x: slot / ng, group: slot % ng, value, from: 0.0, to: value, interval, rows })
         })
         .collect();
+    if error.is_some() {
+        let single = bars.iter().filter(|b| b.rows.len() < 2).count();
+        if single > 0 {
+            warnings.push(Warning::from(format!(
+                "{single} of {} bars combine a single row and have no whisker: a spread needs at least two rows",
+                bars.len()
+            )));
+        }
+    }
     if stacked {
         stack_bars(&mut bars, nx, stack == BarStack::Normalize);
     }
     sort_categories(&mut bars, &mut x_keys, options.sort.unwrap_or_default());
 
     let summed = bars.iter().any(|b| b.rows.len() > 1);
-    let y_axis = value_axis(&y_opts, &bars, summed, stack);
+    let value_axis = value_axis(&y_opts, &bars, summed, stack, aggregate, error);
     let mut category_labels = x_keys.labels.clone();
     if horizontal {
         // Band 0 is at the bottom of a vertical axis: reversed, the first category is on top.
@@ -198,69 +339,82 @@ pub fn draw(chart: &Chart, options: &BarOptions, table: &Table) -> Result<ChartO
     };
     let (colors, legend) =
         encode::color_encoding(chart, color.as_ref(), options.mark_color.as_deref(), table, &rows, Symbol::Square)?;
-    let legends = legend.into_iter().collect();
-    let (frame, theme) = match orientation {
-        Orientation::Vertical => frame::cartesian(chart, x_axis, y_axis, legends)?,
-        Orientation::Horizontal => frame::cartesian(chart, y_axis, x_axis, legends)?,
+    let legends: Vec<crate::guide::legend::Legend> = legend.into_iter().collect();
+    let layout = |chart: &Chart, value_axis: PositionAxis| match orientation {
+        Orientation::Vertical => frame::cartesian(chart, x_axis.clone(), value_axis, legends.clone()),
+        Orientation::Horizontal => frame::cartesian(chart, value_axis, x_axis.clone(), legends.clone()),
     };
-    let (Scale::Band(band), value) = (if horizontal { (&frame.y, &frame.x) } else { (&frame.x, &frame.y) }) else {
+    let fill_of = |b: &Bar| b.rows.first().map_or(encode::DEFAULT_MARK_COLOR, |&r| colors.color_of(r));
+    let label_texts = label_plan.map(|plan| label_texts(&bars, plan, stack == BarStack::Normalize));
+    let label_size = (chart.font_size.unwrap_or(12.0) * LABEL_SCALE).max(crate::guide::theme::MIN_TEXT_SIZE);
+
+    // Labels beyond the bars' ends need room on the value axis: lay the frame out, see how far
+    // they reach, and widen the domain until they fit (a fixed `domain` stays as it is).
+    let mut value_axis = value_axis;
+    let outside_possible = !stacked && label_plan.is_some_and(|p| p.position != LabelPosition::Inside);
+    if let (true, Some(texts), None) = (outside_possible, &label_texts, y_opts.domain) {
+        // Probe without the facet panel, which records what it sees: the real frame comes after.
+        let probe_chart = Chart { panel: None, ..chart.clone() };
+        for _ in 0..3 {
+            let (probe, _) = layout(&probe_chart, value_axis.clone())?;
+            let Some(geo) = Geometry::new(&probe, orientation, stacked, &x_keys.labels, &groups.labels) else { break };
+            let placed: Vec<Placed> = bars.iter().map(|b| geo.place(b)).collect();
+            let plan = label_plan.map_or(LabelPosition::Auto, |p| p.position);
+            let reach = bars.iter().zip(&placed).zip(texts).filter_map(|((b, p), text)| {
+                let extent = geo.label_extent(text, label_size);
+                let outside = plan == LabelPosition::Outside || !geo.fits_inside(b, p, extent);
+                outside.then(|| geo.value.invert(p.far() + p.dir * (LABEL_GAP + extent.0 + 1.0))).flatten()
+            });
+            let Some((lo, hi)) = encode::finite_extent(reach) else { break };
+            let Domain::Continuous(d0, d1) = value_axis.domain else { break };
+            let (v0, v1) = geo.value.domain();
+            if lo >= v0.min(v1) && hi <= v0.max(v1) {
+                break;
+            }
+            value_axis.domain = Domain::Continuous(d0.min(lo), d1.max(hi));
+        }
+    }
+    let (frame, theme) = layout(chart, value_axis)?;
+    let Some(geo) = Geometry::new(&frame, orientation, stacked, &x_keys.labels, &groups.labels) else {
         return Err(MarkError::at(&["x"], "the categories are not on a band scale", ""));
     };
-    // A rectangle from (across, along) extents: across the category axis, along the value axis.
-    let rect = |(a0, a1): (f64, f64), (v0, v1): (f64, f64)| match orientation {
-        Orientation::Vertical => Rect::new(a0, v0, a1 - a0, v1 - v0),
-        Orientation::Horizontal => Rect::new(v0, a0, v1 - v0, a1 - a0),
-    };
+    let placed: Vec<Placed> = bars.iter().map(|b| geo.place(b)).collect();
 
-    // The baseline: zero, or the end of the value axis nearest zero when zero is left out.
-    let (d0, d1) = value.domain();
-    let base = 0.0f64.clamp(d0.min(d1), d0.max(d1));
-    let base_px = value.map(base);
-    // Bands by category name: a facet panel's axis may hold categories the panel has no bar for.
-    let band_index = |b: &Bar| x_keys.labels.get(b.x).and_then(|l| band.band_of(l)).unwrap_or(b.x);
-    let slot_of = |b: &Bar| {
-        let x = band_index(b);
-        if stacked { (band.start(x), band.bandwidth()) } else { bands::dodged(band, x, &groups.labels, b.group) }
-    };
-    let (lo, hi) = (d0.min(d1), d0.max(d1));
-    let mut marks = Vec::with_capacity(bars.len() + 1);
+    let (lo, hi) = geo.value_range();
+    let mut marks = Vec::with_capacity(2 * bars.len() + 1);
+    let mut whiskers = Vec::new();
     let mut narrowest = f64::INFINITY;
     let mut clipped = 0usize;
-    for b in &bars {
-        let (x, w) = slot_of(b);
+    for (b, p) in bars.iter().zip(&placed) {
+        let (x, w) = p.across;
         narrowest = narrowest.min(w);
-        // A sum beyond the domain is drawn up to the domain's end and marked as cut there.
-        let end = b.to.max(lo).min(hi);
-        let top = value.map(end);
-        let start_px = if b.from == 0.0 { base_px } else { value.map(b.from.max(lo).min(hi)) };
-        let (y0, y1) = (start_px.min(top), start_px.max(top));
-        // A zero sum has no bar; a bar at a baseline other than zero stays, even with no length,
-        // so that the scene (and lint rule DI001) still sees it.
-        if b.sum == 0.0 || (y1 - y0).is_nan() {
+        let (y0, y1) = (p.start.min(p.end), p.start.max(p.end));
+        // A zero value has no bar; a bar at a baseline other than zero stays, even with no
+        // length, so that the scene (and lint rule DI001) still sees it.
+        if b.value == 0.0 || (y1 - y0).is_nan() {
             continue;
         }
-        let label = match groups.labels.get(b.group).filter(|_| ng > 1) {
-            Some(g) => format!("{}, {g}", x_keys.labels.get(b.x).map_or("", String::as_str)),
-            None => x_keys.labels.get(b.x).cloned().unwrap_or_default(),
-        };
-        let fill = b.rows.first().map_or(encode::DEFAULT_MARK_COLOR, |&r| colors.color_of(r));
+        let label = bar_label(b, &x_keys.labels, &groups.labels);
+        let fill = fill_of(b);
         let plot_span =
             if horizontal { (frame.plot.x, frame.plot.right()) } else { (frame.plot.y, frame.plot.bottom()) };
-        let cut =
-            (end != b.to).then(|| clip_mark(orientation, (x, w), (top, start_px), plot_span, (fill, theme.background)));
+        let cut = p.cut.then(|| clip_mark(orientation, (x, w), (p.end, p.start), plot_span, (fill, theme.background)));
         let mut tooltip = format!("{}: {}\n", x_opts.field, x_keys.labels.get(b.x).map_or("", String::as_str));
         if let (Some(c), Some(g)) = (&color, groups.labels.get(b.group)) {
             tooltip.push_str(&format!("{}: {g}\n", c.field()));
         }
-        tooltip.push_str(&format!("{}: {}", y_opts.field, b.sum));
+        tooltip.push_str(&format!("{}: {}", y_opts.field, b.value));
         if b.rows.len() > 1 {
-            tooltip.push_str(&format!(" (sum of {} rows)", b.rows.len()));
+            tooltip.push_str(&format!(" ({} of {} rows)", aggregate.name(), b.rows.len()));
+        }
+        if let (Some(e), Some((l, u))) = (error, b.interval) {
+            tooltip.push_str(&format!("\n{}: [{l}, {u}]", e.name()));
         }
         if stack == BarStack::Normalize {
             tooltip.push_str(&format!("\nshare of {}: {:.1}%", x_opts.field, (b.to - b.from).abs()));
         }
         marks.push(
-            Item::new(Role::DataMark, Shape::Rect(rect((x, x + w), (y0, y1))), Style::fill(fill))
+            Item::new(Role::DataMark, Shape::Rect(geo.rect((x, x + w), (y0, y1))), Style::fill(fill))
                 .with_rows(b.rows.clone())
                 .labelled(label.clone())
                 .with_tooltip(tooltip.clone()),
@@ -270,7 +424,16 @@ pub fn draw(chart: &Chart, options: &BarOptions, table: &Table) -> Result<ChartO
             let mark = mark.with_rows(b.rows.clone()).labelled(format!("{CLIPPED_PREFIX}{label}"));
             marks.push(mark.with_tooltip(format!("{tooltip}\ncut at the end of the y domain")));
         }
+        if let Some(ends) = p.whisker {
+            whiskers.push(
+                whisker(&geo, p.across, ends, theme.text)
+                    .with_rows(b.rows.clone())
+                    .labelled(format!("{ERROR_PREFIX}{label}"))
+                    .with_tooltip(tooltip),
+            );
+        }
     }
+    marks.extend(whiskers);
     if clipped > 0 {
         let ends = bars.iter().map(|b| b.to).chain(bars.iter().filter(|b| b.from != 0.0).map(|b| b.from));
         let (min, max) = encode::finite_extent(ends).unwrap_or((lo, hi));
@@ -280,9 +443,10 @@ pub fn draw(chart: &Chart, options: &BarOptions, table: &Table) -> Result<ChartO
             bars.len()
         )));
     }
+    let base = 0.0f64.clamp(lo, hi);
     if bars.iter().any(|b| b.to < 0.0) && base == 0.0 {
         // Bars on both sides of zero: a zero line separates them.
-        let at = base_px.round() + 0.5;
+        let at = geo.value.map(base).round() + 0.5;
         let (from, to) = match orientation {
             Orientation::Vertical => (Point::new(frame.plot.x, at), Point::new(frame.plot.right(), at)),
             Orientation::Horizontal => (Point::new(at, frame.plot.y), Point::new(at, frame.plot.bottom())),
@@ -295,6 +459,18 @@ pub fn draw(chart: &Chart, options: &BarOptions, table: &Table) -> Result<ChartO
             )
             .labelled("baseline"),
         );
+    }
+    if let (Some(plan), Some(texts)) = (label_plan, &label_texts) {
+        let fills: Vec<Color> = bars.iter().map(fill_of).collect();
+        let (labels, left_out) =
+            geo.labels(&bars, &placed, texts, &fills, plan.position, (label_size, theme.text), frame.plot);
+        marks.extend(labels);
+        if left_out > 0 {
+            warnings.push(Warning::from(format!(
+                "{left_out} bar labels are left out: they would overlap other labels or bars, or leave the plot; \
+                 make `size` larger, set `labels = {{ position = \"auto\" }}`, or use `orientation = \"horizontal\"`"
+            )));
+        }
     }
     if narrowest < NARROW_BAR {
         warnings.push(Warning::from(format!(
@@ -310,13 +486,306 @@ pub fn draw(chart: &Chart, options: &BarOptions, table: &Table) -> Result<ChartO
     if let Some(c) = &color {
         derived.push(c.field(), DerivedColumn::Text(bars.iter().map(|b| label_of(&groups.labels, b.group)).collect()));
     }
-    derived.push(&y_opts.field, DerivedColumn::Number(bars.iter().map(|b| b.sum).collect()));
+    derived.push(&y_opts.field, DerivedColumn::Number(bars.iter().map(|b| b.value).collect()));
     derived.push("rows", DerivedColumn::Number(bars.iter().map(|b| b.rows.len() as f64).collect()));
     if stacked {
         derived.push("from", DerivedColumn::Number(bars.iter().map(|b| b.from).collect()));
         derived.push("to", DerivedColumn::Number(bars.iter().map(|b| b.to).collect()));
     }
+    if error.is_some() {
+        let end = |pick: fn((f64, f64)) -> f64| bars.iter().map(|b| b.interval.map_or(f64::NAN, pick)).collect();
+        derived.push("lower", DerivedColumn::Number(end(|(l, _)| l)));
+        derived.push("upper", DerivedColumn::Number(end(|(_, u)| u)));
+    }
     Ok(ChartOutput { scene, derived, warnings, geojson: None, geometry: Default::default() })
+}
+
+/// A bar's name in the scene: its category, and its group when there are several.
+fn bar_label(b: &Bar, categories: &[String], groups: &[String]) -> String {
+    let category = categories.get(b.x).map_or("", String::as_str);
+    match groups.get(b.group).filter(|_| groups.len() > 1) {
+        Some(g) => format!("{category}, {g}"),
+        None => category.to_string(),
+    }
+}
+
+/// The text of each bar's label: its value, or its share in percent in a normalised stack,
+/// all written with the same decimals.
+fn label_texts(bars: &[Bar], plan: LabelPlan, normalized: bool) -> Vec<String> {
+    let values: Vec<f64> = bars.iter().map(|b| if normalized { (b.to - b.from).abs() } else { b.value }).collect();
+    let texts = crate::guide::format::format_labels(&values, plan.decimals);
+    if normalized { texts.into_iter().map(|t| format!("{t}%")).collect() } else { texts }
+}
+
+/// The spread option checked against the aggregate and the stacking.
+fn check_error(error: Option<Spread>, aggregate: BarAggregate, stack: BarStack) -> Result<Option<Spread>, MarkError> {
+    let Some(e) = error else { return Ok(None) };
+    if stack != BarStack::Dodge {
+        return Err(MarkError::at(
+            &["error"],
+            format!(
+                "`error = \"{}\"` draws whiskers at the end of each bar, but stacked bars end where the next begins",
+                e.name()
+            ),
+            "remove `stack` (bars with whiskers stand side by side), or remove `error`",
+        ));
+    }
+    let allowed = match e {
+        Spread::Minmax => matches!(aggregate, BarAggregate::Mean | BarAggregate::Median),
+        _ => aggregate == BarAggregate::Mean,
+    };
+    if !allowed {
+        let needs =
+            if e == Spread::Minmax { "`aggregate = \"mean\"` or `\"median\"`" } else { "`aggregate = \"mean\"`" };
+        return Err(MarkError::at(
+            &["error"],
+            format!(
+                "`error = \"{}\"` is a spread of the rows around a typical value, which a {} of the rows is not",
+                e.name(),
+                aggregate.name()
+            ),
+            &format!(
+                "set {needs} (`stdev`, `sem` and `ci95` go with the mean; `minmax` with the mean or median), or remove `error`"
+            ),
+        ));
+    }
+    Ok(Some(e))
+}
+
+/// The labels option checked: `None` when there are no labels.
+fn check_labels(labels: Option<&BarLabels>, stacked: bool) -> Result<Option<LabelPlan>, MarkError> {
+    let options = match labels {
+        None | Some(BarLabels::Show(false)) => return Ok(None),
+        Some(BarLabels::Show(true)) => BarLabelOptions::default(),
+        Some(BarLabels::Detailed(o)) => o.clone(),
+    };
+    let position = options.position.unwrap_or_default();
+    if stacked && position == LabelPosition::Outside {
+        return Err(MarkError::at(
+            &["labels", "position"],
+            "stacked segments are labelled inside, where the label fits; outside a segment lies the next one"
+                .to_string(),
+            "remove `position` (or set it to \"auto\"), or remove `stack`",
+        ));
+    }
+    let decimals = match options.decimals {
+        Some(d) if d > 12 => {
+            return Err(MarkError::at(
+                &["labels", "decimals"],
+                format!("{d} decimals is more than a label can show (at most 12)"),
+                "use at most 12 decimals, or leave `decimals` out for about three significant digits",
+            ));
+        }
+        d => d.map(|d| d as usize),
+    };
+    Ok(Some(LabelPlan { position, decimals }))
+}
+
+/// The frame's scales as a bar chart uses them: which way round, the category bands and the
+/// value scale.
+struct Geometry<'f> {
+    orientation: Orientation,
+    stacked: bool,
+    band: &'f crate::guide::scale::BandScale,
+    value: &'f Scale,
+    categories: &'f [String],
+    groups: &'f [String],
+}
+
+impl<'f> Geometry<'f> {
+    fn new(
+        frame: &'f crate::guide::layout::Frame,
+        orientation: Orientation,
+        stacked: bool,
+        categories: &'f [String],
+        groups: &'f [String],
+    ) -> Option<Geometry<'f>> {
+        let (category, value) = match orientation {
+            Orientation::Vertical => (&frame.x, &frame.y),
+            Orientation::Horizontal => (&frame.y, &frame.x),
+        };
+        let Scale::Band(band) = category else { return None };
+        Some(Geometry { orientation, stacked, band, value, categories, groups })
+    }
+
+    /// The value domain, ascending.
+    fn value_range(&self) -> (f64, f64) {
+        let (d0, d1) = self.value.domain();
+        (d0.min(d1), d0.max(d1))
+    }
+
+    /// A rectangle from (across, along) extents: across the category axis, along the value axis.
+    fn rect(&self, (a0, a1): (f64, f64), (v0, v1): (f64, f64)) -> Rect {
+        match self.orientation {
+            Orientation::Vertical => Rect::new(a0, v0, a1 - a0, v1 - v0),
+            Orientation::Horizontal => Rect::new(v0, a0, v1 - v0, a1 - a0),
+        }
+    }
+
+    /// A point from its position across and along.
+    fn point(&self, across: f64, along: f64) -> Point {
+        match self.orientation {
+            Orientation::Vertical => Point::new(across, along),
+            Orientation::Horizontal => Point::new(along, across),
+        }
+    }
+
+    /// Where a bar goes, in pixels.
+    fn place(&self, b: &Bar) -> Placed {
+        // Bands by category name: a facet panel's axis may hold categories the panel has no bar for.
+        let x = self.categories.get(b.x).and_then(|l| self.band.band_of(l)).unwrap_or(b.x);
+        let across = if self.stacked {
+            (self.band.start(x), self.band.bandwidth())
+        } else {
+            bands::dodged(self.band, x, self.groups, b.group)
+        };
+        let (lo, hi) = self.value_range();
+        // The baseline: zero, or the end of the value axis nearest zero when zero is left out.
+        let start =
+            if b.from == 0.0 { self.value.map(0.0f64.clamp(lo, hi)) } else { self.value.map(b.from.clamp(lo, hi)) };
+        // A value beyond the domain is drawn up to the domain's end and marked as cut there.
+        let clamped = b.to.clamp(lo, hi);
+        let end = self.value.map(clamped);
+        let growing = if b.to >= b.from { 1.0 } else { -1.0 };
+        let dir = if end != start {
+            (end - start).signum()
+        } else {
+            (self.value.map(1.0) - self.value.map(0.0)).signum() * growing
+        };
+        let whisker = b.interval.map(|(l, u)| (self.value.map(l.clamp(lo, hi)), self.value.map(u.clamp(lo, hi))));
+        Placed { across, start, end, dir, whisker, cut: clamped != b.to }
+    }
+
+    /// A label's size along the value axis and across it.
+    fn label_extent(&self, text: &str, size: f64) -> (f64, f64) {
+        let m = crate::text::measure(text, size);
+        let height = m.ascent + m.descent;
+        match self.orientation {
+            Orientation::Vertical => (height, m.width),
+            Orientation::Horizontal => (m.width, height),
+        }
+    }
+
+    /// Whether a label of `extent` (along, across) fits inside the bar, between its base and
+    /// its end or the whisker's near end, whichever is nearer the base.
+    fn fits_inside(&self, b: &Bar, p: &Placed, (along, across): (f64, f64)) -> bool {
+        if b.value == 0.0 || p.cut {
+            return false;
+        }
+        let room = (p.inner() - p.start) * p.dir;
+        across + 2.0 * LABEL_GAP <= p.across.1 && along + 2.0 * LABEL_GAP <= room
+    }
+
+    /// The value labels of the bars, and how many were left out because they would overlap
+    /// another label or bar, or leave the plot. Stacked segments get a label centred in them
+    /// where it fits; other bars inside their end (in black or white, whichever contrasts more
+    /// with the fill) or beyond it, in the text colour.
+    #[allow(clippy::too_many_arguments)]
+    fn labels(
+        &self,
+        bars: &[Bar],
+        placed: &[Placed],
+        texts: &[String],
+        fills: &[Color],
+        position: LabelPosition,
+        (size, ink): (f64, Color),
+        plot: Rect,
+    ) -> (Vec<Item>, usize) {
+        let rects: Vec<Rect> = placed
+            .iter()
+            .map(|p| self.rect((p.across.0, p.across.0 + p.across.1), (p.start.min(p.end), p.start.max(p.end))))
+            .collect();
+        let mut items: Vec<Item> = Vec::new();
+        let mut boxes: Vec<Rect> = Vec::new();
+        let mut left_out = 0;
+        for (i, ((b, p), text)) in bars.iter().zip(placed).zip(texts).enumerate() {
+            if b.value == 0.0 || p.cut {
+                continue;
+            }
+            let extent = self.label_extent(text, size);
+            let centre_across = p.across.0 + p.across.1 / 2.0;
+            let inside = self.fits_inside(b, p, extent);
+            let (along, color) = if self.stacked {
+                // A segment's label sits in its middle, where it fits; the others are skipped.
+                if !inside {
+                    continue;
+                }
+                ((p.start + p.end) / 2.0, crate::guide::color::text_color_on(fills[i]))
+            } else if inside && position != LabelPosition::Outside {
+                (p.inner() - p.dir * (LABEL_GAP + extent.0 / 2.0), crate::guide::color::text_color_on(fills[i]))
+            } else if position == LabelPosition::Inside {
+                left_out += 1;
+                continue;
+            } else {
+                (p.far() + p.dir * (LABEL_GAP + extent.0 / 2.0), ink)
+            };
+            let label = Text {
+                at: self.point(centre_across, along),
+                content: text.clone(),
+                size,
+                anchor: Anchor::Middle,
+                baseline: Baseline::Middle,
+                angle: 0.0,
+                color,
+            };
+            let bounds = crate::text::bounds(&label);
+            let within = bounds.x >= plot.x - 0.5
+                && bounds.right() <= plot.right() + 0.5
+                && bounds.y >= plot.y - 0.5
+                && bounds.bottom() <= plot.bottom() + 0.5;
+            // A label beside its bar must not lie on another bar (its colour would be wrong there).
+            let on_other_bar = !inside
+                && rects.iter().enumerate().any(|(j, r)| j != i && r.w > 0.0 && r.h > 0.0 && r.intersects(&bounds));
+            if !within || on_other_bar || boxes.iter().any(|other| crate::text::boxes_overlap(other, &bounds)) {
+                left_out += 1;
+                continue;
+            }
+            boxes.push(bounds);
+            items.push(Item::new(Role::Annotation, Shape::Text(label), Style::default()).labelled(VALUE_LABEL));
+        }
+        (items, left_out)
+    }
+}
+
+impl Placed {
+    /// The end of the room inside the bar: its end, or the whisker's end nearer the base.
+    fn inner(&self) -> f64 {
+        match self.whisker {
+            Some((a, b)) => {
+                let near = if (a - b) * self.dir > 0.0 { b } else { a };
+                if (near - self.end) * self.dir < 0.0 { near } else { self.end }
+            }
+            None => self.end,
+        }
+    }
+
+    /// The end of the bar or its whisker farthest from the base.
+    fn far(&self) -> f64 {
+        match self.whisker {
+            Some((a, b)) => {
+                let far = if (a - b) * self.dir > 0.0 { a } else { b };
+                if (far - self.end) * self.dir > 0.0 { far } else { self.end }
+            }
+            None => self.end,
+        }
+    }
+}
+
+/// Half the width of a whisker's caps, at most, in pixels.
+const CAP_HALF: f64 = 6.0;
+
+/// A whisker across the middle of a bar (`slot`: its start and width across the category
+/// axis) from one end of its interval to the other (`ends`, in pixels along the value axis),
+/// with a cap at each end.
+fn whisker(geo: &Geometry<'_>, (x, w): (f64, f64), (a, b): (f64, f64), color: Color) -> Item {
+    let centre = x + w / 2.0;
+    let half = (w * 0.25).min(CAP_HALF);
+    let mut cmds = vec![PathCmd::MoveTo(geo.point(centre, a)), PathCmd::LineTo(geo.point(centre, b))];
+    for end in [a, b] {
+        cmds.push(PathCmd::MoveTo(geo.point(centre - half, end)));
+        cmds.push(PathCmd::LineTo(geo.point(centre + half, end)));
+    }
+    Item::new(Role::DataMark, Shape::Path(cmds), Style::stroke(color, 1.5))
 }
 
 /// What the label of a clip mark starts with; the rest is its bar's label.
@@ -398,12 +867,25 @@ fn check_scales(options: &BarOptions, y_col: &Column) -> Result<(), MarkError> {
     }
 }
 
-/// The value axis over the bars' extents: zero included unless `zero = false`; a fixed
-/// `domain` wins; 0–100 % for normalised stacks. Its title says "Sum of" when some bar adds up
-/// several rows, or "Share of … (%)" for normalised stacks, unless the spec names a title.
-fn value_axis(y_opts: &crate::spec::ChannelOptions, bars: &[Bar], summed: bool, stack: BarStack) -> PositionAxis {
+/// The value axis over the bars' extents and their whiskers: zero included unless
+/// `zero = false`; a fixed `domain` wins; 0–100 % for normalised stacks. Unless the spec names a
+/// title, it says what the bars are: "Sum of COLUMN" when some bar adds up several rows, "Mean
+/// of", "Median of", "Rows" for counts, or "Share of … (%)" for normalised stacks; whiskers add
+/// what they show ("± 95% CI"), after a title the spec names too.
+fn value_axis(
+    y_opts: &crate::spec::ChannelOptions,
+    bars: &[Bar],
+    summed: bool,
+    stack: BarStack,
+    aggregate: BarAggregate,
+    error: Option<Spread>,
+) -> PositionAxis {
     // A bar's start counts only when stacked on another: zero is the axis's choice (`zero`).
-    let ends = bars.iter().map(|b| b.to).chain(bars.iter().filter(|b| b.from != 0.0).map(|b| b.from));
+    let ends = bars
+        .iter()
+        .map(|b| b.to)
+        .chain(bars.iter().filter(|b| b.from != 0.0).map(|b| b.from))
+        .chain(bars.iter().filter_map(|b| b.interval).flat_map(|(l, u)| [l, u]));
     let (mut lo, mut hi) = encode::finite_extent(ends).unwrap_or((0.0, 0.0));
     if y_opts.zero != Some(false) {
         lo = lo.min(0.0);
@@ -415,14 +897,35 @@ fn value_axis(y_opts: &crate::spec::ChannelOptions, bars: &[Bar], summed: bool, 
     if let Some([a, b]) = y_opts.domain {
         (lo, hi) = (a, b);
     }
+    let field = &y_opts.field;
+    let unit =
+        if stack == BarStack::Normalize || aggregate == BarAggregate::Count { None } else { y_opts.unit.as_deref() };
     let title = match &y_opts.title {
-        Some(t) => t.clone(),
-        None if stack == BarStack::Normalize => format!("Share of {} (%)", y_opts.field),
-        None if summed => format!("Sum of {}", y_opts.field),
-        None => y_opts.field.clone(),
+        Some(t) => {
+            let t = title_with_unit(t, unit);
+            match error {
+                Some(e) => format!("{t}, {} {}", aggregate.name(), e.describe()),
+                None => t,
+            }
+        }
+        None => {
+            let what = match aggregate {
+                _ if stack == BarStack::Normalize => format!("Share of {field} (%)"),
+                BarAggregate::Sum if summed => format!("Sum of {field}"),
+                BarAggregate::Sum => field.clone(),
+                BarAggregate::Mean => format!("Mean of {field}"),
+                BarAggregate::Median => format!("Median of {field}"),
+                BarAggregate::Count => "Rows".to_string(),
+            };
+            let what = title_with_unit(&what, unit);
+            match error {
+                Some(e) => format!("{what} {}", e.describe()),
+                None => what,
+            }
+        }
     };
     PositionAxis {
-        title: title_with_unit(&title, if stack == BarStack::Normalize { None } else { y_opts.unit.as_deref() }),
+        title,
         kind: ScaleKind::Linear,
         domain: Domain::Continuous(lo, hi),
         nice: y_opts.nice.unwrap_or(true) && y_opts.domain.is_none() && stack != BarStack::Normalize,
@@ -437,12 +940,12 @@ fn value_axis(y_opts: &crate::spec::ChannelOptions, bars: &[Bar], summed: bool, 
 fn stack_bars(bars: &mut [Bar], categories: usize, normalize: bool) {
     let mut totals = vec![0.0f64; categories];
     for b in bars.iter() {
-        totals[b.x] += b.sum.abs();
+        totals[b.x] += b.value.abs();
     }
     let (mut up, mut down) = (vec![0.0f64; categories], vec![0.0f64; categories]);
     for b in bars.iter_mut() {
         let scale = if normalize && totals[b.x] > 0.0 { 100.0 / totals[b.x] } else { 1.0 };
-        let v = b.sum * scale;
+        let v = b.value * scale;
         let running = if v >= 0.0 { &mut up[b.x] } else { &mut down[b.x] };
         b.from = *running;
         b.to = *running + v;
@@ -457,7 +960,7 @@ fn sort_categories(bars: &mut [Bar], keys: &mut bands::Keys, sort: BarSort) {
     }
     let mut totals = vec![0.0f64; keys.labels.len()];
     for b in bars.iter() {
-        totals[b.x] += b.sum;
+        totals[b.x] += b.value;
     }
     let mut order: Vec<usize> = (0..totals.len()).collect();
     match sort {

@@ -13,7 +13,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::data::{Column, Table};
 use crate::guide::axis::title_with_unit;
-use crate::guide::color::contrast_ratio;
+use crate::guide::color::text_color_on;
 use crate::guide::layout::{Domain, PositionAxis};
 use crate::guide::legend::Legend;
 use crate::guide::scale::Scale;
@@ -22,7 +22,7 @@ use crate::mark::encode::{self, MISSING_LABEL};
 use crate::mark::geometry::{Geometry, Plot};
 use crate::mark::registry::{AxisSpec, ChartContext, ColourSpec, KindInfo, Technique};
 use crate::mark::{ChartOutput, MarkError, frame};
-use crate::scene::{Anchor, Baseline, Color, Item, Rect, Role, Shape, Style, Text};
+use crate::scene::{Anchor, Baseline, Item, Rect, Role, Shape, Style, Text};
 use crate::spec::{Channel, Chart, ColorChannel, ScaleKind};
 
 /// Options of `kind = "heatmap"`.
@@ -228,11 +228,7 @@ pub fn draw(chart: &Chart, options: &HeatmapOptions, table: &Table) -> Result<Ch
                     .with_tooltip(tooltip),
             );
             if write_labels {
-                let ink = if contrast_ratio(fill, Color::BLACK) >= contrast_ratio(fill, Color::WHITE) {
-                    Color::BLACK
-                } else {
-                    Color::WHITE
-                };
+                let ink = text_color_on(fill);
                 let text = Text {
                     at: crate::scene::Point::new(rect.x + w / 2.0, rect.y + h / 2.0),
                     content: texts[j][i].clone(),
@@ -258,11 +254,10 @@ pub fn draw(chart: &Chart, options: &HeatmapOptions, table: &Table) -> Result<Ch
 /// Decimals of cell labels: counts none, other values about three significant digits of the
 /// largest magnitude, the same for every cell so they compare at a glance.
 fn label_decimals(lo: f64, hi: f64, aggregate: CellAggregate) -> usize {
-    let largest = lo.abs().max(hi.abs());
-    if aggregate == CellAggregate::Count || largest == 0.0 || !largest.is_finite() {
+    if aggregate == CellAggregate::Count {
         return 0;
     }
-    (2 - largest.log10().floor() as i64).clamp(0, 6) as usize
+    crate::guide::format::decimals_for_three_digits(lo.abs().max(hi.abs()))
 }
 
 /// The word for an aggregate in titles.

@@ -7,6 +7,7 @@ use crate::guide::legend::{Legend, Symbol};
 use crate::mark::derived::{Derived, DerivedColumn};
 use crate::mark::encode;
 use crate::mark::registry::{AxisSpec, ChartContext, KindInfo, Technique};
+use crate::mark::spread::{Spread, Summary};
 use crate::mark::warning::Warning;
 use crate::mark::{ChartOutput, MarkError, frame};
 use crate::scene::{Color, Item, PathCmd, PerPoint, Point, PointBatch, Role, Shape, Stroke, Style};
@@ -50,20 +51,39 @@ pub struct LineOptions {
     pub mark_color: Option<String>,
     /// An uncertainty band around each series: `{ lower = "COLUMN", upper = "COLUMN" }` (an
     /// interval per row, e.g. a confidence interval or a min–max range computed by a
-    /// transform), shaded in the series' colour. Needs a single `y` column.
+    /// transform), shaded in the series' colour; or a spread of the rows themselves, `"stdev"`,
+    /// `"sem"`, `"ci95"` or `"minmax"` (`{ spread, opacity }` as a table): the rows of a series
+    /// that share an x are then drawn as their mean, with the band around it. Needs a single `y`
+    /// column.
     #[serde(default)]
     pub band: Option<LineBand>,
 }
 
-/// The interval shaded around a line.
+/// The interval shaded around a line: a spread computed from the rows, or a table of options.
 #[derive(Clone, Debug, Deserialize, Serialize, JsonSchema, PartialEq)]
-pub struct LineBand {
-    /// The column of the band's lower edge.
+#[serde(untagged)]
+pub enum LineBand {
+    /// `"stdev"`, `"sem"`, `"ci95"` or `"minmax"` of the rows at each x, around their mean.
+    Spread(Spread),
+    /// `{ lower, upper, opacity }` or `{ spread, opacity }`.
+    Detailed(LineBandOptions),
+}
+
+/// The interval shaded around a line: two columns, or a spread of the rows at each x.
+#[derive(Clone, Debug, Deserialize, Serialize, JsonSchema, PartialEq)]
+pub struct LineBandOptions {
+    /// The column of the band's lower edge (with `upper`).
+    #[serde(default)]
     #[schemars(example = &"low")]
-    pub lower: String,
-    /// The column of the band's upper edge.
+    pub lower: Option<String>,
+    /// The column of the band's upper edge (with `lower`).
+    #[serde(default)]
     #[schemars(example = &"high")]
-    pub upper: String,
+    pub upper: Option<String>,
+    /// Instead of `lower` and `upper`: the spread of the rows sharing an x, around their mean
+    /// (`"stdev"`, `"sem"`, `"ci95"` or `"minmax"`).
+    #[serde(default)]
+    pub spread: Option<Spread>,
     /// Fill opacity, above 0 and at most 1 (default 0.25).
     #[serde(default)]
     #[schemars(extend("exclusiveMinimum" = 0, "maximum" = 1), example = 0.25)]
@@ -71,6 +91,14 @@ pub struct LineBand {
 }
 
 impl LineOptions {
+    /// Whether the line draws the mean of the rows at each x (a band computed from their spread).
+    pub fn averages_rows(&self) -> bool {
+        matches!(
+            &self.band,
+            Some(LineBand::Spread(_)) | Some(LineBand::Detailed(LineBandOptions { spread: Some(_), .. }))
+        )
+    }
+
     /// The column splitting the rows into series: `series`, else the `color` encoding's field.
     pub fn split_field(&self) -> Option<&str> {
         self.series.as_deref().or(self.color.as_ref().map(ColorChannel::field))
@@ -150,7 +178,7 @@ pub fn draw(chart: &Chart, options: &LineOptions, table: &Table) -> Result<Chart
         Some(field) => Some(encode::column(chart, split_key, field, table)?),
         None => None,
     };
-    let band = band_columns(chart, options, table, y_cols.len())?;
+    let band = band_spec(chart, options, table, y_cols.len())?;
 
     // Non-finite policy: rows with a non-finite x (or y) are dropped and counted.
     let mut numeric: Vec<(&str, &Column)> = Vec::new();
@@ -225,6 +253,22 @@ pub fn draw(chart: &Chart, options: &LineOptions, table: &Table) -> Result<Chart
     for s in &mut series {
         sort_rows(&mut s.rows, x_numbers, band_order);
     }
+    // The points each line passes through: one per row, or with a spread band one per x, the
+    // mean of the rows there.
+    let spread = match &band {
+        Some((Band::Spread(spread), _)) => Some(*spread),
+        _ => None,
+    };
+    let vertices: Vec<Vec<Vertex>> = series.iter().map(|s| vertices(s, x_col, band.as_ref().map(|b| &b.0))).collect();
+    if spread.is_some() {
+        let single = vertices.iter().flatten().filter(|v| v.span.len() < 2).count();
+        if single > 0 {
+            warnings.push(Warning::from(format!(
+                "{single} of {} points rest on a single row and have no band there: a spread needs at least two rows at an x",
+                vertices.iter().map(Vec::len).sum::<usize>()
+            )));
+        }
+    }
 
     // Axes: x from the x channel; y from the union of all series.
     let all_series_rows: Vec<u32> = {
@@ -237,13 +281,21 @@ pub fn draw(chart: &Chart, options: &LineOptions, table: &Table) -> Result<Chart
     let first_y = y_cols[0].0.options();
     let mut y_axis = encode::position_axis("y", &first_y, y_cols[0].1, &series[0].rows)?;
     let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
-    for s in &series {
-        if let Some((a, b)) = encode::extent(s.y.numbers().unwrap_or(&[]), &s.rows) {
-            lo = lo.min(a);
-            hi = hi.max(b);
+    if spread.is_some() {
+        // The means and the band's edges.
+        let ends = vertices.iter().flatten().flat_map(|v| [Some(v.y), v.band.map(|b| b.0), v.band.map(|b| b.1)]);
+        if let Some((a, b)) = encode::finite_extent(ends.flatten()) {
+            (lo, hi) = (a, b);
+        }
+    } else {
+        for s in &series {
+            if let Some((a, b)) = encode::extent(s.y.numbers().unwrap_or(&[]), &s.rows) {
+                lo = lo.min(a);
+                hi = hi.max(b);
+            }
         }
     }
-    if let Some((lower, upper, _)) = &band {
+    if let Some((Band::Columns(lower, upper), _)) = &band {
         for s in &series {
             for col in [lower, upper] {
                 if let Some((a, b)) = encode::extent(col.numbers().unwrap_or(&[]), &s.rows) {
@@ -271,6 +323,17 @@ pub fn draw(chart: &Chart, options: &LineOptions, table: &Table) -> Result<Chart
     } else if let Some(t) = &options.y_title {
         y_axis.title = title_with_unit(t, first_y.unit.as_deref());
     }
+    if let Some(spread) = spread {
+        // Say that the line is a mean, and what the band is.
+        y_axis.title = match first_y.title.is_some() || options.y_title.is_some() {
+            true => format!("{}, mean {}", y_axis.title, spread.describe()),
+            false => format!(
+                "{} {}",
+                title_with_unit(&format!("Mean of {}", first_y.field), first_y.unit.as_deref()),
+                spread.describe()
+            ),
+        };
+    }
     let stroke_width = options.stroke_width.unwrap_or(2.0);
     let markers = options.markers.unwrap_or(false);
     let inset = if markers { stroke_width * 1.6 + 1.5 } else { stroke_width / 2.0 + 0.5 };
@@ -293,23 +356,24 @@ pub fn draw(chart: &Chart, options: &LineOptions, table: &Table) -> Result<Chart
     let (frame, theme) = frame::cartesian(chart, x_axis, y_axis, legends)?;
 
     let mut marks = Vec::new();
-    if let Some((lower, upper, opacity)) = &band {
-        for s in &series {
-            marks.extend(band_marks(&frame, x_col, (lower, upper), s, *opacity));
+    if let Some((_, opacity)) = &band {
+        for (s, vs) in series.iter().zip(&vertices) {
+            marks.extend(band_marks(&frame, x_col, s, vs, *opacity));
         }
     }
     let mut derived_series = Vec::new();
     let mut derived_y = Vec::new();
     let mut derived_rows = Vec::new();
-    for s in &series {
-        let dropped = dropped_between(&s.rows, &s.members, x_numbers, s.y.numbers());
-        let mut cmds = Vec::with_capacity(s.rows.len() + 1);
+    let mut derived_band: (Vec<f64>, Vec<f64>, Vec<f64>) = Default::default();
+    let x_at = encode::Positioner::new(&frame.x, x_col);
+    for (s, vs) in series.iter().zip(&vertices) {
+        let firsts: Vec<u32> = vs.iter().map(|v| s.rows[v.span.start]).collect();
+        let dropped = dropped_between(&firsts, &s.members, x_numbers, s.y.numbers());
+        let mut cmds = Vec::with_capacity(vs.len() + 1);
         let mut centers = Vec::new();
         let mut pen_down = false;
-        let x_at = encode::Positioner::new(&frame.x, x_col);
-        let y_at = encode::Positioner::new(&frame.y, s.y);
-        for (k, &r) in s.rows.iter().enumerate() {
-            let p = Point::new(x_at.at(r), y_at.at(r));
+        for (k, (v, &r)) in vs.iter().zip(&firsts).enumerate() {
+            let p = Point::new(x_at.at(r), frame.y.map(v.y));
             if dropped.get(k).copied().unwrap_or(false) {
                 pen_down = false;
             }
@@ -318,7 +382,10 @@ pub fn draw(chart: &Chart, options: &LineOptions, table: &Table) -> Result<Chart
             centers.push(p);
             derived_series.push(s.name.clone());
             derived_rows.push(r);
-            derived_y.push(s.y.numbers().and_then(|v| v.get(r as usize)).copied().unwrap_or(f64::NAN));
+            derived_y.push(v.y);
+            derived_band.0.push(v.band.map_or(f64::NAN, |b| b.0));
+            derived_band.1.push(v.band.map_or(f64::NAN, |b| b.1));
+            derived_band.2.push(v.span.len() as f64);
         }
         let mut style = Style::stroke(s.color, stroke_width);
         if let Some(stroke) = style.stroke.as_mut() {
@@ -348,19 +415,35 @@ pub fn draw(chart: &Chart, options: &LineOptions, table: &Table) -> Result<Chart
 
     let mut derived = Derived::over(derived_rows);
     derived.push("series", DerivedColumn::Text(derived_series));
-    derived.push("row", DerivedColumn::RowIndex);
-    derived.push(&x_opts.field, DerivedColumn::Source(x_opts.field.clone()));
-    derived.push("y", DerivedColumn::Number(derived_y));
+    if spread.is_some() {
+        // One row per point: the mean of the rows at an x, the band around it and their count.
+        derived.push(&x_opts.field, DerivedColumn::Source(x_opts.field.clone()));
+        derived.push("y", DerivedColumn::Number(derived_y));
+        derived.push("lower", DerivedColumn::Number(derived_band.0));
+        derived.push("upper", DerivedColumn::Number(derived_band.1));
+        derived.push("rows", DerivedColumn::Number(derived_band.2));
+    } else {
+        derived.push("row", DerivedColumn::RowIndex);
+        derived.push(&x_opts.field, DerivedColumn::Source(x_opts.field.clone()));
+        derived.push("y", DerivedColumn::Number(derived_y));
+    }
     Ok(ChartOutput { scene, derived, warnings, geojson: None, geometry: Default::default() })
 }
 
-/// The band's lower and upper columns and its opacity, checked: numeric, and a single `y`.
-fn band_columns<'t>(
+/// Where a line's band comes from: two columns, or a spread of the rows at each x.
+enum Band<'t> {
+    Columns(&'t Column, &'t Column),
+    Spread(Spread),
+}
+
+/// The band option checked, with its opacity: numeric edge columns or a spread, and a single
+/// `y`.
+fn band_spec<'t>(
     chart: &Chart,
     options: &LineOptions,
     table: &'t Table,
     y_count: usize,
-) -> Result<Option<(&'t Column, &'t Column, f64)>, MarkError> {
+) -> Result<Option<(Band<'t>, f64)>, MarkError> {
     let Some(band) = &options.band else { return Ok(None) };
     if y_count > 1 {
         return Err(MarkError::at(
@@ -369,8 +452,35 @@ fn band_columns<'t>(
             "give one y column (long data split by `series` or `color` gets a band per series)",
         ));
     }
+    let detailed = match band {
+        LineBand::Spread(spread) => return Ok(Some((Band::Spread(*spread), 0.25))),
+        LineBand::Detailed(d) => d,
+    };
+    let opacity = detailed.opacity.unwrap_or(0.25);
+    let (lower, upper) = match (&detailed.lower, &detailed.upper, detailed.spread) {
+        (None, None, Some(spread)) => return Ok(Some((Band::Spread(spread), opacity))),
+        (Some(lower), Some(upper), None) => (lower, upper),
+        (_, _, Some(spread)) => {
+            return Err(MarkError::at(
+                &["band", "spread"],
+                format!(
+                    "`spread = \"{}\"` computes the band from the rows, so it takes no `lower` or `upper` column",
+                    spread.name()
+                ),
+                "keep `spread` (the band around the mean of the rows at each x) or `lower` and `upper` (columns holding the band's edges)",
+            ));
+        }
+        (lower, _, None) => {
+            let missing = if lower.is_none() { "lower" } else { "upper" };
+            return Err(MarkError::at(
+                &["band"],
+                format!("the band has no `{missing}` edge"),
+                "give both `lower` and `upper` columns, or a `spread` of the rows (\"stdev\", \"sem\", \"ci95\" or \"minmax\")",
+            ));
+        }
+    };
     let mut columns = Vec::new();
-    for (key, field) in [("lower", &band.lower), ("upper", &band.upper)] {
+    for (key, field) in [("lower", lower), ("upper", upper)] {
         let col = encode::column(chart, "band", field, table).map_err(|mut e| {
             e.path.push(crate::spec::PathSeg::Key(key.into()));
             e
@@ -387,36 +497,83 @@ fn band_columns<'t>(
         }
         columns.push(col);
     }
-    Ok(Some((columns[0], columns[1], band.opacity.unwrap_or(0.25))))
+    Ok(Some((Band::Columns(columns[0], columns[1]), opacity)))
 }
 
-/// The shaded band of one series: one polygon per run of rows whose edges are both finite,
-/// upper edge forward and lower edge back.
+/// One point a line passes through: the span of its series' sorted rows it stands for (one row,
+/// or all rows at its x when a spread band averages them), its y value and its band interval.
+struct Vertex {
+    span: std::ops::Range<usize>,
+    y: f64,
+    band: Option<(f64, f64)>,
+}
+
+/// The points of one series (its rows sorted by x): a row each, its band from the edge
+/// columns where both are finite; or, with a spread band, the mean of each run of rows with the
+/// same x, the spread around it where the run has two rows or more.
+fn vertices(s: &Series<'_>, x_col: &Column, band: Option<&Band<'_>>) -> Vec<Vertex> {
+    let ys = s.y.numbers().unwrap_or(&[]);
+    let y_of = |r: u32| ys.get(r as usize).copied().unwrap_or(f64::NAN);
+    match band {
+        Some(Band::Spread(spread)) => {
+            let mut out = Vec::new();
+            let mut start = 0;
+            while start < s.rows.len() {
+                let key = x_col.key(s.rows[start] as usize);
+                let len = s.rows[start..].iter().take_while(|&&r| x_col.key(r as usize) == key).count().max(1);
+                let span = start..start + len;
+                if let Some(summary) = Summary::of(s.rows[span.clone()].iter().map(|&r| y_of(r))) {
+                    out.push(Vertex {
+                        span: span.clone(),
+                        y: summary.mean,
+                        band: spread.interval(&summary, summary.mean),
+                    });
+                }
+                start = span.end;
+            }
+            out
+        }
+        Some(Band::Columns(lower, upper)) => {
+            let (lo, hi) = (lower.numbers().unwrap_or(&[]), upper.numbers().unwrap_or(&[]));
+            let edge = |v: &[f64], r: u32| v.get(r as usize).copied().filter(|e| e.is_finite());
+            (s.rows.iter().enumerate())
+                .map(|(k, &r)| Vertex { span: k..k + 1, y: y_of(r), band: edge(lo, r).zip(edge(hi, r)) })
+                .collect()
+        }
+        None => (s.rows.iter().enumerate()).map(|(k, &r)| Vertex { span: k..k + 1, y: y_of(r), band: None }).collect(),
+    }
+}
+
+/// The shaded band of one series: one polygon per run of points with a band interval, upper
+/// edge forward and lower edge back.
 fn band_marks(
     frame: &crate::guide::layout::Frame,
     x_col: &Column,
-    (lower, upper): (&Column, &Column),
     s: &Series<'_>,
+    vertices: &[Vertex],
     opacity: f64,
 ) -> Vec<Item> {
-    let (lo, hi) = (lower.numbers().unwrap_or(&[]), upper.numbers().unwrap_or(&[]));
     let x_at = encode::Positioner::new(&frame.x, x_col);
-    let finite =
-        |r: u32| lo.get(r as usize).is_some_and(|v| v.is_finite()) && hi.get(r as usize).is_some_and(|v| v.is_finite());
     let mut items = Vec::new();
-    for run in s.rows.split(|&r| !finite(r)).filter(|run| !run.is_empty()) {
-        let mut cmds: Vec<PathCmd> = Vec::with_capacity(2 * run.len() + 1);
-        for (k, &r) in run.iter().enumerate() {
-            let p = Point::new(x_at.at(r), frame.y.map(hi[r as usize]));
+    for run in vertices.split(|v| v.band.is_none()).filter(|run| !run.is_empty()) {
+        let edges: Vec<(f64, (f64, f64))> =
+            run.iter().filter_map(|v| Some((x_at.at(s.rows[v.span.start]), v.band?))).collect();
+        let mut cmds: Vec<PathCmd> = Vec::with_capacity(2 * edges.len() + 1);
+        for (k, &(x, (_, hi))) in edges.iter().enumerate() {
+            let p = Point::new(x, frame.y.map(hi));
             cmds.push(if k == 0 { PathCmd::MoveTo(p) } else { PathCmd::LineTo(p) });
         }
-        for &r in run.iter().rev() {
-            cmds.push(PathCmd::LineTo(Point::new(x_at.at(r), frame.y.map(lo[r as usize]))));
+        for &(x, (lo, _)) in edges.iter().rev() {
+            cmds.push(PathCmd::LineTo(Point::new(x, frame.y.map(lo))));
         }
         cmds.push(PathCmd::Close);
+        let rows = match (run.first(), run.last()) {
+            (Some(first), Some(last)) => s.rows.get(first.span.start..last.span.end).unwrap_or(&[]).to_vec(),
+            _ => Vec::new(),
+        };
         items.push(
             Item::new(Role::DataMark, Shape::Path(cmds), Style::fill(s.color.with_opacity(opacity)))
-                .with_rows(run.to_vec())
+                .with_rows(rows)
                 .labelled(format!("{} band", s.name)),
         );
     }

@@ -1,7 +1,7 @@
 //! Pieces the kinds share: categories in bands (`bands`), channels and the non-finite policy (`encode`), the cartesian frame,
 //! selections drawn (`highlight`), derived output, categorical colours, gridded input, trees and
 //! networks read from tables, marker sizes, rasters, contour labels, node-link drawing, hover texts (`tooltip`),
-//! trend lines (`trend`) and annotations (`annotate`).
+//! group spreads (mean, stdev, standard error, t-based confidence intervals, range: `spread`), trend lines (`trend`) and annotations (`annotate`).
 //! Nothing here imports a kind.
 
 pub mod annotate;
@@ -22,6 +22,7 @@ pub mod overplot;
 pub mod panel;
 pub mod raster;
 pub mod size;
+pub mod spread;
 pub mod tooltip;
 pub mod tree_input;
 pub mod trend;
