@@ -335,7 +335,7 @@ pub fn draw(
             binned.bins()
         )));
     }
-    let scene = frame::scene(chart, frame, &theme, marks);
+    let scene = frame::scene(chart, frame, &theme, marks, &mut warnings);
     let derived = derived_table(&binned, &group_heights, color.as_ref().map(|c| (c.field(), groups.as_slice())));
     Ok(ChartOutput { scene, derived, warnings, geojson: None, geometry: Default::default() })
 }

@@ -624,7 +624,7 @@ impl Layout {
     /// that the SVG carries as a raster (a selection of more rows than a vector layer holds).
     pub fn scene(self, chart: &Chart, marks: Vec<Item>, warnings: &mut Vec<Warning>) -> Scene {
         warnings.extend(frame::raster_note(&marks).map(Warning::from));
-        frame::scene(chart, self.frame, &self.theme, marks)
+        frame::scene(chart, self.frame, &self.theme, marks, warnings)
     }
 }
 
