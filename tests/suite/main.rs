@@ -9,6 +9,7 @@ mod bad_input;
 mod bar;
 mod big_scatter;
 mod box_violin;
+mod category_labels;
 mod charts;
 mod cli;
 mod colours;
