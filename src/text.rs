@@ -174,29 +174,14 @@ fn rotate_about(at: Point, dx: f64, dy: f64, angle: f64) -> Point {
 /// gives a zero-size box at its position; a non-finite position or angle gives a zero-size
 /// box at the (possibly non-finite) position, which intersects nothing.
 pub fn bounds(text: &Text) -> Rect {
-    let at = text.at;
-    let empty = Rect::new(at.x, at.y, 0.0, 0.0);
-    if !at.x.is_finite() || !at.y.is_finite() || !text.angle.is_finite() {
-        return empty;
-    }
-    let m = measure(&text.content, text.size);
-    if m.ascent <= 0.0 || clean_chars(&text.content).next().is_none() {
-        return empty;
-    }
-    let x0 = anchor_shift(text.anchor, m.width);
-    let base = baseline_shift(text.baseline, text.size);
-    let (top, bottom) = (base - m.ascent, base + m.descent);
-    let corners = [(x0, top), (x0 + m.width, top), (x0, bottom), (x0 + m.width, bottom)];
+    let empty = Rect::new(text.at.x, text.at.y, 0.0, 0.0);
+    let Some(corners) = corners(text, 0.0) else { return empty };
     let (mut minx, mut miny, mut maxx, mut maxy) = (f64::INFINITY, f64::INFINITY, f64::NEG_INFINITY, f64::NEG_INFINITY);
-    for (dx, dy) in corners {
-        let p = rotate_about(at, dx, dy, text.angle);
+    for p in corners {
         minx = minx.min(p.x);
         miny = miny.min(p.y);
         maxx = maxx.max(p.x);
         maxy = maxy.max(p.y);
-    }
-    if !(minx.is_finite() && miny.is_finite() && maxx.is_finite() && maxy.is_finite()) {
-        return empty;
     }
     Rect::new(minx, miny, maxx - minx, maxy - miny)
 }

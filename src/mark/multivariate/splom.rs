@@ -408,30 +408,14 @@ impl Grid {
                 y.push(scale_y);
             }
             if pass == 0 {
-                left = m
-                    + (0..k)
-                        .map(|c| {
-                            axis::thickness(
-                                &y[c],
-                                Side::Left,
-                                Some(&axes[c].title),
-                                theme,
-                                &LabelRoom::unbounded(theme),
-                            )
-                        })
-                        .fold(0.0, f64::max);
-                bottom = bottom_reserved
-                    + (0..k)
-                        .map(|c| {
-                            axis::thickness(
-                                &x[c],
-                                Side::Bottom,
-                                Some(&axes[c].title),
-                                theme,
-                                &LabelRoom::unbounded(theme),
-                            )
-                        })
-                        .fold(0.0, f64::max);
+                let room = LabelRoom::unbounded(theme);
+                let widest = |scales: &[Scale], side: Side| {
+                    (0..k)
+                        .map(|c| axis::thickness(&scales[c], side, Some(&axes[c].title), theme, &room))
+                        .fold(0.0, f64::max)
+                };
+                left = m + widest(&y, Side::Left);
+                bottom = bottom_reserved + widest(&x, Side::Bottom);
                 continue;
             }
             return Ok(Grid { lefts, tops, cell_w, cell_h, gap, x, y });
