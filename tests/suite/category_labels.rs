@@ -169,6 +169,8 @@ fn too_many_categories_leave_labels_out_with_a_warning_that_counts_them() {
     let shown = labels(&out, "x axis").len();
     assert!(shown > 0 && shown < 300, "{shown}");
     let left_out = 300 - shown;
+    // Bands 2.1 px apart, 13.5 px text: every seventh labelled (the README's example).
+    assert_eq!(left_out, 257);
     let notes: Vec<String> = out.warnings.iter().map(ToString::to_string).collect();
     let expected = format!("{left_out} of 300 category labels on the x axis are left out");
     assert!(notes.iter().any(|n| n.contains(&expected)), "{notes:?} lacks {expected}");
