@@ -174,31 +174,75 @@ fn rotate_about(at: Point, dx: f64, dy: f64, angle: f64) -> Point {
 /// gives a zero-size box at its position; a non-finite position or angle gives a zero-size
 /// box at the (possibly non-finite) position, which intersects nothing.
 pub fn bounds(text: &Text) -> Rect {
-    let at = text.at;
-    let empty = Rect::new(at.x, at.y, 0.0, 0.0);
-    if !at.x.is_finite() || !at.y.is_finite() || !text.angle.is_finite() {
-        return empty;
-    }
-    let m = measure(&text.content, text.size);
-    if m.ascent <= 0.0 || clean_chars(&text.content).next().is_none() {
-        return empty;
-    }
-    let x0 = anchor_shift(text.anchor, m.width);
-    let base = baseline_shift(text.baseline, text.size);
-    let (top, bottom) = (base - m.ascent, base + m.descent);
-    let corners = [(x0, top), (x0 + m.width, top), (x0, bottom), (x0 + m.width, bottom)];
+    let empty = Rect::new(text.at.x, text.at.y, 0.0, 0.0);
+    let Some(corners) = corners(text, 0.0) else { return empty };
     let (mut minx, mut miny, mut maxx, mut maxy) = (f64::INFINITY, f64::INFINITY, f64::NEG_INFINITY, f64::NEG_INFINITY);
-    for (dx, dy) in corners {
-        let p = rotate_about(at, dx, dy, text.angle);
+    for p in corners {
         minx = minx.min(p.x);
         miny = miny.min(p.y);
         maxx = maxx.max(p.x);
         maxy = maxy.max(p.y);
     }
-    if !(minx.is_finite() && miny.is_finite() && maxx.is_finite() && maxy.is_finite()) {
-        return empty;
-    }
     Rect::new(minx, miny, maxx - minx, maxy - miny)
+}
+
+/// The corners of the glyph box of `text` (as [`bounds`] measures it, moved `inset` inwards
+/// on every side), with anchor, baseline and rotation applied, in order around the box.
+/// `None` when there is nothing to draw or a value is not finite.
+pub fn corners(text: &Text, inset: f64) -> Option<[Point; 4]> {
+    let at = text.at;
+    if !at.x.is_finite() || !at.y.is_finite() || !text.angle.is_finite() {
+        return None;
+    }
+    let m = measure(&text.content, text.size);
+    if m.ascent <= 0.0 || clean_chars(&text.content).next().is_none() {
+        return None;
+    }
+    let x0 = anchor_shift(text.anchor, m.width);
+    let base = baseline_shift(text.baseline, text.size);
+    let (left, right) = (x0 + inset, (x0 + m.width - inset).max(x0 + inset));
+    let (top, bottom) = (base - m.ascent + inset, (base + m.descent - inset).max(base - m.ascent + inset));
+    let p = [(left, top), (right, top), (right, bottom), (left, bottom)]
+        .map(|(dx, dy)| rotate_about(at, dx, dy, text.angle));
+    p.iter().all(|q| q.x.is_finite() && q.y.is_finite()).then_some(p)
+}
+
+/// Whether two convex quadrilaterals share area (separating axis test over their edges).
+fn quads_overlap(a: &[Point; 4], b: &[Point; 4]) -> bool {
+    let separated_along = |poly: &[Point; 4]| {
+        (0..4).any(|i| {
+            let (p, q) = (poly[i], poly[(i + 1) % 4]);
+            let (nx, ny) = (q.y - p.y, p.x - q.x);
+            if nx == 0.0 && ny == 0.0 {
+                return false;
+            }
+            let project = |s: &[Point; 4]| {
+                s.iter()
+                    .map(|v| v.x * nx + v.y * ny)
+                    .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), d| (lo.min(d), hi.max(d)))
+            };
+            let ((a0, a1), (b0, b1)) = (project(a), project(b));
+            a1 <= b0 || b1 <= a0
+        })
+    };
+    !separated_along(a) && !separated_along(b)
+}
+
+/// Whether the glyph boxes of two texts overlap enough to hurt reading (by more than half a
+/// pixel inwards from every side), measured on the turned boxes themselves: the axis-aligned
+/// [`bounds`] of two neighbouring labels turned −45° overlap although their glyphs do not.
+pub fn texts_overlap(a: &Text, b: &Text) -> bool {
+    if !boxes_overlap(&bounds(a), &bounds(b)) {
+        return false;
+    }
+    let square = |t: &Text| t.angle.rem_euclid(90.0) == 0.0;
+    if square(a) && square(b) {
+        return true;
+    }
+    match (corners(a, 0.5), corners(b, 0.5)) {
+        (Some(p), Some(q)) => quads_overlap(&p, &q),
+        _ => false,
+    }
 }
 
 /// Whether two glyph boxes overlap enough to hurt reading: by more than half a pixel inwards
@@ -364,6 +408,36 @@ mod tests {
         // +90°: extends downwards, ascent to the right of the anchor.
         let b = bounds(&t("Axis title", Anchor::Start, Baseline::Alphabetic, 90.0));
         assert!((b.y - 50.0).abs() < 1e-9 && (b.right() - (100.0 + m.ascent)).abs() < 1e-9);
+    }
+
+    #[test]
+    fn turned_neighbours_do_not_overlap_though_their_bounds_do() {
+        let label = |x: f64, angle: f64| Text {
+            at: Point::new(x, 50.0),
+            content: "A long category name".to_string(),
+            size: 12.0,
+            anchor: Anchor::End,
+            baseline: Baseline::Middle,
+            angle,
+            color: Color::BLACK,
+        };
+        // −45°: 13.5 px tall lines 20 px apart along x are 14.1 px apart across them.
+        let (a, b) = (label(100.0, -45.0), label(120.0, -45.0));
+        assert!(bounds(&a).intersects(&bounds(&b)), "the axis-aligned boxes overlap");
+        assert!(!texts_overlap(&a, &b));
+        // 10 px apart they do overlap.
+        assert!(texts_overlap(&a, &label(110.0, -45.0)));
+        // Upright neighbours: exact boxes.
+        assert!(!texts_overlap(&label(100.0, -90.0), &label(114.0, -90.0)));
+        assert!(texts_overlap(&label(100.0, -90.0), &label(110.0, -90.0)));
+        // A flat label crossing a turned one.
+        let flat = Text { angle: 0.0, anchor: Anchor::Middle, ..label(80.0, 0.0) };
+        assert!(texts_overlap(&flat, &label(110.0, -45.0)));
+        let Some(c) = corners(&a, 0.0) else { panic!("corners") };
+        let b = bounds(&a);
+        for p in c {
+            assert!(p.x >= b.x - 1e-9 && p.x <= b.right() + 1e-9 && p.y >= b.y - 1e-9 && p.y <= b.bottom() + 1e-9);
+        }
     }
 
     #[test]

@@ -4,7 +4,7 @@
 use std::fmt;
 
 use super::Theme;
-use super::axis::{self, Side};
+use super::axis::{self, AxisLabels, LabelRoom, Side};
 use super::legend::{self, Legend, truncate_to_width};
 use super::scale::{BandScale, LinearScale, LogScale, Scale, ScaleError, TimeScale};
 use crate::scene::{Anchor, Baseline, Item, Point, Rect, Role, Shape, Style, Text};
@@ -99,6 +99,9 @@ pub struct Frame {
     /// The chart's annotations in pixels, drawn with the data (empty from [`cartesian`]; the
     /// kind's frame fills it).
     pub overlay: Overlay,
+    /// What the reader should know about the frame, worded for the chart's warnings (category
+    /// labels left out for lack of room).
+    pub notes: Vec<String>,
 }
 
 /// Notes drawn with the data (a chart's `annotate`), resolved to pixels: shapes under and over
@@ -235,31 +238,72 @@ fn equal_aspect(spec: &FrameSpec, full: Rect, x: Scale, y: Scale) -> Result<(Rec
     Ok((plot, x, y))
 }
 
-/// How far the tick labels (and the title, when given) of `axis` reach outside a plot side
-/// `length` pixels long: the room a facet layout keeps beside its outer panels.
-pub fn axis_room(axis: &PositionAxis, side: Side, length: f64, title: Option<&str>, theme: &Theme) -> f64 {
+/// The tick labels `axis` gets along a side `length` pixels long of a plot on a `canvas`
+/// (width, height), placed as if the plot started at 0; `None` when its scale cannot be built.
+fn side_labels(axis: &PositionAxis, side: Side, length: f64, theme: &Theme, canvas: [f64; 2]) -> Option<AxisLabels> {
     let target = match side {
         Side::Bottom => x_target(length, theme),
         Side::Left => y_target(length, theme),
     };
-    match build_scale(axis, (0.0, length.max(1.0)), target) {
-        Ok(scale) => axis::thickness(&scale, side, title, theme),
-        Err(_) => theme.font_size * 3.0,
+    let range = match side {
+        Side::Bottom => (0.0, length.max(1.0)),
+        Side::Left => (length.max(1.0), 0.0),
+    };
+    let scale = build_scale(axis, range, target).ok()?;
+    Some(axis::labels(&scale, side, theme, &LabelRoom::on_canvas(side, canvas[0], canvas[1], theme)))
+}
+
+/// How far the tick labels (and the title, when given) of `axis` reach outside a plot side
+/// `length` pixels long on a `canvas` (width, height): the room a facet layout keeps beside its
+/// outer panels.
+pub fn axis_room(
+    axis: &PositionAxis,
+    side: Side,
+    length: f64,
+    title: Option<&str>,
+    theme: &Theme,
+    canvas: [f64; 2],
+) -> f64 {
+    match side_labels(axis, side, length, theme, canvas) {
+        Some(labels) => axis::labels_thickness(&labels, side, title, theme),
+        None => theme.font_size * 3.0,
     }
 }
 
-/// The width of the widest tick label `axis` draws along a side `length` pixels long: the gap
-/// small multiples keep between panels so their end labels do not meet.
-pub fn widest_tick_label(axis: &PositionAxis, side: Side, length: f64, theme: &Theme) -> f64 {
-    let target = match side {
-        Side::Bottom => x_target(length, theme),
-        Side::Left => y_target(length, theme),
+/// How far before the start of a plot side `length` pixels long (left of the plot for a bottom
+/// axis) the tick labels of `axis` reach: turned category labels lean left past the plot.
+pub fn labels_before(axis: &PositionAxis, side: Side, length: f64, theme: &Theme, canvas: [f64; 2]) -> f64 {
+    side_labels(axis, side, length, theme, canvas)
+        .and_then(|labels| labels.along(side, theme))
+        .map_or(0.0, |(lo, _)| (-lo).max(0.0))
+}
+
+/// The widest the tick labels of `axis` reach along a side `length` pixels long (see
+/// [`AxisLabels::widest_along`]): the gap small multiples keep between panels so their end
+/// labels do not meet.
+pub fn widest_tick_label(axis: &PositionAxis, side: Side, length: f64, theme: &Theme, canvas: [f64; 2]) -> f64 {
+    side_labels(axis, side, length, theme, canvas).map_or(0.0, |labels| labels.widest_along(side, theme))
+}
+
+/// The note for a chart whose category axis on `side` leaves labels out, if it does.
+fn left_out_note(labels: &AxisLabels, side: Side, scale: &Scale, theme: &Theme) -> Option<String> {
+    if labels.left_out == 0 {
+        return None;
+    }
+    let (name, room) = match side {
+        Side::Bottom => ("x", "`size` wider"),
+        Side::Left => ("y", "`size` taller"),
     };
-    let Ok(scale) = build_scale(axis, (0.0, length.max(1.0)), target) else { return 0.0 };
-    axis::visible_ticks(&scale, side, theme)
-        .iter()
-        .map(|t| measure(&t.label, theme.font_size).width)
-        .fold(0.0, f64::max)
+    let total = labels.left_out + labels.labels.len();
+    let step = match scale {
+        Scale::Band(b) => b.step(),
+        _ => 0.0,
+    };
+    Some(format!(
+        "{} of {total} category labels on the {name} axis are left out: the categories are {step:.1} px apart, \
+         too close for {}-px labels even when turned upright; make {room}, `font_size` smaller, or show fewer categories",
+        labels.left_out, theme.font_size
+    ))
 }
 
 /// The frame of a facet panel: scales over its fixed plot area, grid, and axes labelled only
@@ -285,17 +329,22 @@ fn fixed_frame(spec: &FrameSpec, fixed: FixedPlot) -> Result<Frame, LayoutError>
         under.extend(axis::grid(&y, Side::Left, plot, theme));
     }
     let mut over = Vec::new();
+    let mut notes = Vec::new();
     let (ox, oy) = fixed.overhang;
     let spans = [(plot.x - ox, plot.right() + ox), (plot.y - oy, plot.bottom() + oy)];
     for ((scale, side, labelled), span) in
         [(&x, Side::Bottom, fixed.x_labels), (&y, Side::Left, fixed.y_labels)].into_iter().zip(spans)
     {
-        over.extend(match labelled {
-            true => axis::draw_within(scale, side, plot, None, theme, span),
-            false => axis::draw_unlabelled(scale, side, plot, theme),
-        });
+        if !labelled {
+            over.extend(axis::draw_unlabelled(scale, side, plot, theme));
+            continue;
+        }
+        let room = LabelRoom::on_canvas(side, spec.width, spec.height, theme).within(span);
+        let labels = axis::labels(scale, side, theme, &room);
+        notes.extend(left_out_note(&labels, side, scale, theme));
+        over.extend(axis::draw_labels(&labels, side, plot, None, theme));
     }
-    Ok(Frame { plot, x, y, under, over, overlay: Overlay::default() })
+    Ok(Frame { plot, x, y, under, over, overlay: Overlay::default(), notes })
 }
 
 /// Lay out a cartesian chart.
@@ -315,6 +364,8 @@ pub fn cartesian(spec: &FrameSpec) -> Result<Frame, LayoutError> {
 
     let x_title = Some(spec.x.title.as_str());
     let y_title = Some(spec.y.title.as_str());
+    let x_room = LabelRoom::on_canvas(Side::Bottom, spec.width, spec.height, theme);
+    let y_room = LabelRoom::on_canvas(Side::Left, spec.width, spec.height, theme);
     // Two passes: tick labels depend on the scale, the scale on the space left by the labels.
     let mut left = m + theme.font_size * 4.0;
     let mut bottom = bottom_reserved + theme.font_size * 3.0;
@@ -330,12 +381,22 @@ pub fn cartesian(spec: &FrameSpec) -> Result<Frame, LayoutError> {
             .map_err(|error| LayoutError::Scale { axis: "x", error })?;
         let y = build_scale(&spec.y, (plot.bottom(), plot.y), y_target(plot.h, theme))
             .map_err(|error| LayoutError::Scale { axis: "y", error })?;
-        left = m + axis::thickness(&y, Side::Left, y_title, theme);
-        bottom = bottom_reserved + axis::thickness(&x, Side::Bottom, x_title, theme);
-        right_overhang = axis::visible_ticks(&x, Side::Bottom, theme)
-            .last()
-            .map(|t| (measure(&t.label, theme.font_size).width / 2.0 - (plot.right() - t.position)).max(0.0))
-            .unwrap_or(0.0);
+        let x_labels = axis::labels(&x, Side::Bottom, theme, &x_room);
+        left = m + axis::thickness(&y, Side::Left, y_title, theme, &y_room);
+        bottom = bottom_reserved + axis::labels_thickness(&x_labels, Side::Bottom, x_title, theme);
+        let (before, after) = match x_labels.along(Side::Bottom, theme) {
+            Some((lo, hi)) => ((plot.x - lo).max(0.0), (hi - plot.right()).max(0.0)),
+            None => (0.0, 0.0),
+        };
+        // Turned category labels lean left of the plot: keep them on the canvas.
+        left = left.max(m + before);
+        right_overhang = match x_labels.labels.last() {
+            Some(l) if x_labels.angle == 0.0 => {
+                let widest = l.lines.iter().map(|s| measure(s, theme.font_size).width).fold(0.0, f64::max);
+                (widest / 2.0 - (plot.right() - l.tick.position)).max(0.0)
+            }
+            _ => after,
+        };
         scales = Some((x, y));
     }
     // Whole-pixel edges: crisp axis lines, and clipping to the plot is a plain bounds check.
@@ -373,8 +434,12 @@ pub fn cartesian(spec: &FrameSpec) -> Result<Frame, LayoutError> {
     }
 
     let mut over = Vec::new();
-    over.extend(axis::draw(&x, Side::Bottom, plot, x_title, theme));
-    over.extend(axis::draw(&y, Side::Left, plot, y_title, theme));
+    let mut notes = Vec::new();
+    for (scale, side, title, room) in [(&x, Side::Bottom, x_title, &x_room), (&y, Side::Left, y_title, &y_room)] {
+        let labels = axis::labels(scale, side, theme, room);
+        notes.extend(left_out_note(&labels, side, scale, theme));
+        over.extend(axis::draw_labels(&labels, side, plot, title, theme));
+    }
     if let Some(t) = title {
         over.push(Item::text(
             Role::Title,
@@ -404,5 +469,5 @@ pub fn cartesian(spec: &FrameSpec) -> Result<Frame, LayoutError> {
         ));
     }
     over.extend(legend::draw_stack(&spec.legends, Point::new(spec.width - m - legend_width, top), theme, legend_room));
-    Ok(Frame { plot, x, y, under, over, overlay: Overlay::default() })
+    Ok(Frame { plot, x, y, under, over, overlay: Overlay::default(), notes })
 }

@@ -2,6 +2,7 @@
 //! axes, legends and colour bars, and the frame that places them around a plot area.
 
 pub mod axis;
+pub mod category_labels;
 pub mod color;
 pub mod colour_science;
 pub mod format;

@@ -78,7 +78,7 @@ pub fn overlap_area(a: &Rect, b: &Rect) -> f64 {
 }
 
 /// Pairs of texts whose glyph boxes overlap by more than half a pixel on each side
-/// ([`crate::text::boxes_overlap`]), as indices into `texts`. Sweeps boxes sorted by their left
+/// ([`crate::text::texts_overlap`]: turned text by its turned box), as indices into `texts`. Sweeps boxes sorted by their left
 /// edge, so it stays fast for thousands of labels.
 pub fn overlapping_pairs(texts: &[PlacedText<'_>]) -> Vec<(usize, usize)> {
     let boxes: Vec<Rect> = texts.iter().map(|t| shrink(&t.bounds, 0.5)).collect();
@@ -90,7 +90,7 @@ pub fn overlapping_pairs(texts: &[PlacedText<'_>]) -> Vec<(usize, usize)> {
             if boxes[j].x >= boxes[i].right() {
                 break;
             }
-            if crate::text::boxes_overlap(&texts[i].bounds, &texts[j].bounds) {
+            if crate::text::texts_overlap(texts[i].text, texts[j].text) {
                 pairs.push((i.min(j), i.max(j)));
             }
         }

@@ -128,7 +128,7 @@ impl Writer {
                     end_tag("path", item.tooltips.first())
                 );
             }
-            Shape::Text(text) => self.text(&common, text),
+            Shape::Text(text) => self.text(&common, text, item.tooltips.first()),
             Shape::Image(raster) => self.image(&common, raster),
             Shape::Points(batch) => self.points(item, &common, batch),
             Shape::Lines(batch) => self.lines(item, &common, batch),
@@ -166,8 +166,10 @@ impl Writer {
         }
     }
 
-    /// Writes a `<text>` element with its baseline computed from the embedded font.
-    fn text(&mut self, common: &str, text: &Text) {
+    /// Writes a `<text>` element with its baseline computed from the embedded font. Hover text
+    /// (a shortened category label's full name) goes in a `<g>` around it, as that group's
+    /// `<title>`: text content stays just the text drawn.
+    fn text(&mut self, common: &str, text: &Text, tooltip: Option<&String>) {
         let content = sanitize(&text.content);
         if content.is_empty()
             || !finite_point(text.at)
@@ -190,7 +192,11 @@ impl Writer {
         } else {
             format!(" transform=\"rotate({} {} {})\"", num(angle), num(text.at.x), num(text.at.y))
         };
-        let _ = writeln!(
+        let title = title_element(tooltip);
+        if !title.is_empty() {
+            let _ = write!(self.out, "<g>{title}");
+        }
+        let _ = write!(
             self.out,
             "<text{common} x=\"{}\" y=\"{}\" font-family=\"{}\" font-size=\"{}\" font-weight=\"{FONT_WEIGHT}\" \
              text-anchor=\"{anchor}\"{}{transform} xml:space=\"preserve\" \
@@ -202,6 +208,7 @@ impl Writer {
             fill_attrs(Some(text.color)),
             escape(&content)
         );
+        self.out.push_str(if title.is_empty() { "\n" } else { "</g>\n" });
     }
 
     /// Writes an `<image>` with the raster as a base64 PNG data URI.
@@ -405,12 +412,20 @@ fn mean_colour(c: [Color; 3]) -> Color {
 
 /// The end of an element `tag`: self-closing, or holding its hover text as a `<title>`.
 fn end_tag(tag: &str, tooltip: Option<&String>) -> String {
+    match title_element(tooltip) {
+        title if title.is_empty() => "/>".to_string(),
+        title => format!(">{title}</{tag}>"),
+    }
+}
+
+/// A `<title>` child holding `tooltip` (lines kept as `&#10;`), or nothing.
+fn title_element(tooltip: Option<&String>) -> String {
     match tooltip.map(|t| sanitize_multiline(t)).filter(|t| !t.is_empty()) {
         Some(text) => {
             let lines: Vec<String> = text.split('\n').map(escape).collect();
-            format!("><title>{}</title></{tag}>", lines.join("&#10;"))
+            format!("<title>{}</title>", lines.join("&#10;"))
         }
-        None => "/>".to_string(),
+        None => String::new(),
     }
 }
 

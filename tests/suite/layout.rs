@@ -4,7 +4,7 @@
 use dataink::data::PathPolicy;
 use dataink::pipeline;
 use dataink::scene::{Rect, Role, Scene, Shape};
-use dataink::text::bounds;
+use dataink::text::{bounds, texts_overlap};
 
 /// Every gallery chart: its name, its kind and its scene.
 fn gallery_scenes() -> Vec<(String, &'static str, Scene)> {
@@ -45,14 +45,23 @@ fn text_stays_inside_the_canvas() {
 #[test]
 fn no_two_texts_overlap() {
     for (name, _, scene) in gallery_scenes() {
-        let all = texts(&scene);
-        for (i, (ra, a, ba)) in all.iter().enumerate() {
-            for (rb, b, bb) in &all[i + 1..] {
-                // Shrink by half a pixel: touching boxes are fine, overlapping ink is not.
-                let shrink = |r: &Rect| Rect::new(r.x + 0.5, r.y + 0.5, (r.w - 1.0).max(0.0), (r.h - 1.0).max(0.0));
+        let mut all = Vec::new();
+        scene.walk(|item| {
+            if let Shape::Text(t) = &item.shape {
+                all.push((item.role, t));
+            }
+        });
+        for (i, (ra, a)) in all.iter().enumerate() {
+            for (rb, b) in &all[i + 1..] {
+                // Glyph boxes shrunk by half a pixel, turned text by its turned box: touching
+                // boxes are fine, overlapping ink is not.
                 assert!(
-                    !shrink(ba).intersects(&shrink(bb)),
-                    "{name}: {ra:?} `{a}` {ba:?} overlaps {rb:?} `{b}` {bb:?}"
+                    !texts_overlap(a, b),
+                    "{name}: {ra:?} `{}` {:?} overlaps {rb:?} `{}` {:?}",
+                    a.content,
+                    bounds(a),
+                    b.content,
+                    bounds(b)
                 );
             }
         }

@@ -10,6 +10,7 @@ mod bar;
 mod bar_stats;
 mod big_scatter;
 mod box_violin;
+mod category_labels;
 mod charts;
 mod cli;
 mod colours;

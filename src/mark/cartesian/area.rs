@@ -214,7 +214,7 @@ pub fn draw(chart: &Chart, options: &AreaOptions, table: &Table) -> Result<Chart
     // Stacked heights are sums, not the column's values: a brush selects by x alone then.
     let y_placed = (offset == StackOffset::None).then_some((y_opts.field.as_str(), y_col));
     let geometry = Geometry::of_plot(Plot::of_frame(&frame, Some((&x_opts.field, x_col)), y_placed));
-    let scene = frame::scene(chart, frame, &theme, marks);
+    let scene = frame::scene(chart, frame, &theme, marks, &mut warnings);
     let x_field = (x_opts.field.as_str(), x_col.is_time());
     let derived = derived_table(x_field, color.as_ref().map(ColorChannel::field), &positions, &series, &bounds);
     Ok(ChartOutput { scene, derived, warnings, geojson: None, geometry })

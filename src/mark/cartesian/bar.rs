@@ -478,7 +478,7 @@ pub fn draw(chart: &Chart, options: &BarOptions, table: &Table) -> Result<ChartO
              aggregate into fewer categories or make `size` wider"
         )));
     }
-    let scene = frame::scene(chart, frame, &theme, marks);
+    let scene = frame::scene(chart, frame, &theme, marks, &mut warnings);
 
     let mut derived = Derived::default();
     let label_of = |labels: &[String], i: usize| labels.get(i).cloned().unwrap_or_default();

@@ -137,7 +137,7 @@ pub fn draw(chart: &Chart, options: &HeatmapOptions, table: &Table) -> Result<Ch
     {
         numeric.push((z.field.as_str(), col));
     }
-    let (rows, warnings) = encode::drawn_rows(chart, table, numeric, None)?;
+    let (rows, mut warnings) = encode::drawn_rows(chart, table, numeric, None)?;
 
     let mut x_side = side(x_col, &rows, "x")?;
     let mut y_side = side(y_col, &rows, "y")?;
@@ -246,7 +246,7 @@ pub fn draw(chart: &Chart, options: &HeatmapOptions, table: &Table) -> Result<Ch
     // Category axes brush their categories; binned axes (labelled by ranges) place no column.
     let geometry =
         Geometry::of_plot(Plot::of_frame(&frame, Some((&x_opts.field, x_col)), Some((&y_opts.field, y_col))));
-    let scene = frame::scene(chart, frame, &theme, marks);
+    let scene = frame::scene(chart, frame, &theme, marks, &mut warnings);
     let derived = derived_table(&x_opts.field, &y_opts.field, &x_side, &y_side, &cells);
     Ok(ChartOutput { scene, derived, warnings, geojson: None, geometry })
 }

@@ -133,7 +133,7 @@ pub fn draw(chart: &Chart, options: &Interp1dOptions, table: &Table) -> Result<C
     }
     let log = encode::log_fields(&[&x_opts, &y_opts]);
     let (rows, warning) = encode::placeable_rows(&chart.name, table.rows, &numeric, &log);
-    let warnings: Vec<Warning> = warning.into_iter().collect();
+    let mut warnings: Vec<Warning> = warning.into_iter().collect();
     if rows.is_empty() {
         return Err(encode::no_rows(chart, table, warnings.first()));
     }
@@ -219,7 +219,7 @@ pub fn draw(chart: &Chart, options: &Interp1dOptions, table: &Table) -> Result<C
             .labelled("knots"),
         );
     }
-    let scene = frame::scene(chart, frame, &theme, marks);
+    let scene = frame::scene(chart, frame, &theme, marks, &mut warnings);
 
     let mut derived = Derived::default();
     derived.push(

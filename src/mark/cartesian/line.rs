@@ -411,7 +411,7 @@ pub fn draw(chart: &Chart, options: &LineOptions, table: &Table) -> Result<Chart
             );
         }
     }
-    let scene = frame::scene(chart, frame, &theme, marks);
+    let scene = frame::scene(chart, frame, &theme, marks, &mut warnings);
 
     let mut derived = Derived::over(derived_rows);
     derived.push("series", DerivedColumn::Text(derived_series));

@@ -193,7 +193,7 @@ pub fn draw(
         PlotScale { field: x_opts.field.clone(), scale: frame.x.clone() },
         PlotScale { field: y_opts.field.clone(), scale: frame.y.clone() },
     );
-    let scene = frame::scene(chart, frame, &theme, marks);
+    let scene = frame::scene(chart, frame, &theme, marks, &mut warnings);
 
     let mut derived = Derived::over(rows);
     derived.push("row", DerivedColumn::RowIndex);

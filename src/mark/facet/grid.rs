@@ -4,7 +4,7 @@
 
 use crate::guide::Theme;
 use crate::guide::axis::Side;
-use crate::guide::layout::{MIN_PLOT_SIDE, PositionAxis, axis_room, widest_tick_label};
+use crate::guide::layout::{MIN_PLOT_SIDE, PositionAxis, axis_room, labels_before, widest_tick_label};
 use crate::guide::legend::{self, Legend, truncate_to_width};
 use crate::mark::MarkError;
 use crate::mark::frame::title_and_caption;
@@ -75,12 +75,15 @@ pub fn layout(
     let (mut left, mut bottom, mut hgap, mut vgap) = (m, m + caption_h, theme.font_size, theme.font_size);
     for _ in 0..2 {
         if let Some(a) = axes {
-            left = m + axis_room(a.y, Side::Left, panel.1, Some(&a.y.title), &theme);
-            bottom = m + caption_h + axis_room(a.x, Side::Bottom, panel.0, Some(&a.x.title), &theme);
-            let y_labels = axis_room(a.y, Side::Left, panel.1, None, &theme);
-            let x_labels = axis_room(a.x, Side::Bottom, panel.0, None, &theme);
+            let canvas = [width, height];
+            left = m + axis_room(a.y, Side::Left, panel.1, Some(&a.y.title), &theme, canvas);
+            // Turned category labels under the first panel lean left past it.
+            left = left.max(m + labels_before(a.x, Side::Bottom, panel.0, &theme, canvas));
+            bottom = m + caption_h + axis_room(a.x, Side::Bottom, panel.0, Some(&a.x.title), &theme, canvas);
+            let y_labels = axis_room(a.y, Side::Left, panel.1, None, &theme, canvas);
+            let x_labels = axis_room(a.x, Side::Bottom, panel.0, None, &theme, canvas);
             // End labels of neighbouring x axes meet in the gap: it is as wide as the widest label.
-            let x_label = widest_tick_label(a.x, Side::Bottom, panel.0, &theme) + theme.font_size;
+            let x_label = widest_tick_label(a.x, Side::Bottom, panel.0, &theme, canvas) + theme.font_size;
             hgap = if a.y_independent { y_labels + theme.font_size * 1.5 } else { theme.font_size * 2.0 };
             hgap = hgap.max(x_label);
             vgap = if a.x_independent { x_labels + theme.font_size * 0.5 } else { theme.font_size * 1.3 };

@@ -62,7 +62,7 @@ pub fn draw(chart: &Chart, options: &ContourOptions, table: &Table) -> Result<Ch
     let x_opts = options.x.options();
     let y_opts = options.y.options();
     let z_opts = options.z.options();
-    let GridInput { grid, rows, warnings, x_col, y_col, zmin, zmax } =
+    let GridInput { grid, rows, mut warnings, x_col, y_col, zmin, zmax } =
         gridded::load_grid(chart, &x_opts, &y_opts, &z_opts, table)?;
     if grid.nx() < 2 || grid.ny() < 2 {
         return Err(MarkError::at(
@@ -186,7 +186,7 @@ pub fn draw(chart: &Chart, options: &ContourOptions, table: &Table) -> Result<Ch
             marks.extend(level_labels(pairs, &levels, &to_px, theme.font_size * 0.85));
         }
     }
-    let scene = frame::scene(chart, frame, &theme, marks);
+    let scene = frame::scene(chart, frame, &theme, marks, &mut warnings);
 
     let mut derived = Derived::default();
     derived.push("level", DerivedColumn::Number(derived_level));

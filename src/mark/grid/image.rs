@@ -41,7 +41,7 @@ pub fn draw(chart: &Chart, options: &ImageOptions, table: &Table) -> Result<Char
     let x_opts = options.x.options();
     let y_opts = options.y.options();
     let z_opts = options.z.options();
-    let GridInput { grid, rows, warnings, x_col, y_col, zmin, zmax } =
+    let GridInput { grid, rows, mut warnings, x_col, y_col, zmin, zmax } =
         gridded::load_grid(chart, &x_opts, &y_opts, &z_opts, table)?;
     let map = encode::continuous_map(&["z", "scheme"], z_opts.scheme.as_deref())?;
     let (lo, hi) = encode::color_domain(&map, zmin, zmax, z_opts.midpoint);
@@ -84,7 +84,7 @@ pub fn draw(chart: &Chart, options: &ImageOptions, table: &Table) -> Result<Char
             .with_rows(rows.clone())
             .labelled(z_opts.field.clone()),
     ];
-    let scene = frame::scene(chart, frame, &theme, marks);
+    let scene = frame::scene(chart, frame, &theme, marks, &mut warnings);
 
     let derived = Derived::of_rows(rows, &[&x_opts.field, &y_opts.field, &z_opts.field]);
     Ok(ChartOutput { scene, derived, warnings, geojson: None, geometry: Default::default() })

@@ -213,7 +213,7 @@ pub fn draw(chart: &Chart, options: &ScatteredOptions, table: &Table) -> Result<
             .labelled("points"),
         );
     }
-    let scene = frame::scene(chart, frame, &theme, marks);
+    let scene = frame::scene(chart, frame, &theme, marks, &mut warnings);
     let derived = Derived::of_rows(rows, &[&x_opts.field, &y_opts.field, &z_opts.field]);
     Ok(ChartOutput { scene, derived, warnings, geojson: None, geometry: Default::default() })
 }

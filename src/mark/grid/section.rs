@@ -71,7 +71,7 @@ pub fn draw(chart: &Chart, options: &SectionOptions, table: &Table) -> Result<Ch
     let x_opts = options.x.options();
     let y_opts = options.y.options();
     let z_opts = options.z.options();
-    let GridInput { grid, warnings, .. } = gridded::load_grid(chart, &x_opts, &y_opts, &z_opts, table)?;
+    let GridInput { grid, mut warnings, .. } = gridded::load_grid(chart, &x_opts, &y_opts, &z_opts, table)?;
     let (along_x, at, key) = match (&options.at_y, &options.at_x) {
         (Some(v), None) => (true, v.clone(), "at_y"),
         (None, Some(v)) => (false, v.clone(), "at_x"),
@@ -161,7 +161,7 @@ pub fn draw(chart: &Chart, options: &SectionOptions, table: &Table) -> Result<Ch
                 .zip(&colors)
                 .map(|(c, col)| section_path(c, &frame.x, &frame.y, *col, stroke_width).labelled(label(c)))
                 .collect();
-            frame::scene(chart, frame, &theme, marks)
+            frame::scene(chart, frame, &theme, marks, &mut warnings)
         }
         SectionLayout::Multiples if !chart.annotate.is_empty() => {
             return Err(MarkError::at(

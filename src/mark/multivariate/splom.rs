@@ -7,7 +7,7 @@ use rayon::prelude::*;
 use crate::data::{Column, Table};
 use crate::enrich::distribution::{bin_counts, freedman_diaconis_bins, kde, silverman_bandwidth};
 use crate::guide::Theme;
-use crate::guide::axis::{self, Side};
+use crate::guide::axis::{self, LabelRoom, Side};
 use crate::guide::color::{self, ContinuousMap};
 use crate::guide::layout::{Domain, LayoutError, MIN_PLOT_SIDE, PositionAxis, build_scale};
 use crate::guide::legend::{Legend, Symbol, truncate_to_width};
@@ -408,14 +408,14 @@ impl Grid {
                 y.push(scale_y);
             }
             if pass == 0 {
-                left = m
-                    + (0..k)
-                        .map(|c| axis::thickness(&y[c], Side::Left, Some(&axes[c].title), theme))
-                        .fold(0.0, f64::max);
-                bottom = bottom_reserved
-                    + (0..k)
-                        .map(|c| axis::thickness(&x[c], Side::Bottom, Some(&axes[c].title), theme))
-                        .fold(0.0, f64::max);
+                let room = LabelRoom::unbounded(theme);
+                let widest = |scales: &[Scale], side: Side| {
+                    (0..k)
+                        .map(|c| axis::thickness(&scales[c], side, Some(&axes[c].title), theme, &room))
+                        .fold(0.0, f64::max)
+                };
+                left = m + widest(&y, Side::Left);
+                bottom = bottom_reserved + widest(&x, Side::Bottom);
                 continue;
             }
             return Ok(Grid { lefts, tops, cell_w, cell_h, gap, x, y });
@@ -454,11 +454,31 @@ impl Grid {
                     })
                     .collect()
             };
-            items.extend(of_column("x", axis::draw_within(&self.x[c], Side::Bottom, cell, Some(&title), theme, span)));
+            items.extend(of_column(
+                "x",
+                axis::draw_within(
+                    &self.x[c],
+                    Side::Bottom,
+                    cell,
+                    Some(&title),
+                    theme,
+                    &LabelRoom::unbounded(theme).within(span),
+                ),
+            ));
             let cell = self.cell(c, left_col);
             let title = truncate_to_width(&axis.title, self.cell_h + self.gap, theme.label_size);
             let span = (cell.y - slack(c == 0), cell.bottom() + slack(c == k - 1));
-            items.extend(of_column("y", axis::draw_within(&self.y[c], Side::Left, cell, Some(&title), theme, span)));
+            items.extend(of_column(
+                "y",
+                axis::draw_within(
+                    &self.y[c],
+                    Side::Left,
+                    cell,
+                    Some(&title),
+                    theme,
+                    &LabelRoom::unbounded(theme).within(span),
+                ),
+            ));
         }
         items
     }

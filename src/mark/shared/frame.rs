@@ -5,7 +5,7 @@ use crate::guide::Theme;
 use crate::guide::layout::{self, FixedPlot, Frame, FrameSpec, PositionAxis};
 use crate::guide::legend::truncate_to_width;
 use crate::guide::legend::{self, Legend};
-use crate::mark::{FRAME_SIZE, MarkError, annotate};
+use crate::mark::{FRAME_SIZE, MarkError, Warning, annotate};
 use crate::scene::{
     Anchor, Baseline, Color, Item, LineBatch, PathCmd, PerPoint, Point, PointBatch, Rect, Role, Scene, Shape, Style,
     Text,
@@ -65,8 +65,10 @@ pub fn cartesian(
 }
 
 /// The chart's scene: background and grid, annotated bands, the marks clipped to the plot, the
-/// other annotations, then axes and legends.
-pub fn scene(chart: &Chart, frame: Frame, theme: &Theme, marks: Vec<Item>) -> Scene {
+/// other annotations, then axes and legends. The frame's notes (category labels left out) go
+/// to `warnings`.
+pub fn scene(chart: &Chart, frame: Frame, theme: &Theme, marks: Vec<Item>, warnings: &mut Vec<Warning>) -> Scene {
+    warnings.extend(frame.notes.iter().cloned().map(Warning::from));
     let [width, height] = chart.size.unwrap_or(FRAME_SIZE);
     let canvas = Rect::new(0.0, 0.0, width, height);
     let notes = annotate::draw(frame.overlay, frame.plot, canvas, theme, &[&marks, &frame.over]);

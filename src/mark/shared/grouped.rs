@@ -640,7 +640,7 @@ impl Layout {
             Orientation::Horizontal => (values, categories),
         };
         let plot = Plot::of_frame(&self.frame, x, y);
-        (frame::scene(chart, self.frame, &self.theme, marks), Geometry::of_plot(plot))
+        (frame::scene(chart, self.frame, &self.theme, marks, warnings), Geometry::of_plot(plot))
     }
 }
 

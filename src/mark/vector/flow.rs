@@ -282,7 +282,7 @@ pub fn draw(chart: &Chart, options: &FlowOptions, table: &Table) -> Result<Chart
     }
     let mut warnings = input.warnings;
     warnings.extend((budget.exhausted().then(|| budget_warning())).into_iter().map(Warning::from));
-    let scene = frame::scene(chart, frame, &theme, marks);
+    let scene = frame::scene(chart, frame, &theme, marks, &mut warnings);
     Ok(ChartOutput { scene, derived: derived.finish(), warnings, geojson: None, geometry: Default::default() })
 }
 
