@@ -129,9 +129,7 @@ impl fmt::Display for LoadError {
             LoadError::NotApplicable { key, format } => {
                 write!(f, "`{key}` does not apply to {} files", format_name(*format))
             }
-            LoadError::MissingKey { key, format } => {
-                write!(f, "{} files need `{key}`", format_name(*format))
-            }
+            LoadError::MissingKey { key, format } => write!(f, "reading {} needs `{key}`", format_name(*format)),
         }
     }
 }

@@ -78,9 +78,14 @@ fn img_beside(path: &str) -> String {
     img.display().to_string()
 }
 
-/// Read `source` as a volume if it is one; `None` for a table source (read by
-/// [`crate::data::load_source`]).
-pub fn load(source: &DataSource, spec_dir: &Path, policy: PathPolicy) -> Option<Result<VolumeData, LoadError>> {
+/// Whether `source` is a volume, telling by its `format`, its extension and, for a `.npy` file,
+/// its header: `None` for a table source; else its resolved path and format, or why the path is
+/// refused.
+pub fn classify(
+    source: &DataSource,
+    spec_dir: &Path,
+    policy: PathPolicy,
+) -> Option<Result<(PathBuf, DataFormat), LoadError>> {
     let path = source.path.as_deref()?;
     if source.values.is_some() {
         return None;
@@ -100,10 +105,15 @@ pub fn load(source: &DataSource, spec_dir: &Path, policy: PathPolicy) -> Option<
         DataFormat::Npy => super::npy::ndim(&resolved).is_ok_and(|n| n == 3),
         _ => false,
     };
-    if !is_volume {
-        return None;
-    }
-    Some(read(source, path, &resolved, format, spec_dir, policy))
+    is_volume.then_some(Ok((resolved, format)))
+}
+
+/// Read `source` as a volume if it is one; `None` for a table source (read by
+/// [`crate::data::load_source`]).
+pub fn load(source: &DataSource, spec_dir: &Path, policy: PathPolicy) -> Option<Result<VolumeData, LoadError>> {
+    let path = source.path.as_deref()?;
+    let classified = classify(source, spec_dir, policy)?;
+    Some(classified.and_then(|(resolved, format)| read(source, path, &resolved, format, spec_dir, policy)))
 }
 
 fn read(

@@ -7,12 +7,17 @@ use super::Volume;
 
 /// A number as short text: integers without a fraction, others to 6 significant digits.
 fn short(v: f64) -> String {
+    if v == 0.0 {
+        return "0".into();
+    }
+    if v.abs() < 1e-4 {
+        return format!("{v:.3e}");
+    }
     if v.fract() == 0.0 && v.abs() < 1e15 {
         format!("{v:.0}")
     } else {
         let text = format!("{v:.6}");
-        let text = text.trim_end_matches('0').trim_end_matches('.');
-        if text == "0" || text == "-0" { format!("{v:e}") } else { text.to_string() }
+        text.trim_end_matches('0').trim_end_matches('.').to_string()
     }
 }
 
@@ -48,8 +53,12 @@ pub fn describe(volume: &Volume) -> String {
     }
     out.push('\n');
     let _ = writeln!(out, "  orientation: {} (voxel axes i, j, k along these world directions)", volume.orientation());
-    for (row, axis) in volume.affine().iter().zip(["x", "y", "z"]) {
-        let cells: Vec<String> = row.iter().map(|&v| format!("{:>10}", short(v))).collect();
+    // Rounding noise of a rotation stored as float32 (1e-8 beside 1.5) is shown as 0.
+    let affine = volume.affine();
+    let size = affine.iter().flat_map(|row| &row[..3]).fold(0.0f64, |m, v| m.max(v.abs()));
+    for (row, axis) in affine.iter().zip(["x", "y", "z"]) {
+        let clean = |(c, &v): (usize, &f64)| if c < 3 && v.abs() < size * 1e-6 { 0.0 } else { v };
+        let cells: Vec<String> = row.iter().enumerate().map(|c| format!("{:>10}", short(clean(c)))).collect();
         let _ = writeln!(out, "  affine {axis}: [{}]", cells.join(" "));
     }
     let _ = writeln!(out, "  memory: {}", bytes(volume.voxels().memory_bytes()));
@@ -75,6 +84,7 @@ mod tests {
         assert!(text.contains("  affine z: [         0          0        2.5          0]"), "{text}");
         assert!(text.contains("  memory: 8 bytes\n"), "{text}");
         assert_eq!(bytes(256 * 1024 * 1024), "256.0 MiB");
-        assert_eq!(short(1e-9), "1e-9");
+        assert_eq!(short(1e-9), "1.000e-9");
+        assert_eq!((short(-0.0), short(0.1 + 0.2), short(-1.5)), ("0".into(), "0.3".into(), "-1.5".into()));
     }
 }
