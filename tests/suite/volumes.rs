@@ -71,18 +71,8 @@ fn raw_big_endian_and_3d_npy_sources() {
     let values: Vec<u16> = (0..24).map(|n| n * 1000).collect();
     let mut raw = vec![0xAB; 16];
     raw.extend(values.iter().flat_map(|v| v.to_be_bytes()));
-    let npy_3d = {
-        let mut bytes = b"\x93NUMPY\x01\x00".to_vec();
-        let mut header = "{'descr': '<i2', 'fortran_order': False, 'shape': (2, 3, 4), }".to_string();
-        while (10 + header.len() + 1) % 64 != 0 {
-            header.push(' ');
-        }
-        header.push('\n');
-        bytes.extend_from_slice(&(header.len() as u16).to_le_bytes());
-        bytes.extend_from_slice(header.as_bytes());
-        bytes.extend((0..24i16).flat_map(|v| (-v).to_le_bytes()));
-        bytes
-    };
+    let data: Vec<u8> = (0..24i16).flat_map(|v| (-v).to_le_bytes()).collect();
+    let npy_3d = crate::common::npy("<i2", "(2, 3, 4)", &data);
     let spec = "[data.t]\npath = \"t.csv\"\n[data.ct]\npath = \"ct.raw\"\nformat = \"raw\"\ndims = [4, 3, 2]\ndtype = \"u16\"\nbyte_order = \"big\"\nspacing = [0.5, 0.5, 1.5]\nheader_bytes = 16\n\n[data.field]\npath = \"field.npy\"\nspacing = [1, 2, 3]\n\n[data.grid]\npath = \"grid.npy\"\n";
     let grid = crate::common::npy_f8(2, 2, &[1.0, 2.0, 3.0, 4.0]);
     let spec = format!("{spec}{SCATTER}");
@@ -134,4 +124,25 @@ fn keys_that_do_not_fit_the_source_are_errors() {
         .load()
         .expect("loads");
     assert!(loaded.warnings.iter().any(|w| w.message.contains("the file holds 3 volumes")), "{:?}", loaded.warnings);
+}
+
+#[test]
+fn the_readme_volume_example_loads() {
+    let readme = std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("README.md")).expect("README");
+    let start = readme.find("[data.head]\npath = \"head.nii.gz\"").expect("the README's volume example");
+    let block = &readme[start..start + readme[start..].find("```").expect("end of block")];
+    let data: Vec<u8> = (0..8).flat_map(|v| (v as f32).to_le_bytes()).collect();
+    let npy = crate::common::npy("<f4", "(2, 2, 2)", &data);
+    let spec = format!("{block}\n[data.t]\npath = \"t.csv\"\n{SCATTER}");
+    let fx = Fixture::new(
+        &spec,
+        &[("head.nii.gz", &fixture_file("le_sform_i16.nii.gz")), ("field.npy", &npy), ("t.csv", b"x,y\n1,2\n")],
+    );
+    // The raw file as a sparse file of the size the example describes.
+    let raw = std::fs::File::create(fx.dir.path().join("ct.raw")).expect("create");
+    raw.set_len(256 * 256 * 150 * 2).expect("size");
+    let loaded = fx.load().expect("the README example loads");
+    assert_eq!(loaded.volumes["ct"].dims(), [256, 256, 150]);
+    assert_eq!(loaded.volumes["field"].spacing(), [0.5, 0.5, 2.0]);
+    assert_eq!(loaded.volumes["head"].orientation(), "RAS");
 }
