@@ -29,6 +29,9 @@ pub struct Loaded {
     pub doc: SpecDoc,
     /// Loaded tables by data source name.
     pub tables: BTreeMap<String, Table>,
+    /// Loaded volumes by data source name (NIfTI files, 3-D `.npy` arrays, raw volumes); a
+    /// volume source has no table.
+    pub volumes: BTreeMap<String, data::volume::Volume>,
     /// Every selection, evaluated once against its data source (shared by the charts naming it).
     pub highlights: BTreeMap<String, Highlight>,
     /// The keys each chart (by name) left out and took from a column of the conventional name
@@ -98,6 +101,7 @@ pub fn load(spec_path: &Path, policy: PathPolicy) -> Result<Loaded, Failed> {
         Some(s) => s.data.clone(),
         None => valid_sources(&json),
     };
+    let (volumes, sources) = load_volumes(sources, &doc, &spec_dir, policy, |_| true, &mut diagnostics);
     let needed = needed_columns(&json);
     let conventional = conventional_columns(&json);
     let mut tables = BTreeMap::new();
@@ -185,10 +189,69 @@ pub fn load(spec_path: &Path, policy: PathPolicy) -> Result<Loaded, Failed> {
     match typed {
         Some(mut spec) if !has_errors => {
             mark::categorical::share_domains(&mut spec.chart, &tables);
-            Ok(Loaded { source, spec, doc, tables, highlights, defaults, warnings: diagnostics })
+            Ok(Loaded { source, spec, doc, tables, volumes, highlights, defaults, warnings: diagnostics })
         }
         _ => Err(Failed { source, diagnostics }),
     }
+}
+
+/// Read the sources that are volumes, noting their warnings and errors in `diagnostics`; the
+/// volumes by name, and the table sources left (without those that build on a volume, which get
+/// an error: transforms read tables).
+fn load_volumes(
+    sources: BTreeMap<String, spec::DataSource>,
+    doc: &SpecDoc,
+    spec_dir: &Path,
+    policy: PathPolicy,
+    wanted: impl Fn(&str) -> bool,
+    diagnostics: &mut Vec<Diagnostic>,
+) -> (BTreeMap<String, data::volume::Volume>, BTreeMap<String, spec::DataSource>) {
+    let mut volumes = BTreeMap::new();
+    let mut tables = BTreeMap::new();
+    let mut volume_names = Vec::new();
+    for (name, source) in sources {
+        let at = doc.span_of(&[PathSeg::Key("data".into()), PathSeg::Key(name.clone()), PathSeg::Key("path".into())]);
+        let read = |source: &spec::DataSource| {
+            if wanted(&name) {
+                data::volume::source::load(source, spec_dir, policy).map(|r| r.map(Some))
+            } else {
+                data::volume::source::classify(source, spec_dir, policy).map(|r| r.map(|_| None))
+            }
+        };
+        match timed(&format!("load volume \"{name}\""), || read(&source)) {
+            None => {
+                tables.insert(name, source);
+                continue;
+            }
+            Some(Ok(None)) => {}
+            Some(Ok(Some(read))) => {
+                for warning in read.warnings {
+                    diagnostics.push(Diagnostic::warning(format!("data \"{name}\": {warning}")).at_opt(at.clone()));
+                }
+                volumes.insert(name.clone(), read.volume);
+            }
+            Some(Err(e)) => {
+                diagnostics.push(Diagnostic::error(format!("data \"{name}\": {e}")).with_hint(e.hint()).at_opt(at));
+            }
+        }
+        volume_names.push(name);
+    }
+    tables.retain(|name, source| {
+        let Some(volume) = data::transform::plan::dependencies(source).into_iter().find(|d| volume_names.contains(d))
+        else {
+            return true;
+        };
+        let at = doc.span_of(&[PathSeg::Key("data".into()), PathSeg::Key(name.clone())]);
+        diagnostics.push(
+            Diagnostic::error(format!(
+                "data \"{name}\": data \"{volume}\" is a volume; `from`, `join` and `lookup` read tables"
+            ))
+            .with_hint("a volume is read by the volume chart kinds directly")
+            .at_opt(at),
+        );
+        false
+    });
+    (volumes, tables)
 }
 
 /// A data source as its charts see it: the schema and first rows after its transforms.
@@ -202,6 +265,8 @@ pub struct SourcePreview {
     pub rows: usize,
     /// The first rows, as a text table.
     pub head: String,
+    /// For a volume: its description ([`data::volume::summary::describe`]) instead of rows.
+    pub volume: Option<String>,
 }
 
 /// The sources of a spec (or only `only`) after their transforms, with the first `rows` rows.
@@ -247,12 +312,19 @@ pub fn preview_sources(
         return Err(fail(source, vec![d]));
     }
     let spec_dir = spec_path.parent().map(Path::to_path_buf).unwrap_or_else(|| PathBuf::from("."));
+    let mut diagnostics = Vec::new();
+    let mut out = Vec::new();
+    let wanted = |name: &str| only.is_none_or(|o| o == name);
+    let (volumes, sources) = load_volumes(sources, &doc, &spec_dir, policy, wanted, &mut diagnostics);
+    for (name, volume) in volumes {
+        let kind = format!("volume of {} × {} × {} voxels", volume.dims()[0], volume.dims()[1], volume.dims()[2]);
+        let summary = data::volume::summary::describe(&volume);
+        out.push(SourcePreview { name, schema: Vec::new(), rows: volume.len(), head: kind, volume: Some(summary) });
+    }
     let build = |missing| data::transform::build_plans(&sources, &doc, &spec_dir, policy, true, missing);
     let plans = build(MissingScan::Fast);
     let mut listed = None;
-    let mut diagnostics: Vec<Diagnostic> =
-        plans.errors.iter().map(|e| data::transform::to_diagnostic(e, &doc, &source.text)).collect();
-    let mut out = Vec::new();
+    diagnostics.extend(plans.errors.iter().map(|e| data::transform::to_diagnostic(e, &doc, &source.text)));
     for name in plans.frames.keys() {
         if only.is_some_and(|o| o != name) {
             continue;
@@ -284,6 +356,7 @@ pub fn preview_sources(
                 schema: schema.iter().map(|(k, v)| (k.to_string(), v.to_string())).collect(),
                 rows: n,
                 head: format!("{head}"),
+                volume: None,
             }),
             Err(e) => diagnostics.push(
                 Diagnostic::error(format!("data \"{name}\": {e}"))
@@ -758,12 +831,17 @@ pub fn select_charts<'s>(spec: &'s Spec, names: &[String]) -> Result<Vec<(usize,
 
 /// Draw one chart of a loaded spec.
 pub fn draw_chart(loaded: &Loaded, index: usize, chart: &spec::Chart) -> Result<ChartOutput, MarkError> {
-    let table = loaded.tables.get(&chart.data).ok_or_else(|| {
+    let empty = Table::default();
+    let volume = loaded.volumes.get(&chart.data);
+    let table = loaded.tables.get(&chart.data).or(volume.map(|_| &empty)).ok_or_else(|| {
         MarkError::at(&["data"], format!("data \"{}\" was not loaded", chart.data), "").in_chart(index, &chart.name)
     })?;
     let highlight = chart.highlight.as_ref().and_then(|name| loaded.highlights.get(name));
     let mut output = mark::draw_in(
-        &mark::ChartContext::new(chart, index, table).with_highlight(highlight).with_nodes(node_table(loaded, chart)),
+        &mark::ChartContext::new(chart, index, table)
+            .with_highlight(highlight)
+            .with_nodes(node_table(loaded, chart))
+            .with_volume(volume),
     )?;
     attach_tooltips(index, chart, table, &mut output);
     Ok(output)

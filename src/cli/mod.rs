@@ -310,6 +310,10 @@ fn data_preview(spec: &std::path::Path, only: Option<&str>, rows: usize, policy:
         Ok(previews) => {
             let mut text = String::new();
             for p in previews {
+                if let Some(summary) = &p.volume {
+                    text.push_str(&format!("data \"{}\": {}\n{summary}\n", p.name, p.head));
+                    continue;
+                }
                 text.push_str(&format!("data \"{}\": {} rows, {} columns\n", p.name, p.rows, p.schema.len()));
                 for (name, dtype) in &p.schema {
                     text.push_str(&format!("  {name}: {dtype}\n"));

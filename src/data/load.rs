@@ -88,6 +88,13 @@ pub enum LoadError {
         /// The format read.
         format: DataFormat,
     },
+    /// A key the source's format needs was not given (`dims` for a raw volume).
+    MissingKey {
+        /// The key.
+        key: &'static str,
+        /// The format read.
+        format: DataFormat,
+    },
 }
 
 impl fmt::Display for LoadError {
@@ -122,6 +129,7 @@ impl fmt::Display for LoadError {
             LoadError::NotApplicable { key, format } => {
                 write!(f, "`{key}` does not apply to {} files", format_name(*format))
             }
+            LoadError::MissingKey { key, format } => write!(f, "reading {} needs `{key}`", format_name(*format)),
         }
     }
 }
@@ -144,7 +152,7 @@ impl LoadError {
             LoadError::NotFound(_) => "paths are relative to the spec file; check the spelling".into(),
             LoadError::UnknownFormat(_) => {
                 "add `format = \"csv\"` to the data source, or one of parquet, json, arrow, \
-                 geojson, npy, matrix, tree; compressed files end in .gz or .zst after the format's extension"
+                 geojson, npy, matrix, tree, nifti, raw; compressed files end in .gz or .zst after the format's extension"
                     .into()
             }
             LoadError::Io(..) => "check that the file is readable".into(),
@@ -156,7 +164,15 @@ impl LoadError {
             }
             LoadError::Parse { format: DataFormat::Parquet, .. } => "the file is not a readable Parquet file".into(),
             LoadError::Parse { format: DataFormat::Npy, .. } => {
-                "save a 2-D float or integer array with numpy.save".into()
+                "save a 2-D (grid) or 3-D (volume) float or integer array with numpy.save".into()
+            }
+            LoadError::Parse { format: DataFormat::Nifti, .. } => {
+                "the file must be a NIfTI-1 volume as nibabel, FSL or dcm2niix write it (see README, Volumes); check it with nibabel.load"
+                    .into()
+            }
+            LoadError::Parse { format: DataFormat::Raw, .. } => {
+                "`dims`, `dtype`, `byte_order` and `header_bytes` must describe the file: its size is header_bytes + nx × ny × nz × bytes per voxel"
+                    .into()
             }
             LoadError::Parse { format: DataFormat::Tree, .. } => {
                 "a tree file is one JSON object with a `children` array of objects of the same shape".into()
@@ -190,6 +206,9 @@ impl LoadError {
             ),
             LoadError::ColumnParse { error, .. } => error.hint.clone(),
             LoadError::NotApplicable { key, .. } => format!("remove `{key}` from the data source"),
+            LoadError::MissingKey { .. } => {
+                "describe the raw file: e.g. dims = [256, 256, 128], dtype = \"u16\", byte_order = \"little\", spacing = [1.0, 1.0, 2.0]".into()
+            }
         }
     }
 }
@@ -204,6 +223,8 @@ fn format_name(format: DataFormat) -> &'static str {
         DataFormat::Tree => "a nested JSON tree",
         DataFormat::Arrow => "Arrow IPC",
         DataFormat::Geojson => "GeoJSON",
+        DataFormat::Nifti => "NIfTI-1",
+        DataFormat::Raw => "a raw volume",
     }
 }
 
@@ -218,6 +239,7 @@ pub fn infer_format(path: &Path) -> Option<DataFormat> {
         "npy" => Some(DataFormat::Npy),
         "arrow" | "feather" | "ipc" => Some(DataFormat::Arrow),
         "geojson" => Some(DataFormat::Geojson),
+        "nii" | "hdr" => Some(DataFormat::Nifti),
         _ => None,
     }
 }
@@ -296,6 +318,9 @@ pub fn load_source_with_warnings(
             };
             if source.json_path.is_some() && format != DataFormat::Json {
                 return Err(LoadError::NotApplicable { key: "json_path", format });
+            }
+            if let Some(key) = super::volume::source::volume_key(source) {
+                return Err(LoadError::NotApplicable { key, format });
             }
             // Columns the rules name are read too, as raw text where the reader guesses types.
             let wanted: Option<Vec<String>> = columns.map(|c| {
@@ -395,6 +420,9 @@ fn read_path_uncontained(
             let value: serde_json::Value = serde_json::from_slice(&bytes).map_err(|e| parse_failed(e.to_string()))?;
             Ok(Reading::Frame(super::geojson::read_geojson(&value).map_err(parse_failed)?))
         }
+        DataFormat::Nifti | DataFormat::Raw => Err(parse_failed(
+            "a volume is not a table: charts that draw tables cannot read it, nor can `from` or `transform`".into(),
+        )),
         DataFormat::Csv | DataFormat::Parquet | DataFormat::Arrow => {
             let text: Vec<&str> = rules.keys().map(String::as_str).collect();
             let dialect = CsvDialect { separator, text_columns: &text, null_values: source.null_values.as_deref() };

@@ -10,7 +10,7 @@ use crate::spec::DataFormat;
 /// The shapes a reader takes: how many dimensions, and at most how many cells.
 #[derive(Clone, Copy, Debug)]
 pub struct Shape {
-    /// The number of dimensions required.
+    /// The number of dimensions required (0: any).
     pub dims: usize,
     /// The most cells accepted, checked before allocating.
     pub max_cells: usize,
@@ -69,36 +69,52 @@ const HEADER_PREFIX: usize = 64 * 1024;
 /// Bytes of cells decoded at a time.
 const READ_CHUNK: usize = 4 * 1024 * 1024;
 
+/// Bytes at the start of a `.npy` file that say how long its header is.
+pub(crate) const PREFIX: usize = 12;
+
+/// The length of the header dict and where it starts, from the magic bytes and version at the
+/// start of `bytes` (the first [`PREFIX`] bytes are enough).
+pub(crate) fn header_extent(bytes: &[u8]) -> Result<(usize, usize), String> {
+    if bytes.get(..6) != Some(b"\x93NUMPY") {
+        return Err("not a NumPy .npy file (bad magic bytes)".into());
+    }
+    let major = *bytes.get(6).ok_or("truncated header")?;
+    match major {
+        1 => Ok((
+            u16::from_le_bytes([*bytes.get(8).ok_or("truncated header")?, *bytes.get(9).ok_or("truncated header")?])
+                as usize,
+            10,
+        )),
+        2 | 3 => {
+            let b = bytes.get(8..12).ok_or("truncated header")?;
+            Ok((u32::from_le_bytes([b[0], b[1], b[2], b[3]]) as usize, 12))
+        }
+        v => Err(format!("unsupported .npy version {v}")),
+    }
+}
+
 /// What a `.npy` header says: the shape, the dtype and where the cells start.
-struct Header {
-    dims: Vec<usize>,
-    cells: usize,
-    size: usize,
-    fortran: bool,
-    descr: String,
-    data_start: usize,
-    dtype: Dtype,
+pub(crate) struct Header {
+    /// The shape as numpy gives it.
+    pub(crate) dims: Vec<usize>,
+    /// The number of cells.
+    pub(crate) cells: usize,
+    /// Bytes per cell.
+    pub(crate) size: usize,
+    /// Whether the first axis varies fastest in the file.
+    pub(crate) fortran: bool,
+    /// The dtype as written (`<u2`).
+    pub(crate) descr: String,
+    /// Where the cells start in the file.
+    pub(crate) data_start: usize,
+    /// The cell type.
+    pub(crate) dtype: Dtype,
 }
 
 impl Header {
     /// Parse the magic bytes, version and header dict at the start of `bytes`.
-    fn parse(bytes: &[u8], want: Shape) -> Result<Header, String> {
-        if bytes.get(..6) != Some(b"\x93NUMPY") {
-            return Err("not a NumPy .npy file (bad magic bytes)".into());
-        }
-        let major = *bytes.get(6).ok_or("truncated header")?;
-        let (len, start) = match major {
-            1 => (
-                u16::from_le_bytes([*bytes.get(8).ok_or("truncated header")?, *bytes.get(9).ok_or("truncated header")?])
-                    as usize,
-                10,
-            ),
-            2 | 3 => {
-                let b = bytes.get(8..12).ok_or("truncated header")?;
-                (u32::from_le_bytes([b[0], b[1], b[2], b[3]]) as usize, 12)
-            }
-            v => return Err(format!("unsupported .npy version {v}")),
-        };
+    pub(crate) fn parse(bytes: &[u8], want: Shape) -> Result<Header, String> {
+        let (len, start) = header_extent(bytes)?;
         let header = std::str::from_utf8(bytes.get(start..start + len).ok_or("truncated header")?)
             .map_err(|_| "header is not text".to_string())?;
         let descr = dict_value(header, "descr").ok_or("header has no 'descr'")?;
@@ -112,7 +128,7 @@ impl Header {
             .filter(|s| !s.is_empty())
             .map(|s| s.parse::<usize>().map_err(|_| format!("bad shape {shape}")))
             .collect::<Result<_, _>>()?;
-        if dims.len() != want.dims {
+        if want.dims != 0 && dims.len() != want.dims {
             return Err(format!("the array has shape {shape}; {} needs a {}-D array", want.what, want.dims));
         }
         let sizes: Vec<String> = dims.iter().map(usize::to_string).collect();
@@ -141,12 +157,12 @@ impl Header {
     }
 
     /// Bytes of cell data the shape and dtype call for.
-    fn data_bytes(&self) -> usize {
+    pub(crate) fn data_bytes(&self) -> usize {
         self.cells * self.size
     }
 
     /// The error for a file with only `available` bytes of cells.
-    fn short_data(&self, available: u64) -> String {
+    pub(crate) fn short_data(&self, available: u64) -> String {
         let sizes: Vec<String> = self.dims.iter().map(usize::to_string).collect();
         format!(
             "the data has {available} bytes, {} expected for {} {}",
@@ -202,10 +218,13 @@ pub fn parse(bytes: &[u8], shape: Shape) -> Result<NpyArray, String> {
 
 /// A cell type numpy writes: kind `f`, `i` or `u`, `size` bytes, little- or big-endian.
 #[derive(Clone, Copy, Debug)]
-struct Dtype {
-    kind: char,
-    size: usize,
-    little: bool,
+pub(crate) struct Dtype {
+    /// `f`, `i` or `u`.
+    pub(crate) kind: char,
+    /// Bytes per cell.
+    pub(crate) size: usize,
+    /// Whether the bytes are little-endian.
+    pub(crate) little: bool,
 }
 
 /// Expands to one monomorphic decoding loop per dtype, so the loop over the cells neither

@@ -8,7 +8,10 @@
 //! interactive geometry — is read from here.
 
 use super::{ChartOutput, MarkError};
+use std::borrow::Cow;
+
 use crate::data::Table;
+use crate::data::volume::Volume;
 use crate::layout::hyperbolic::Mobius;
 use crate::selection::Highlight;
 use crate::spec::defaults::Convention;
@@ -170,12 +173,22 @@ pub struct ChartContext<'a> {
     pub nodes: Option<&'a Table>,
     /// A view moved after the spec's own (the explorer's hyperbolic drag), if any.
     pub view: Option<&'a Mobius>,
+    /// The volume of its `data`, when that source is a volume (its `table` is then empty).
+    pub volume: Option<&'a Volume>,
 }
 
 impl<'a> ChartContext<'a> {
     /// Bind chart number `index` to its table; `size` is filled in from the kind's default.
     pub fn new(chart: &Chart, index: usize, table: &'a Table) -> ChartContext<'a> {
-        ChartContext { chart: super::with_default_size(chart), index, table, highlight: None, nodes: None, view: None }
+        ChartContext {
+            chart: super::with_default_size(chart),
+            index,
+            table,
+            highlight: None,
+            nodes: None,
+            view: None,
+            volume: None,
+        }
     }
 
     /// The same chart drawing the rows of `highlight` in full colour.
@@ -194,6 +207,27 @@ impl<'a> ChartContext<'a> {
     pub fn with_view(mut self, view: Option<&'a Mobius>) -> ChartContext<'a> {
         self.view = view;
         self
+    }
+
+    /// The same chart reading the volume `volume` (its data source is one).
+    pub fn with_volume(mut self, volume: Option<&'a Volume>) -> ChartContext<'a> {
+        self.volume = volume;
+        self
+    }
+
+    /// The chart's data as a volume: the source's own, or its table's columns `x`, `y`, `z` and
+    /// `value` when their rows lie on a regular lattice ([`crate::data::volume::table`]).
+    pub fn volume(&self) -> Result<Cow<'a, Volume>, MarkError> {
+        if let Some(volume) = self.volume {
+            return Ok(Cow::Borrowed(volume));
+        }
+        crate::data::volume::table::from_table(self.table, ["x", "y", "z", "value"]).map(Cow::Owned).map_err(|message| {
+            MarkError::at(
+                &["data"],
+                format!("data \"{}\" is not a volume: {message}", self.chart.data),
+                "name a NIfTI file, a 3-D .npy array or a raw volume, or a table of x, y, z and value on a regular lattice",
+            )
+        })
     }
 }
 

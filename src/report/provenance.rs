@@ -104,6 +104,8 @@ fn format_name(format: DataFormat) -> &'static str {
         DataFormat::Tree => "tree",
         DataFormat::Arrow => "arrow",
         DataFormat::Geojson => "geojson",
+        DataFormat::Nifti => "nifti",
+        DataFormat::Raw => "raw",
     }
 }
 

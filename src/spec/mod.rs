@@ -535,6 +535,7 @@ point_size = "d"
                 json_path: None,
                 parse: None,
                 null_values: Some(vec!["-999".to_owned()]),
+                ..DataSource::default()
             },
         );
         data.insert(
@@ -553,6 +554,7 @@ point_size = "d"
                 json_path: None,
                 parse: None,
                 null_values: None,
+                ..DataSource::default()
             },
         );
         let field = |f: &str| Channel::Field(f.to_owned());

@@ -88,12 +88,13 @@ pub enum Combine {
     Or,
 }
 
-/// Where a table comes from: a file next to the spec, rows written inline, or another source;
-/// then optional transforms.
-#[derive(Clone, Debug, Deserialize, Serialize, JsonSchema, PartialEq)]
+/// Where a table or a volume comes from: a file next to the spec, rows written inline, or another
+/// source; then optional transforms (tables only).
+#[derive(Clone, Debug, Default, Deserialize, Serialize, JsonSchema, PartialEq)]
 pub struct DataSource {
     /// File path relative to the spec file (`.csv`, `.parquet`, `.json`, `.arrow`, `.geojson`,
-    /// `.npy`; any of them may end in `.gz` or `.zst`).
+    /// `.npy`, `.nii`, `.hdr`; any of them may end in `.gz` or `.zst`). A 3-D `.npy` array and a
+    /// NIfTI-1 file are read as volumes.
     #[serde(default)]
     #[schemars(example = &"data/iris.csv")]
     pub path: Option<String>,
@@ -139,6 +140,63 @@ pub struct DataSource {
     #[serde(default)]
     #[schemars(example = &["-999", "NA"])]
     pub null_values: Option<Vec<String>>,
+    /// For volumes from a 3-D `.npy` array or a raw file: the distance between neighbouring voxels
+    /// along x, y and z, each positive (default `[1, 1, 1]`; NIfTI files carry their own).
+    #[serde(default)]
+    #[schemars(transform = positive_items, example = [1.0, 1.0, 2.5])]
+    pub spacing: Option<[f64; 3]>,
+    /// For raw volumes (`format = "raw"`): the number of voxels along x, y and z, x varying
+    /// fastest in the file.
+    #[serde(default)]
+    #[schemars(inner(range(min = 1)), example = [256, 256, 128])]
+    pub dims: Option<[u64; 3]>,
+    /// For raw volumes: the voxel type, `u8`, `i8`, `u16`, `i16`, `u32`, `i32`, `f32` or `f64`.
+    #[serde(default)]
+    pub dtype: Option<VoxelType>,
+    /// For raw volumes: the byte order of multi-byte voxels, `little` (default) or `big`.
+    #[serde(default)]
+    pub byte_order: Option<ByteOrder>,
+    /// For raw volumes: bytes to skip at the start of the file before the first voxel (default 0).
+    #[serde(default)]
+    #[schemars(example = 512)]
+    pub header_bytes: Option<u64>,
+    /// For NIfTI files with several volumes (a 4-D time series): which one to read, from 0
+    /// (default 0, with a warning naming how many there are).
+    #[serde(default)]
+    #[schemars(example = 0)]
+    pub frame: Option<u64>,
+}
+
+/// The type of one voxel of a raw volume.
+#[derive(Clone, Copy, Debug, Deserialize, Serialize, JsonSchema, PartialEq, Eq)]
+#[serde(rename_all = "lowercase")]
+pub enum VoxelType {
+    /// Unsigned 8-bit integers.
+    U8,
+    /// Signed 8-bit integers.
+    I8,
+    /// Unsigned 16-bit integers.
+    U16,
+    /// Signed 16-bit integers.
+    I16,
+    /// Unsigned 32-bit integers.
+    U32,
+    /// Signed 32-bit integers.
+    I32,
+    /// 32-bit floats.
+    F32,
+    /// 64-bit floats.
+    F64,
+}
+
+/// The byte order of multi-byte values in a file.
+#[derive(Clone, Copy, Debug, Deserialize, Serialize, JsonSchema, PartialEq, Eq)]
+#[serde(rename_all = "lowercase")]
+pub enum ByteOrder {
+    /// Least significant byte first (x86, ARM; the usual one).
+    Little,
+    /// Most significant byte first.
+    Big,
 }
 
 /// Supported file formats.
@@ -151,7 +209,8 @@ pub enum DataFormat {
     Parquet,
     /// A JSON array of records (`[{"x": 1}, ...]`) or newline-delimited records.
     Json,
-    /// A 2-D NumPy array (`.npy`), read as a grid: columns along x, rows along y.
+    /// A NumPy array (`.npy`): 2-D, read as a grid (columns along x, rows along y), or 3-D of
+    /// shape `(nz, ny, nx)`, read as a volume.
     Npy,
     /// A CSV file of numbers without a header, read as a grid: columns along x, rows along y.
     Matrix,
@@ -163,6 +222,12 @@ pub enum DataFormat {
     /// A GeoJSON FeatureCollection: one row per feature, its properties as columns, points as
     /// `lon`/`lat`, other geometries as GeoJSON text in `geometry` with `geometry_type`.
     Geojson,
+    /// A NIfTI-1 volume (`.nii`, `.nii.gz`, or a `.hdr`/`.img` pair): voxel spacing, orientation
+    /// and value scaling from its header.
+    Nifti,
+    /// A raw volume: voxels only, described by `dims`, `dtype`, `byte_order`, `spacing` and
+    /// `header_bytes`.
+    Raw,
 }
 
 /// One chart: options shared by every kind, plus the options of its `kind`.

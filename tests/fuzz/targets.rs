@@ -11,7 +11,7 @@ use polars::prelude::*;
 use crate::mutate::{Rng, mutate_bytes, mutate_csv, mutate_toml};
 
 /// Every target, in the order the short run visits them.
-pub const TARGETS: [&str; 9] = ["spec", "csv", "json", "jsonl", "parquet", "arrow", "npy", "tree", "render"];
+pub const TARGETS: [&str; 10] = ["spec", "csv", "json", "jsonl", "parquet", "arrow", "npy", "nifti", "tree", "render"];
 
 /// The examples folder of the repository.
 pub fn examples() -> PathBuf {
@@ -34,6 +34,20 @@ fn arrow_seed() -> Vec<u8> {
     bytes
 }
 
+/// A 3-D `.npy` array (a small volume of big-endian u16 in Fortran order).
+fn npy_volume_seed() -> Vec<u8> {
+    let mut header = "{'descr': '>u2', 'fortran_order': True, 'shape': (3, 4, 5), }".to_string();
+    while (10 + header.len() + 1) % 64 != 0 {
+        header.push(' ');
+    }
+    header.push('\n');
+    let mut bytes = b"\x93NUMPY\x01\x00".to_vec();
+    bytes.extend_from_slice(&(header.len() as u16).to_le_bytes());
+    bytes.extend_from_slice(header.as_bytes());
+    bytes.extend((0..60u16).flat_map(|v| (v * 97).to_be_bytes()));
+    bytes
+}
+
 /// `cars.json` as newline-delimited records.
 fn jsonl_seed() -> Vec<u8> {
     let rows: Vec<serde_json::Value> = serde_json::from_slice(&read("data/cars.json")).expect("cars.json");
@@ -50,7 +64,14 @@ pub fn reader_seeds(target: &str) -> (Vec<Vec<u8>>, &'static str, &'static str) 
         "jsonl" => (vec![jsonl_seed()], "jsonl", "json"),
         "parquet" => (vec![read("data/stocks.parquet"), read("data/grid-load.parquet")], "parquet", "parquet"),
         "arrow" => (vec![arrow_seed()], "arrow", "arrow"),
-        "npy" => (vec![read("data/franke.npy")], "npy", "npy"),
+        "npy" => (vec![read("data/franke.npy"), npy_volume_seed()], "npy", "npy"),
+        "nifti" => {
+            let fixture = |name: &str| {
+                let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/volume").join(name);
+                std::fs::read(&path).unwrap_or_else(|e| panic!("read {}: {e}", path.display()))
+            };
+            (vec![fixture("le_sform_i16.nii"), fixture("be_qform_f32.nii"), fixture("u8_4d.nii")], "nii", "nifti")
+        }
         "tree" => (vec![read("data/flare.json")], "json", "tree"),
         other => panic!("not a reader target: {other}"),
     }
@@ -144,6 +165,15 @@ pub fn run_in_process(target: &str, input: &[u8], dir: &Path) {
         ),
     );
     let parsed = parse_spec(&source).unwrap_or_else(|d| panic!("the harness spec does not parse: {d:?}"));
+    if let Some(read) = dataink::data::volume::source::load(&parsed.spec.data["d"], dir, PathPolicy::InsideSpecFolder) {
+        if let Ok(read) = &read {
+            let _ = dataink::data::volume::summary::describe(&read.volume);
+        }
+        if let Err(e) = read {
+            let _ = format!("{e} {}", e.hint());
+        }
+        return;
+    }
     if let Err(e) = load_source(&parsed.spec.data["d"], dir, PathPolicy::InsideSpecFolder, None) {
         let _ = format!("{e} {}", e.hint());
     }

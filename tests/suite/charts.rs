@@ -272,7 +272,7 @@ fn grid_files_load_as_long_form_tables() {
 
     let bad = Fixture::new(&spec, &[("m.npy", b"not numpy")]).load().expect_err("bad npy");
     assert!(bad.contains("as NumPy .npy: not a NumPy .npy file (bad magic bytes)"), "{bad}");
-    assert!(bad.contains("= hint: save a 2-D float or integer array with numpy.save"), "{bad}");
+    assert!(bad.contains("= hint: save a 2-D (grid) or 3-D (volume) float or integer array with numpy.save"), "{bad}");
 }
 
 #[test]

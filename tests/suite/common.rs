@@ -159,7 +159,14 @@ pub fn run_dataink(dir: &Path, args: &[&str], seconds: u64) -> Option<std::proce
 
 /// A NumPy `.npy` file (version 1) of `rows × cols` little-endian f8 values in C order.
 pub fn npy_f8(rows: usize, cols: usize, values: &[f64]) -> Vec<u8> {
-    let mut header = format!("{{'descr': '<f8', 'fortran_order': False, 'shape': ({rows}, {cols}), }}");
+    let data: Vec<u8> = values.iter().flat_map(|v| v.to_le_bytes()).collect();
+    npy("<f8", &format!("({rows}, {cols})"), &data)
+}
+
+/// A NumPy `.npy` file (version 1, C order) of `descr` cells (`<f4`, `>u2`, ...) of `shape`
+/// (`"(2, 3, 4)"`) with the given raw cell bytes.
+pub fn npy(descr: &str, shape: &str, data: &[u8]) -> Vec<u8> {
+    let mut header = format!("{{'descr': '{descr}', 'fortran_order': False, 'shape': {shape}, }}");
     while !(10 + header.len() + 1).is_multiple_of(64) {
         header.push(' ');
     }
@@ -167,9 +174,7 @@ pub fn npy_f8(rows: usize, cols: usize, values: &[f64]) -> Vec<u8> {
     let mut out = b"\x93NUMPY\x01\x00".to_vec();
     out.extend_from_slice(&(header.len() as u16).to_le_bytes());
     out.extend_from_slice(header.as_bytes());
-    for v in values {
-        out.extend_from_slice(&v.to_le_bytes());
-    }
+    out.extend_from_slice(data);
     out
 }
 

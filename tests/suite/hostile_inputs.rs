@@ -41,6 +41,40 @@ fn device_behind_a_data_symlink_is_refused() {
 
 #[cfg(unix)]
 #[test]
+fn devices_and_hostile_headers_as_volume_sources_are_refused() {
+    for (name, device) in [("head.nii", "/dev/zero"), ("head.nii.gz", "/dev/urandom")] {
+        let fx = Fixture::new(&format!("[data.head]\npath = \"{name}\"\n"), &[]);
+        std::os::unix::fs::symlink(device, fx.dir.path().join(name)).expect("symlink");
+        let err = fails(fx.dir.path(), &["data", "spec.toml", "--allow-outside-paths"]);
+        assert!(err.contains("it is a device; only regular files are read"), "{err}");
+    }
+    // A header asking for 32767³ voxels, a gzip stream that inflates past its voxels, and one
+    // cut short: refused or read to the header's size, quickly, without a giant allocation.
+    let fixture = |name: &str| {
+        std::fs::read(std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/volume").join(name))
+            .expect("fixture")
+    };
+    let mut huge = fixture("le_sform_i16.nii");
+    for n in 1..4 {
+        huge[40 + 2 * n..42 + 2 * n].copy_from_slice(&32767i16.to_le_bytes());
+    }
+    let mut bomb = flate2::write::GzEncoder::new(Vec::new(), flate2::Compression::fast());
+    let mut inflated = fixture("le_sform_i16.nii");
+    inflated.resize(200_000_000, 0);
+    std::io::Write::write_all(&mut bomb, &inflated).expect("gzip");
+    let bomb = bomb.finish().expect("gzip");
+    let cut = fixture("le_sform_i16.nii.gz");
+    let spec =
+        "[data.huge]\npath = \"huge.nii\"\n[data.bomb]\npath = \"bomb.nii.gz\"\n[data.cut]\npath = \"cut.nii.gz\"\n";
+    let fx = Fixture::new(spec, &[("huge.nii", &huge), ("bomb.nii.gz", &bomb), ("cut.nii.gz", &cut[..cut.len() - 40])]);
+    let err = fails(fx.dir.path(), &["data", "spec.toml"]);
+    assert!(err.contains("the volume is 32767 × 32767 × 32767 voxels, more than the limit of 268435456"), "{err}");
+    assert!(err.contains("cut.nii.gz"), "{err}");
+    assert!(!err.contains("bomb"), "the bomb's 48 bytes of voxels are read, the rest never inflated: {err}");
+}
+
+#[cfg(unix)]
+#[test]
 fn device_as_tree_source_is_refused() {
     let fx = Fixture::new(
         "[data.d]\npath = \"t.json\"\nformat = \"tree\"\n[[chart]]\nname = \"c\"\nkind = \"treemap\"\ndata = \"d\"\n",

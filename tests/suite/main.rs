@@ -39,3 +39,4 @@ mod safe_output;
 mod tooltips;
 mod transform;
 mod trend;
+mod volumes;

@@ -70,7 +70,7 @@ fn needs_plan(name: &str, source: &DataSource, referenced: &BTreeSet<String>) ->
 }
 
 /// The other sources a source builds on: `from`, and the targets of its `join`/`lookup` steps.
-fn dependencies(source: &DataSource) -> Vec<String> {
+pub fn dependencies(source: &DataSource) -> Vec<String> {
     let mut out: Vec<String> = source.from.iter().cloned().collect();
     for step in source.transform.iter().flatten() {
         out.extend(step.join.iter().chain(step.lookup.iter()).cloned());

@@ -126,6 +126,7 @@ impl<'a> Parts<'a> {
             highlight: self.highlights[i].as_ref(),
             nodes: self.cx.nodes,
             view: None,
+            volume: None,
         };
         match technique(&cx.chart.kind).draw(&cx) {
             Ok(output) => Ok((Some(output), handle.seen())),

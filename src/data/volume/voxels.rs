@@ -1,0 +1,198 @@
+//! Voxels kept in the type their file stores them in: a 512³ volume of `u16` takes 256 MB, not
+//! the 1 GB of `f64`. Reading a voxel converts it to `f64` on the way out.
+
+use crate::spec::VoxelType;
+
+/// The voxels of a volume, one vector per stored type, x fastest, then y, then z. Float voxels
+/// that were not finite in the file are NaN (missing); integer voxels are never missing.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Voxels {
+    /// Unsigned 8-bit integers.
+    U8(Vec<u8>),
+    /// Signed 8-bit integers.
+    I8(Vec<i8>),
+    /// Unsigned 16-bit integers.
+    U16(Vec<u16>),
+    /// Signed 16-bit integers.
+    I16(Vec<i16>),
+    /// Unsigned 32-bit integers.
+    U32(Vec<u32>),
+    /// Signed 32-bit integers.
+    I32(Vec<i32>),
+    /// 32-bit floats.
+    F32(Vec<f32>),
+    /// 64-bit floats (also 64-bit integers, converted: exact up to 2⁵³).
+    F64(Vec<f64>),
+}
+
+/// Runs `$body` with `$v` bound to the typed vector, whatever its type: one monomorphic copy of
+/// the body per type, so a loop over the voxels neither branches on the type nor converts twice.
+macro_rules! each_type {
+    ($voxels:expr, $v:ident => $body:expr) => {
+        match $voxels {
+            Voxels::U8($v) => $body,
+            Voxels::I8($v) => $body,
+            Voxels::U16($v) => $body,
+            Voxels::I16($v) => $body,
+            Voxels::U32($v) => $body,
+            Voxels::I32($v) => $body,
+            Voxels::F32($v) => $body,
+            Voxels::F64($v) => $body,
+        }
+    };
+}
+
+/// A type voxels are stored in: plain old data read straight from the file's bytes.
+pub trait Sample: bytemuck::Pod + PartialOrd {
+    /// Whether the type is a float (non-finite values are missing).
+    const FLOAT: bool;
+    /// The value with its bytes in the other order.
+    fn swap_bytes(self) -> Self;
+    /// The value as a number.
+    fn to_f64(self) -> f64;
+    /// NaN for a non-finite float; integers as they are.
+    fn finite_or_nan(self) -> Self;
+}
+
+macro_rules! integer_sample {
+    ($($t:ty),*) => {$(
+        impl Sample for $t {
+            const FLOAT: bool = false;
+            fn swap_bytes(self) -> Self {
+                <$t>::swap_bytes(self)
+            }
+            fn to_f64(self) -> f64 {
+                self as f64
+            }
+            fn finite_or_nan(self) -> Self {
+                self
+            }
+        }
+    )*};
+}
+integer_sample!(u8, i8, u16, i16, u32, i32);
+
+macro_rules! float_sample {
+    ($($t:ty),*) => {$(
+        impl Sample for $t {
+            const FLOAT: bool = true;
+            fn swap_bytes(self) -> Self {
+                <$t>::from_bits(self.to_bits().swap_bytes())
+            }
+            fn to_f64(self) -> f64 {
+                self as f64
+            }
+            fn finite_or_nan(self) -> Self {
+                if self.is_finite() { self } else { <$t>::NAN }
+            }
+        }
+    )*};
+}
+float_sample!(f32, f64);
+
+impl Voxels {
+    /// The stored type.
+    pub fn voxel_type(&self) -> VoxelType {
+        match self {
+            Voxels::U8(_) => VoxelType::U8,
+            Voxels::I8(_) => VoxelType::I8,
+            Voxels::U16(_) => VoxelType::U16,
+            Voxels::I16(_) => VoxelType::I16,
+            Voxels::U32(_) => VoxelType::U32,
+            Voxels::I32(_) => VoxelType::I32,
+            Voxels::F32(_) => VoxelType::F32,
+            Voxels::F64(_) => VoxelType::F64,
+        }
+    }
+
+    /// The number of voxels.
+    pub fn len(&self) -> usize {
+        each_type!(self, v => v.len())
+    }
+
+    /// Whether there are no voxels.
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// The stored value of voxel `index` as a number (NaN outside or missing).
+    pub fn get(&self, index: usize) -> f64 {
+        each_type!(self, v => v.get(index).map_or(f64::NAN, |x| x.to_f64()))
+    }
+
+    /// The bytes the voxels take in memory.
+    pub fn memory_bytes(&self) -> usize {
+        self.len() * type_size(self.voxel_type())
+    }
+
+    /// The smallest and largest stored values that are not missing, and how many are missing;
+    /// `None` for the range when every voxel is missing.
+    pub fn stored_range(&self) -> (Option<(f64, f64)>, usize) {
+        each_type!(self, v => range_of(v))
+    }
+}
+
+/// Bytes per voxel of a type.
+pub fn type_size(ty: VoxelType) -> usize {
+    match ty {
+        VoxelType::U8 | VoxelType::I8 => 1,
+        VoxelType::U16 | VoxelType::I16 => 2,
+        VoxelType::U32 | VoxelType::I32 | VoxelType::F32 => 4,
+        VoxelType::F64 => 8,
+    }
+}
+
+/// The name of a type as specs and summaries write it (`u16`).
+pub fn type_name(ty: VoxelType) -> &'static str {
+    match ty {
+        VoxelType::U8 => "u8",
+        VoxelType::I8 => "i8",
+        VoxelType::U16 => "u16",
+        VoxelType::I16 => "i16",
+        VoxelType::U32 => "u32",
+        VoxelType::I32 => "i32",
+        VoxelType::F32 => "f32",
+        VoxelType::F64 => "f64",
+    }
+}
+
+fn range_of<T: Sample>(values: &[T]) -> (Option<(f64, f64)>, usize) {
+    let mut lo: Option<T> = None;
+    let mut hi: Option<T> = None;
+    let mut missing = 0;
+    for &x in values {
+        // A float NaN compares false both ways: counted, never a bound.
+        if T::FLOAT && x.partial_cmp(&x).is_none() {
+            missing += 1;
+            continue;
+        }
+        if lo.is_none_or(|l| x < l) {
+            lo = Some(x);
+        }
+        if hi.is_none_or(|h| x > h) {
+            hi = Some(x);
+        }
+    }
+    (lo.zip(hi).map(|(l, h)| (l.to_f64(), h.to_f64())), missing)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn ranges_skip_missing_floats_and_types_keep_their_size() {
+        let v = Voxels::F32(vec![f32::NAN, 2.0, -1.5, f32::NAN]);
+        assert_eq!(v.stored_range(), (Some((-1.5, 2.0)), 2));
+        assert_eq!(v.memory_bytes(), 16);
+        assert!(v.get(0).is_nan());
+        assert!(v.get(9).is_nan(), "outside");
+        let v = Voxels::U16(vec![7, 65535, 3]);
+        assert_eq!(v.stored_range(), (Some((3.0, 65535.0)), 0));
+        assert_eq!((v.memory_bytes(), v.voxel_type(), v.get(1)), (6, VoxelType::U16, 65535.0));
+        assert_eq!(Voxels::F64(vec![f64::NAN]).stored_range(), (None, 1));
+        assert_eq!(1.5f32.swap_bytes().swap_bytes(), 1.5);
+        assert_eq!(0x0102u16.swap_bytes(), 0x0201);
+        assert!(f64::INFINITY.finite_or_nan().is_nan());
+    }
+}
