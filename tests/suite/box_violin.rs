@@ -600,3 +600,59 @@ fn the_explorer_brushes_boxes_histograms_and_heatmaps_by_the_columns_they_place(
     s.end_brush(2);
     assert_eq!(lit(&s), 11);
 }
+
+#[test]
+fn the_explorer_brushes_bars_by_category_and_lines_by_the_columns_they_draw() {
+    use dataink::explore::brush::Mode;
+    use dataink::explore::{Session, Target};
+    let mut s = session_over_two(&[
+        ("bars", "bar", "x = \"k\"\ny = \"v\"\n"),
+        ("across", "bar", "x = \"k\"\ny = \"v\"\norientation = \"horizontal\"\n"),
+        ("line", "line", "x = \"v\"\ny = \"v\"\n"),
+        ("means", "line", "x = \"k\"\ny = \"v\"\nband = \"ci95\"\n"),
+        // Bars and lines draw no selection; the histogram shows it (and gives the source a row set).
+        ("shown", "histogram", "x = \"v\"\n"),
+    ]);
+    let lit = |s: &Session| s.mask("d").map_or(19, |m| m.iter().filter(|&&on| on).count());
+    let band_centre = |scale: &Scale, category: &str| {
+        let Scale::Band(band) = scale else { panic!("a band scale") };
+        band.center(band.band_of(category).unwrap())
+    };
+
+    // Vertical bars: sums place no column up, so a drag over bar a (any height) selects its 8 rows.
+    let plot = s.charts[0].geometry.plots[0].clone();
+    assert!(plot.y.is_none(), "summed heights place no column");
+    let x = plot.x.clone().expect("categories brush");
+    assert_eq!(x.field, "k");
+    let ax = band_centre(&x.scale, "a");
+    s.brush(0, Target::Plot(0), Point::new(ax - 5.0, plot.rect.y), Point::new(ax + 5.0, plot.rect.y + 20.0), Mode::Replace);
+    s.end_brush(0);
+    assert_eq!(lit(&s), 8);
+
+    // Horizontal bars: the categories run down, the lengths place no column.
+    let plot = s.charts[1].geometry.plots[0].clone();
+    assert!(plot.x.is_none(), "summed lengths place no column");
+    let y = plot.y.clone().expect("categories brush");
+    let by = band_centre(&y.scale, "b");
+    s.brush(1, Target::Plot(0), Point::new(plot.rect.x, by - 5.0), Point::new(plot.rect.x + 20.0, by + 5.0), Mode::Replace);
+    s.end_brush(1);
+    assert_eq!(lit(&s), 11);
+
+    // A line of rows places both columns: v in [3, 8] on both axes selects 11 rows.
+    let plot = s.charts[2].geometry.plots[0].clone();
+    let (x, y) = (plot.x.clone().expect("x brush"), plot.y.clone().expect("y brush"));
+    s.brush(
+        2,
+        Target::Plot(0),
+        Point::new(x.scale.map(3.0), y.scale.map(3.0)),
+        Point::new(x.scale.map(8.0), y.scale.map(8.0)),
+        Mode::Replace,
+    );
+    s.end_brush(2);
+    assert_eq!(lit(&s), 11);
+
+    // A line of means with a band: the means place no column, the categories do.
+    let plot = s.charts[3].geometry.plots[0].clone();
+    assert!(plot.y.is_none(), "means of rows place no column");
+    assert_eq!(plot.x.as_ref().map(|p| p.field.as_str()), Some("k"));
+}

@@ -14,6 +14,7 @@ use crate::guide::legend::Symbol;
 use crate::guide::scale::Scale;
 use crate::mark::derived::{Derived, DerivedColumn};
 use crate::mark::encode;
+use crate::mark::geometry::{self, Plot};
 use crate::mark::grouped::Orientation;
 use crate::mark::registry::{AxisSpec, ChartContext, KindInfo, Technique};
 use crate::mark::spread::{Spread, Summary};
@@ -478,6 +479,12 @@ pub fn draw(chart: &Chart, options: &BarOptions, table: &Table) -> Result<ChartO
              aggregate into fewer categories or make `size` wider"
         )));
     }
+    // Bar lengths are sums or statistics, not a column's values: a brush selects categories.
+    let categories = Some((x_opts.field.as_str(), x_col));
+    let geometry = geometry::Geometry::of_plot(match orientation {
+        Orientation::Vertical => Plot::of_frame(&frame, categories, None),
+        Orientation::Horizontal => Plot::of_frame(&frame, None, categories),
+    });
     let scene = frame::scene(chart, frame, &theme, marks, &mut warnings);
 
     let mut derived = Derived::default();
@@ -497,7 +504,7 @@ pub fn draw(chart: &Chart, options: &BarOptions, table: &Table) -> Result<ChartO
         derived.push("lower", DerivedColumn::Number(end(|(l, _)| l)));
         derived.push("upper", DerivedColumn::Number(end(|(_, u)| u)));
     }
-    Ok(ChartOutput { scene, derived, warnings, geojson: None, geometry: Default::default() })
+    Ok(ChartOutput { scene, derived, warnings, geojson: None, geometry })
 }
 
 /// A bar's name in the scene: its category, and its group when there are several.

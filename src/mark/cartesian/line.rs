@@ -6,6 +6,7 @@ use crate::guide::layout::Domain;
 use crate::guide::legend::{Legend, Symbol};
 use crate::mark::derived::{Derived, DerivedColumn};
 use crate::mark::encode;
+use crate::mark::geometry::{Geometry, Plot};
 use crate::mark::registry::{AxisSpec, ChartContext, KindInfo, Technique};
 use crate::mark::spread::{Spread, Summary};
 use crate::mark::warning::Warning;
@@ -411,6 +412,13 @@ pub fn draw(chart: &Chart, options: &LineOptions, table: &Table) -> Result<Chart
             );
         }
     }
+    // One y column drawn row by row places its values; means of rows (a spread band) and several
+    // y columns do not, and a brush selects by x alone then.
+    let y_placed = match y_cols.as_slice() {
+        [(channel, col)] if spread.is_none() => Some((channel.field(), *col)),
+        _ => None,
+    };
+    let geometry = Geometry::of_plot(Plot::of_frame(&frame, Some((&x_opts.field, x_col)), y_placed));
     let scene = frame::scene(chart, frame, &theme, marks, &mut warnings);
 
     let mut derived = Derived::over(derived_rows);
@@ -427,7 +435,7 @@ pub fn draw(chart: &Chart, options: &LineOptions, table: &Table) -> Result<Chart
         derived.push(&x_opts.field, DerivedColumn::Source(x_opts.field.clone()));
         derived.push("y", DerivedColumn::Number(derived_y));
     }
-    Ok(ChartOutput { scene, derived, warnings, geojson: None, geometry: Default::default() })
+    Ok(ChartOutput { scene, derived, warnings, geojson: None, geometry })
 }
 
 /// Where a line's band comes from: two columns, or a spread of the rows at each x.
