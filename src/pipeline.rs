@@ -833,6 +833,9 @@ pub fn select_charts<'s>(spec: &'s Spec, names: &[String]) -> Result<Vec<(usize,
 pub fn draw_chart(loaded: &Loaded, index: usize, chart: &spec::Chart) -> Result<ChartOutput, MarkError> {
     let empty = Table::default();
     let volume = loaded.volumes.get(&chart.data);
+    if let Some(volume) = volume.filter(|_| !mark::technique(&chart.kind).info().draws_volumes) {
+        return Err(volume_for_table_kind(chart, volume).in_chart(index, &chart.name));
+    }
     let table = loaded.tables.get(&chart.data).or(volume.map(|_| &empty)).ok_or_else(|| {
         MarkError::at(&["data"], format!("data \"{}\" was not loaded", chart.data), "").in_chart(index, &chart.name)
     })?;
@@ -845,6 +848,26 @@ pub fn draw_chart(loaded: &Loaded, index: usize, chart: &spec::Chart) -> Result<
     )?;
     attach_tooltips(index, chart, table, &mut output);
     Ok(output)
+}
+
+/// The error for a chart of a table kind whose data is a volume: it has no rows or columns.
+fn volume_for_table_kind(chart: &spec::Chart, volume: &data::volume::Volume) -> MarkError {
+    let [nx, ny, nz] = volume.dims();
+    let volume_kinds = mark::registry::names_where(|k| k.draws_volumes);
+    let hint = if volume_kinds.is_empty() {
+        "no chart kind of this version draws volumes; `dataink data SPEC NAME` describes the volume".to_string()
+    } else {
+        format!("volumes are drawn by kind {}", volume_kinds.join(", "))
+    };
+    MarkError::at(
+        &["data"],
+        format!(
+            "data \"{}\" is a volume ({nx} × {ny} × {nz} voxels), and kind \"{}\" draws the rows of a table",
+            chart.data,
+            chart.kind.name()
+        ),
+        hint,
+    )
 }
 
 /// Hover texts for the chart's data marks, as its `tooltip` key asks: the values of its own

@@ -39,6 +39,8 @@ pub struct KindInfo {
     pub draws_annotations: bool,
     /// How the kind is drawn as facet panels (`facet = ...`), if it can be.
     pub faceting: Faceting,
+    /// Whether the kind draws a volume source (the others draw tables and refuse volumes).
+    pub draws_volumes: bool,
 }
 
 /// How a kind's charts split into small multiples.
@@ -66,6 +68,7 @@ impl KindInfo {
             applies_aspect: false,
             draws_annotations: false,
             faceting: Faceting::Not,
+            draws_volumes: false,
         }
     }
 
@@ -102,6 +105,12 @@ impl KindInfo {
     /// Drawing the chart's `annotate` notes in its x/y frame.
     pub const fn drawing_annotations(mut self) -> KindInfo {
         self.draws_annotations = true;
+        self
+    }
+
+    /// Drawing volume sources.
+    pub const fn drawing_volumes(mut self) -> KindInfo {
+        self.draws_volumes = true;
         self
     }
 }

@@ -146,3 +146,18 @@ fn the_readme_volume_example_loads() {
     assert_eq!(loaded.volumes["field"].spacing(), [0.5, 0.5, 2.0]);
     assert_eq!(loaded.volumes["head"].orientation(), "RAS");
 }
+
+#[test]
+fn a_table_kind_pointed_at_a_volume_says_so_at_its_data_key() {
+    let spec = "[data.head]\npath = \"head.nii\"\n\n[[chart]]\nname = \"c\"\nkind = \"scatter\"\ndata = \"head\"\nx = \"x\"\ny = \"y\"\n";
+    let fx = Fixture::new(spec, &[("head.nii", &fixture_file("be_qform_f32.nii"))]);
+    let out = run_dataink(fx.dir.path(), &["render", "spec.toml", "--out", "out"], 60).expect("finished");
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{stderr}");
+    assert!(
+        stderr.contains("data \"head\" is a volume (4 × 3 × 2 voxels), and kind \"scatter\" draws the rows of a table"),
+        "{stderr}"
+    );
+    // The caret is under the chart's `data` value, not under a column name.
+    assert!(stderr.contains("data = \"head\"\n  |        ^^^^^^"), "{stderr}");
+}
