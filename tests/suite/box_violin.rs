@@ -525,8 +525,8 @@ fn session_over_two(charts: &[(&str, &str, &str)]) -> dataink::explore::Session 
 
 #[test]
 fn a_brush_in_the_explorer_relights_the_selected_rows_in_boxes_and_violins() {
-    use dataink::explore::brush::Mode;
     use dataink::explore::Target;
+    use dataink::explore::brush::Mode;
     let mut s = session_over_two(&[
         ("s", "scatter", "x = \"v\"\ny = \"v\"\n"),
         ("b", "box", "x = \"k\"\ny = \"v\"\n"),
@@ -625,7 +625,13 @@ fn the_explorer_brushes_bars_by_category_and_lines_by_the_columns_they_draw() {
     let x = plot.x.clone().expect("categories brush");
     assert_eq!(x.field, "k");
     let ax = band_centre(&x.scale, "a");
-    s.brush(0, Target::Plot(0), Point::new(ax - 5.0, plot.rect.y), Point::new(ax + 5.0, plot.rect.y + 20.0), Mode::Replace);
+    s.brush(
+        0,
+        Target::Plot(0),
+        Point::new(ax - 5.0, plot.rect.y),
+        Point::new(ax + 5.0, plot.rect.y + 20.0),
+        Mode::Replace,
+    );
     s.end_brush(0);
     assert_eq!(lit(&s), 8);
 
@@ -634,7 +640,13 @@ fn the_explorer_brushes_bars_by_category_and_lines_by_the_columns_they_draw() {
     assert!(plot.x.is_none(), "summed lengths place no column");
     let y = plot.y.clone().expect("categories brush");
     let by = band_centre(&y.scale, "b");
-    s.brush(1, Target::Plot(0), Point::new(plot.rect.x, by - 5.0), Point::new(plot.rect.x + 20.0, by + 5.0), Mode::Replace);
+    s.brush(
+        1,
+        Target::Plot(0),
+        Point::new(plot.rect.x, by - 5.0),
+        Point::new(plot.rect.x + 20.0, by + 5.0),
+        Mode::Replace,
+    );
     s.end_brush(1);
     assert_eq!(lit(&s), 11);
 
