@@ -514,6 +514,23 @@ fn lint_reads_the_value_axis_and_leaves_baselines_to_bars() {
 }
 
 /// An explorer session over the data `TWO` with one chart per `(name, kind, keys)`.
+/// A finished drag from `from` to `to` in the first plot of chart `chart`, replacing the selection.
+fn drag(s: &mut dataink::explore::Session, chart: usize, from: Point, to: Point) {
+    s.brush(chart, dataink::explore::Target::Plot(0), from, to, dataink::explore::brush::Mode::Replace);
+    s.end_brush(chart);
+}
+
+/// How many rows of source `d` are lit (all 19 when nothing is selected).
+fn lit(s: &dataink::explore::Session) -> usize {
+    s.mask("d").map_or(19, |m| m.iter().filter(|&&on| on).count())
+}
+
+/// The canvas position of the middle of `category`'s band on a band scale.
+fn band_centre(scale: &Scale, category: &str) -> f64 {
+    let Scale::Band(band) = scale else { panic!("a band scale") };
+    band.center(band.band_of(category).unwrap())
+}
+
 fn session_over_two(charts: &[(&str, &str, &str)]) -> dataink::explore::Session {
     let charts: String = charts
         .iter()
@@ -525,8 +542,6 @@ fn session_over_two(charts: &[(&str, &str, &str)]) -> dataink::explore::Session 
 
 #[test]
 fn a_brush_in_the_explorer_relights_the_selected_rows_in_boxes_and_violins() {
-    use dataink::explore::Target;
-    use dataink::explore::brush::Mode;
     let mut s = session_over_two(&[
         ("s", "scatter", "x = \"v\"\ny = \"v\"\n"),
         ("b", "box", "x = \"k\"\ny = \"v\"\n"),
@@ -542,8 +557,7 @@ fn a_brush_in_the_explorer_relights_the_selected_rows_in_boxes_and_violins() {
     let (x, y) = (plot.x.as_ref().unwrap(), plot.y.as_ref().unwrap());
     let (a, b) = (x.scale.map(3.0), x.scale.map(8.0));
     let (c, d) = (y.scale.map(3.0), y.scale.map(8.0));
-    s.brush(0, Target::Plot(0), Point::new(a, c), Point::new(b, d), Mode::Replace);
-    s.end_brush(0);
+    drag(&mut s, 0, Point::new(a, c), Point::new(b, d));
     for v in &s.charts {
         assert_eq!(v.lit, (11, 19), "chart {}", v.name);
     }
@@ -551,26 +565,19 @@ fn a_brush_in_the_explorer_relights_the_selected_rows_in_boxes_and_violins() {
 
 #[test]
 fn the_explorer_brushes_boxes_histograms_and_heatmaps_by_the_columns_they_place() {
-    use dataink::explore::brush::Mode;
-    use dataink::explore::{Session, Target};
     let mut s = session_over_two(&[
         ("b", "box", "x = \"k\"\ny = \"v\"\n"),
         ("h", "histogram", "x = \"v\"\n"),
         ("m", "heatmap", "x = \"k\"\ny = \"k\"\n"),
     ]);
-    let lit = |s: &Session| s.mask("d").map_or(19, |m| m.iter().filter(|&&on| on).count());
 
     // The box chart: its categories across, its values up.
     let plot = s.charts[0].geometry.plots[0].clone();
     let (x, y) = (plot.x.clone().expect("categories brush"), plot.y.clone().expect("values brush"));
     assert_eq!((x.field.as_str(), y.field.as_str()), ("k", "v"));
     // Over category b only (its band centre), values 3 to 8: 3.9, 4.4, 5.0, 6.6, 7.7.
-    let Scale::Band(band) = &x.scale else { panic!("a band scale across") };
-    let bx = band.center(band.band_of("b").unwrap());
-    let from = Point::new(bx - 5.0, y.scale.map(8.0));
-    let to = Point::new(bx + 5.0, y.scale.map(3.0));
-    s.brush(0, Target::Plot(0), from, to, Mode::Replace);
-    s.end_brush(0);
+    let bx = band_centre(&x.scale, "b");
+    drag(&mut s, 0, Point::new(bx - 5.0, y.scale.map(8.0)), Point::new(bx + 5.0, y.scale.map(3.0)));
     assert_eq!(lit(&s), 5);
 
     // The histogram: counts are not a column, so a drag selects by v alone, whatever its height.
@@ -578,33 +585,20 @@ fn the_explorer_brushes_boxes_histograms_and_heatmaps_by_the_columns_they_place(
     assert!(plot.y.is_none(), "counts place no column");
     let x = plot.x.clone().expect("values brush");
     let r = plot.rect;
-    s.brush(
-        1,
-        Target::Plot(0),
-        Point::new(x.scale.map(0.0), r.y),
-        Point::new(x.scale.map(2.0), r.y + 1.0),
-        Mode::Replace,
-    );
-    s.end_brush(1);
+    drag(&mut s, 1, Point::new(x.scale.map(0.0), r.y), Point::new(x.scale.map(2.0), r.y + 1.0));
     // v in [0, 2]: 1, 2 (a) and 0.3, 1.2, 0.9 (b).
     assert_eq!(lit(&s), 5);
 
     // The heatmap (k against k): a drag over the cell (b, b) selects category b (11 rows).
     let plot = s.charts[2].geometry.plots[0].clone();
-    let centre_of_b = |scale: Option<dataink::mark::geometry::PlotScale>| {
-        let Some(Scale::Band(band)) = scale.map(|s| s.scale) else { panic!("a band scale") };
-        band.center(band.band_of("b").unwrap())
-    };
-    let (bx, by) = (centre_of_b(plot.x.clone()), centre_of_b(plot.y.clone()));
-    s.brush(2, Target::Plot(0), Point::new(bx - 3.0, by - 3.0), Point::new(bx + 3.0, by + 3.0), Mode::Replace);
-    s.end_brush(2);
+    let (x, y) = (plot.x.expect("categories across"), plot.y.expect("categories up"));
+    let (bx, by) = (band_centre(&x.scale, "b"), band_centre(&y.scale, "b"));
+    drag(&mut s, 2, Point::new(bx - 3.0, by - 3.0), Point::new(bx + 3.0, by + 3.0));
     assert_eq!(lit(&s), 11);
 }
 
 #[test]
 fn the_explorer_brushes_bars_by_category_and_lines_by_the_columns_they_draw() {
-    use dataink::explore::brush::Mode;
-    use dataink::explore::{Session, Target};
     let mut s = session_over_two(&[
         ("bars", "bar", "x = \"k\"\ny = \"v\"\n"),
         ("across", "bar", "x = \"k\"\ny = \"v\"\norientation = \"horizontal\"\n"),
@@ -613,11 +607,6 @@ fn the_explorer_brushes_bars_by_category_and_lines_by_the_columns_they_draw() {
         // Bars and lines draw no selection; the histogram shows it (and gives the source a row set).
         ("shown", "histogram", "x = \"v\"\n"),
     ]);
-    let lit = |s: &Session| s.mask("d").map_or(19, |m| m.iter().filter(|&&on| on).count());
-    let band_centre = |scale: &Scale, category: &str| {
-        let Scale::Band(band) = scale else { panic!("a band scale") };
-        band.center(band.band_of(category).unwrap())
-    };
 
     // Vertical bars: sums place no column up, so a drag over bar a (any height) selects its 8 rows.
     let plot = s.charts[0].geometry.plots[0].clone();
@@ -625,14 +614,7 @@ fn the_explorer_brushes_bars_by_category_and_lines_by_the_columns_they_draw() {
     let x = plot.x.clone().expect("categories brush");
     assert_eq!(x.field, "k");
     let ax = band_centre(&x.scale, "a");
-    s.brush(
-        0,
-        Target::Plot(0),
-        Point::new(ax - 5.0, plot.rect.y),
-        Point::new(ax + 5.0, plot.rect.y + 20.0),
-        Mode::Replace,
-    );
-    s.end_brush(0);
+    drag(&mut s, 0, Point::new(ax - 5.0, plot.rect.y), Point::new(ax + 5.0, plot.rect.y + 20.0));
     assert_eq!(lit(&s), 8);
 
     // Horizontal bars: the categories run down, the lengths place no column.
@@ -640,27 +622,13 @@ fn the_explorer_brushes_bars_by_category_and_lines_by_the_columns_they_draw() {
     assert!(plot.x.is_none(), "summed lengths place no column");
     let y = plot.y.clone().expect("categories brush");
     let by = band_centre(&y.scale, "b");
-    s.brush(
-        1,
-        Target::Plot(0),
-        Point::new(plot.rect.x, by - 5.0),
-        Point::new(plot.rect.x + 20.0, by + 5.0),
-        Mode::Replace,
-    );
-    s.end_brush(1);
+    drag(&mut s, 1, Point::new(plot.rect.x, by - 5.0), Point::new(plot.rect.x + 20.0, by + 5.0));
     assert_eq!(lit(&s), 11);
 
     // A line of rows places both columns: v in [3, 8] on both axes selects 11 rows.
     let plot = s.charts[2].geometry.plots[0].clone();
     let (x, y) = (plot.x.clone().expect("x brush"), plot.y.clone().expect("y brush"));
-    s.brush(
-        2,
-        Target::Plot(0),
-        Point::new(x.scale.map(3.0), y.scale.map(3.0)),
-        Point::new(x.scale.map(8.0), y.scale.map(8.0)),
-        Mode::Replace,
-    );
-    s.end_brush(2);
+    drag(&mut s, 2, Point::new(x.scale.map(3.0), y.scale.map(3.0)), Point::new(x.scale.map(8.0), y.scale.map(8.0)));
     assert_eq!(lit(&s), 11);
 
     // A line of means with a band: the means place no column, the categories do.
