@@ -14,3 +14,4 @@ pub mod scattered;
 pub mod segments;
 pub mod stack;
 pub mod surface;
+pub mod volume;

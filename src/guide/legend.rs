@@ -256,6 +256,18 @@ pub fn stack_room(legends: &[Legend], theme: &Theme, available_height: f64) -> f
     if w > 0.0 { w + theme.font_size * 1.5 } else { 0.0 }
 }
 
+/// Height of a column of legends stacked top to bottom, as [`draw_stack`] draws them (0 for none).
+pub fn stack_height(legends: &[Legend], theme: &Theme, available_height: f64) -> f64 {
+    let mut y = 0.0;
+    for (k, legend) in legends.iter().enumerate() {
+        y += legend.extent(theme, available_height - y).1;
+        if k + 1 < legends.len() {
+            y += stack_gap(theme);
+        }
+    }
+    y
+}
+
 /// Draw legends top to bottom from `at` (the column's top-left corner).
 pub fn draw_stack(legends: &[Legend], at: Point, theme: &Theme, available_height: f64) -> Vec<Item> {
     let mut items = Vec::new();

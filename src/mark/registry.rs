@@ -409,6 +409,10 @@ registry! {
     /// A 2-D vector field: speed image, arrows, streamlines, particle traces, line integral
     /// convolution and vector field topology, as layers.
     Flow(FlowOptions) => vector::flow,
+    /// Planes through a volume as images sharing one colour bar: along an axis at given
+    /// positions, a lightbox of evenly spaced slices, or oblique planes, with optional contour
+    /// lines and an inset showing where the planes lie.
+    Slice(SliceOptions) => volume::slice,
 }
 
 /// The facts of the kind named `name` in a spec, if there is one.

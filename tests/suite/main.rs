@@ -36,6 +36,7 @@ mod networks;
 mod report;
 mod resources;
 mod safe_output;
+mod slices;
 mod tooltips;
 mod transform;
 mod trend;

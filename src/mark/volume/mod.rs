@@ -1,1 +1,5 @@
-//! Kinds drawing 3-D scalar fields (slices, isosurfaces, direct volume rendering) belong here.
+//! Kinds drawing 3-D scalar fields: `slice` (planes through a volume as images) so far.
+
+pub mod inset;
+pub mod planes;
+pub mod slice;
