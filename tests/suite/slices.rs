@@ -183,3 +183,23 @@ fn between_spreads_a_lightbox_over_a_range_ends_included() {
     let err = draw_one("at = [1]\nbetween = [0, 5]\n", "[1, 1, 0.5]", &npy).expect_err("between with at");
     assert!(err.contains("`between` is given with `at`"), "{err}");
 }
+
+#[test]
+fn the_readme_slice_example_draws_the_template_lint_clean() {
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let readme = std::fs::read_to_string(root.join("README.md")).expect("README");
+    let start = readme.find("[data.mni152]\npath = \"data/mni152-t1.nii.gz\"").expect("the README's slice example");
+    let block = &readme[start..start + readme[start..].find("```").expect("end of block")];
+    let nii = std::fs::read(root.join("examples/data/mni152-t1.nii.gz")).expect("the shipped template");
+    let fx = Fixture::new(block, &[("data/mni152-t1.nii.gz", &nii)]);
+    let out = fx.draw().unwrap_or_else(|e| panic!("{e}")).remove(0);
+    let labels: Vec<String> = images(&out).into_iter().map(|(l, _)| l).collect();
+    assert_eq!(labels.len(), 12);
+    assert_eq!((labels[0].as_str(), labels[11].as_str()), ("z = −45", "z = 75"));
+    // 1 mm voxels from z = -72: every slice on the voxel plane nearest -45 + k · 120 / 11.
+    let z = numbers(&out, "point_z");
+    assert!(z.iter().all(|z| z.fract() == 0.0), "{z:?}");
+    assert!(z.iter().enumerate().all(|(k, z)| (z - (-45.0 + k as f64 * 120.0 / 11.0)).abs() <= 0.5), "{z:?}");
+    let lint = fx.lint().unwrap_or_else(|e| panic!("{e}"));
+    assert!(lint[0].findings.is_empty(), "{:?}", lint[0].findings);
+}

@@ -193,6 +193,13 @@ pub fn draw(cx: &ChartContext<'_>, options: &SliceOptions) -> Result<ChartOutput
         &value.options(),
     );
     let mut canvas = frame::PanelCanvas::new(chart, legends);
+    let caption = oblique_note(options, chart);
+    if caption.is_some() && chart.caption.is_none() {
+        // The caption the kind writes needs its room as one the spec gives would.
+        let h = canvas.theme.caption_size * 1.8;
+        canvas.caption_h = h;
+        canvas.room -= h;
+    }
     let show_inset = options.inset.unwrap_or(true);
     if show_inset {
         canvas.legend_w = canvas.legend_w.max(inset::WIDTH_EMS * canvas.theme.font_size);
@@ -223,7 +230,6 @@ pub fn draw(cx: &ChartContext<'_>, options: &SliceOptions) -> Result<ChartOutput
         let legend_bottom = canvas.top() + crate::guide::legend::stack_height(&canvas.legends, &theme, canvas.room);
         items.extend(inset::draw(&sampler, how, &slices, &canvas, legend_bottom));
     }
-    let caption = oblique_note(options, chart);
     let scene = canvas.scene(chart, items, caption.as_deref());
     Ok(ChartOutput {
         scene,
