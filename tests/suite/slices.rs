@@ -203,3 +203,17 @@ fn the_readme_slice_example_draws_the_template_lint_clean() {
     let lint = fx.lint().unwrap_or_else(|e| panic!("{e}"));
     assert!(lint[0].findings.is_empty(), "{:?}", lint[0].findings);
 }
+
+#[test]
+fn lint_reads_a_slice_charts_colours() {
+    let npy = volume_npy([4, 4, 4], |i, j, k| i + j + k);
+    let spec = |value: &str| {
+        format!(
+            "[data.field]\npath = \"field.npy\"\n\n[[chart]]\nname = \"s\"\nkind = \"slice\"\ndata = \"field\"\ntitle = \"Slices\"\nvalue = {value}\n"
+        )
+    };
+    let files: &[(&str, &[u8])] = &[("field.npy", &npy)];
+    assert_eq!(crate::common::lint_codes(&spec("{ title = \"f\" }"), files), Vec::<&str>::new());
+    assert!(crate::common::lint_codes(&spec("{ scheme = \"rainbow\" }"), files).contains(&"CL001"));
+    assert!(crate::common::lint_codes(&spec("{ legend = false }"), files).contains(&"SC004"));
+}

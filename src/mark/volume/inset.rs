@@ -48,7 +48,7 @@ pub fn draw(
         Point::new(square.x + sx * square.w, square.y + (1.0 - sy) * square.h)
     };
     let mut items = vec![Item::text(
-        Role::Legend,
+        Role::Annotation,
         Text {
             at: Point::new(x, top),
             content: "Slice planes".into(),
@@ -68,8 +68,9 @@ pub fn draw(
             }
         }
     }
-    items
-        .push(Item::new(Role::Legend, Shape::Path(edges), Style::stroke(theme.muted_text, 0.8)).labelled("volume box"));
+    items.push(
+        Item::new(Role::Annotation, Shape::Path(edges), Style::stroke(theme.muted_text, 0.8)).labelled("volume box"),
+    );
     for slice in slices {
         let mut cmds: Vec<PathCmd> = slice
             .outline
@@ -82,7 +83,7 @@ pub fn draw(
             .collect();
         cmds.push(PathCmd::Close);
         let style = Style { fill: Some(PLANE.with_opacity(0.18)), stroke: Some(Stroke::solid(PLANE, 1.0)) };
-        items.push(Item::new(Role::Legend, Shape::Path(cmds), style).labelled(slice.label.clone()));
+        items.push(Item::new(Role::Annotation, Shape::Path(cmds), style).labelled(slice.label.clone()));
     }
     items.extend(axis_names(ranges, &to_px, theme.muted_text, fs * 0.85));
     items
@@ -108,7 +109,7 @@ fn axis_names(ranges: [(f64, f64); 3], to_px: &impl Fn([f64; 3]) -> Point, color
         let Some(m) = middles.max_by(|p, q| away(p).total_cmp(&away(q))) else { continue };
         let length = away(&m).max(1e-9);
         items.push(Item::text(
-            Role::Legend,
+            Role::Annotation,
             Text {
                 at: Point::new(
                     m.x + (m.x - centre.x) / length * size * 0.9,
