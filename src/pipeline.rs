@@ -688,14 +688,28 @@ pub struct Formats {
     pub csv: bool,
     /// `NAME.geojson` (derived geometry, for kinds that have it).
     pub geojson: bool,
+    /// `NAME.glb`, glTF 2.0 binary (3-D surfaces, for kinds that make them).
+    pub glb: bool,
+    /// `NAME.ply` (3-D surfaces, for kinds that make them).
+    pub ply: bool,
+    /// `NAME.obj` (3-D surfaces, for kinds that make them).
+    pub obj: bool,
 }
 
 impl Formats {
     /// The file extensions these formats write.
     pub fn extensions(&self) -> impl Iterator<Item = &'static str> {
-        [(self.svg, "svg"), (self.png, "png"), (self.csv, "csv"), (self.geojson, "geojson")]
-            .into_iter()
-            .filter_map(|(on, ext)| on.then_some(ext))
+        [
+            (self.svg, "svg"),
+            (self.png, "png"),
+            (self.csv, "csv"),
+            (self.geojson, "geojson"),
+            (self.glb, "glb"),
+            (self.ply, "ply"),
+            (self.obj, "obj"),
+        ]
+        .into_iter()
+        .filter_map(|(on, ext)| on.then_some(ext))
     }
 }
 
@@ -1023,6 +1037,18 @@ fn write_chart(
         let text = serde_json::to_string(geojson)
             .map_err(|e| Diagnostic::error(format!("chart \"{name}\": cannot write GeoJSON: {e}")))?;
         write(options.out_dir.join(format!("{name}.geojson")), text.as_bytes(), &mut files)?;
+    }
+    if !out.meshes.is_empty() {
+        use render::meshfile::{glb::to_glb, obj::to_obj, ply::to_ply};
+        if options.formats.glb {
+            write(options.out_dir.join(format!("{name}.glb")), &to_glb(&out.meshes), &mut files)?;
+        }
+        if options.formats.ply {
+            write(options.out_dir.join(format!("{name}.ply")), &to_ply(&out.meshes), &mut files)?;
+        }
+        if options.formats.obj {
+            write(options.out_dir.join(format!("{name}.obj")), to_obj(&out.meshes).as_bytes(), &mut files)?;
+        }
     }
     Ok(files)
 }

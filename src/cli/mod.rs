@@ -393,6 +393,10 @@ pub fn run() -> ExitCode {
                 png: format.contains(&Format::Png),
                 csv: format.contains(&Format::Csv),
                 geojson: format.contains(&Format::Geojson),
+                // Surface files come with the isosurface kind; no chart makes surfaces yet.
+                glb: false,
+                ply: false,
+                obj: false,
             };
             let waiting = if quiet { None } else { Some(say_waiting as fn(&std::path::Path)) };
             let options = RenderOptions { out_dir: out, formats, charts: chart, scale, waiting };

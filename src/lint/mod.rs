@@ -323,6 +323,7 @@ pub(crate) mod test_support {
             scene,
             derived: Default::default(),
             warnings: Vec::new(),
+            meshes: Vec::new(),
             geojson: None,
             geometry: Default::default(),
         }

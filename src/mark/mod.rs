@@ -46,6 +46,8 @@ pub struct ChartOutput {
     /// Derived geometry as a GeoJSON FeatureCollection in data coordinates (`--format geojson`),
     /// for kinds whose output is geometry (contour lines and bands).
     pub geojson: Option<geojson::ContourFeatures>,
+    /// Surfaces in world coordinates (`--format glb`, `ply`, `obj`), for kinds that make them.
+    pub meshes: Vec<crate::scene::WorldMesh>,
     /// Where the plots, axes or disk are and their scales, for the explorer (empty for kinds
     /// that expose nothing to brush or navigate).
     pub geometry: geometry::Geometry,

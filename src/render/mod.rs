@@ -10,6 +10,7 @@
 pub mod egui;
 mod lines;
 pub mod mesh;
+pub mod meshfile;
 pub mod png;
 mod points;
 pub mod svg;

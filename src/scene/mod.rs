@@ -5,6 +5,9 @@
 //! Every item carries a [`Role`] and, for data marks, the source rows it was drawn from, so that
 //! lint rules can reason about what the reader sees and the explorer can link views by row.
 
+pub mod world_mesh;
+pub use world_mesh::WorldMesh;
+
 use std::sync::Arc;
 
 /// An RGBA colour with straight (non-premultiplied) 8-bit channels.

@@ -262,6 +262,7 @@ fn compose(
         },
         derived,
         warnings,
+        meshes: Vec::new(),
         geojson: None,
         geometry,
     }

@@ -197,6 +197,7 @@ pub fn draw(chart: &Chart, options: &ContourOptions, table: &Table) -> Result<Ch
         scene,
         derived,
         warnings,
+        meshes: Vec::new(),
         geojson: Some(crate::mark::geojson::ContourFeatures { lines, bands }),
         geometry: Default::default(),
     })

@@ -229,6 +229,7 @@ pub fn draw(
         scene: canvas.scene(chart, items, None),
         derived,
         warnings,
+        meshes: Vec::new(),
         geojson: None,
         geometry: Default::default(),
     })

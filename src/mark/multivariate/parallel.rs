@@ -140,7 +140,14 @@ pub fn draw(
         })
         .collect();
     let geometry = Geometry { axes, ..Geometry::default() };
-    Ok(ChartOutput { scene: canvas.scene(chart, items, None), derived, warnings, geojson: None, geometry })
+    Ok(ChartOutput {
+        scene: canvas.scene(chart, items, None),
+        derived,
+        warnings,
+        meshes: Vec::new(),
+        geojson: None,
+        geometry,
+    })
 }
 
 /// The columns named in `invert`, each checked against `columns`.

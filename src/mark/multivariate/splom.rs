@@ -283,7 +283,14 @@ pub fn draw(
     if let Some(h) = highlight {
         derived.push("selected", DerivedColumn::Selected(h.selected.clone()));
     }
-    Ok(ChartOutput { scene: canvas.scene(chart, items, None), derived, warnings, geojson: None, geometry })
+    Ok(ChartOutput {
+        scene: canvas.scene(chart, items, None),
+        derived,
+        warnings,
+        meshes: Vec::new(),
+        geojson: None,
+        geometry,
+    })
 }
 
 /// What it takes to draw a splom's diagonal cells again for another selection (the explorer

@@ -200,7 +200,14 @@ fn draw_matrix(chart: &Chart, options: &LinkmapOptions, input: NetworkInput) -> 
     d.push("row", DerivedColumn::Number(cells.keys().map(|&(r, _)| r as f64).collect()));
     d.push("column", DerivedColumn::Number(cells.keys().map(|&(_, c)| c as f64).collect()));
     let scene = canvas.scene(chart, items, None);
-    Ok(ChartOutput { scene, derived: d, warnings: input.warnings, geojson: None, geometry: Default::default() })
+    Ok(ChartOutput {
+        scene,
+        derived: d,
+        warnings: input.warnings,
+        meshes: Vec::new(),
+        geojson: None,
+        geometry: Default::default(),
+    })
 }
 
 /// `kind = "linkmap"`.

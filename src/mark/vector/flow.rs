@@ -283,7 +283,14 @@ pub fn draw(chart: &Chart, options: &FlowOptions, table: &Table) -> Result<Chart
     let mut warnings = input.warnings;
     warnings.extend((budget.exhausted().then(|| budget_warning())).into_iter().map(Warning::from));
     let scene = frame::scene(chart, frame, &theme, marks, &mut warnings);
-    Ok(ChartOutput { scene, derived: derived.finish(), warnings, geojson: None, geometry: Default::default() })
+    Ok(ChartOutput {
+        scene,
+        derived: derived.finish(),
+        warnings,
+        meshes: Vec::new(),
+        geojson: None,
+        geometry: Default::default(),
+    })
 }
 
 /// The warning of a chart whose streamlines or separatrices stopped at the per-chart budget.

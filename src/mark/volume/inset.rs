@@ -85,44 +85,6 @@ pub fn draw(
         let style = Style { fill: Some(PLANE.with_opacity(0.18)), stroke: Some(Stroke::solid(PLANE, 1.0)) };
         items.push(Item::new(Role::Annotation, Shape::Path(cmds), style).labelled(slice.label.clone()));
     }
-    items.extend(axis_names(ranges, &to_px, theme.muted_text, fs * 0.85));
-    items
-}
-
-/// The names of the world axes, each beside the middle of an outer edge of the box running
-/// along it (outside the box, so no plane is under the letter).
-fn axis_names(ranges: [(f64, f64); 3], to_px: &impl Fn([f64; 3]) -> Point, color: Color, size: f64) -> Vec<Item> {
-    let centre = to_px(ranges.map(|r| (r.0 + r.1) / 2.0));
-    let mut items = Vec::new();
-    for (a, name) in ["x", "y", "z"].into_iter().enumerate() {
-        // The four edges along axis a: their middles, the outermost on screen.
-        let middles = (0..4).map(|c: usize| {
-            let others: Vec<usize> = (0..3).filter(|&b| b != a).collect();
-            let mut p = [0.0; 3];
-            p[a] = (ranges[a].0 + ranges[a].1) / 2.0;
-            for (bit, &b) in others.iter().enumerate() {
-                p[b] = if c >> bit & 1 == 1 { ranges[b].1 } else { ranges[b].0 };
-            }
-            to_px(p)
-        });
-        let away = |p: &Point| (p.x - centre.x).hypot(p.y - centre.y);
-        let Some(m) = middles.max_by(|p, q| away(p).total_cmp(&away(q))) else { continue };
-        let length = away(&m).max(1e-9);
-        items.push(Item::text(
-            Role::Annotation,
-            Text {
-                at: Point::new(
-                    m.x + (m.x - centre.x) / length * size * 0.9,
-                    m.y + (m.y - centre.y) / length * size * 0.9,
-                ),
-                content: name.into(),
-                size,
-                anchor: Anchor::Middle,
-                baseline: Baseline::Middle,
-                angle: 0.0,
-                color,
-            },
-        ));
-    }
+    items.extend(super::box_frame::axis_labels(ranges, &to_px, Role::Annotation, theme.muted_text, fs * 0.85, false));
     items
 }

@@ -235,6 +235,7 @@ pub fn draw(cx: &ChartContext<'_>, options: &SliceOptions) -> Result<ChartOutput
         scene,
         derived: derived.finish(),
         warnings: Vec::new(),
+        meshes: Vec::new(),
         geojson: None,
         geometry: Default::default(),
     })
