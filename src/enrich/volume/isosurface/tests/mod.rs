@@ -1,0 +1,3 @@
+//! Tests of the isosurface extraction.
+
+mod reference;
