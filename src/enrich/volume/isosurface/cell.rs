@@ -138,12 +138,13 @@ fn tube(t: &mut Template, a: &[u8], b: &[u8]) {
     let ct = |k: usize| c[(k0 + k) % n];
     let (mut i, mut k) = (0, 0);
     while i < m || k < n {
-        let forward_a = if i == m {
-            false
-        } else if k == n {
-            true
-        } else {
-            dist(at(i + 1), ct(k)) <= dist(at(i), ct(k + 1))
+        // Never close one loop while the other has not moved: the closing rung would be the
+        // starting one and the band would pinch.
+        let can_a = i < m && !(i + 1 == m && k == 0);
+        let can_c = k < n && !(k + 1 == n && i == 0);
+        let forward_a = match (can_a, can_c) {
+            (true, true) => dist(at(i + 1), ct(k)) <= dist(at(i), ct(k + 1)),
+            (a, _) => a,
         };
         if forward_a {
             t.triangles.push([at(i), at(i + 1), ct(k)]);

@@ -28,50 +28,50 @@ pub struct Topology {
     pub euler: i64,
 }
 
-/// Components of the lattice points where `keep` holds, 6-connected, among points where
-/// `allowed` holds.
-fn flood(n: usize, keep: &[bool], allowed: &dyn Fn(usize, usize, usize) -> bool) -> usize {
+/// Components of each class of lattice points (6-connected, within one class), counted as
+/// `[outside, inside]`; with `surface`, only points on the cube's surface and paths along it.
+fn flood(n: usize, inside: &[bool], surface: bool) -> [usize; 2] {
     let m = n + 1;
-    let idx = |i: usize, j: usize, k: usize| (k * m + j) * m + i;
-    let mut seen = vec![false; keep.len()];
-    let mut count = 0;
-    let mut stack = Vec::new();
-    for k in 0..m {
-        for j in 0..m {
-            for i in 0..m {
-                let s = idx(i, j, k);
-                if seen[s] || !keep[s] || !allowed(i, j, k) {
-                    continue;
-                }
-                count += 1;
-                seen[s] = true;
-                stack.push((i, j, k));
-                while let Some((i, j, k)) = stack.pop() {
-                    let mut go = |a: usize, b: usize, c: usize| {
-                        let t = idx(a, b, c);
-                        if !seen[t] && keep[t] && allowed(a, b, c) {
-                            seen[t] = true;
-                            stack.push((a, b, c));
-                        }
-                    };
-                    if i > 0 {
-                        go(i - 1, j, k);
-                    }
-                    if i < n {
-                        go(i + 1, j, k);
-                    }
-                    if j > 0 {
-                        go(i, j - 1, k);
-                    }
-                    if j < n {
-                        go(i, j + 1, k);
-                    }
-                    if k > 0 {
-                        go(i, j, k - 1);
-                    }
-                    if k < n {
-                        go(i, j, k + 1);
-                    }
+    let on_surface = |p: usize| {
+        let (i, j, k) = (p % m, p / m % m, p / (m * m));
+        i == 0 || i == n || j == 0 || j == n || k == 0 || k == n
+    };
+    let mut seen = vec![false; inside.len()];
+    let mut count = [0usize; 2];
+    let mut stack: Vec<usize> = Vec::new();
+    for start in 0..inside.len() {
+        if seen[start] || (surface && !on_surface(start)) {
+            continue;
+        }
+        let class = inside[start];
+        count[usize::from(class)] += 1;
+        seen[start] = true;
+        stack.push(start);
+        while let Some(p) = stack.pop() {
+            let (i, j, k) = (p % m, p / m % m, p / (m * m));
+            let mut next = [usize::MAX; 6];
+            if i > 0 {
+                next[0] = p - 1;
+            }
+            if i < n {
+                next[1] = p + 1;
+            }
+            if j > 0 {
+                next[2] = p - m;
+            }
+            if j < n {
+                next[3] = p + m;
+            }
+            if k > 0 {
+                next[4] = p - m * m;
+            }
+            if k < n {
+                next[5] = p + m * m;
+            }
+            for q in next {
+                if q != usize::MAX && !seen[q] && inside[q] == class && (!surface || on_surface(q)) {
+                    seen[q] = true;
+                    stack.push(q);
                 }
             }
         }
@@ -79,42 +79,42 @@ fn flood(n: usize, keep: &[bool], allowed: &dyn Fn(usize, usize, usize) -> bool)
     count
 }
 
-/// The Euler characteristic of the cubical complex whose vertices are the kept lattice points
-/// (an edge, square or cube is in it when all its corners are).
-fn euler(n: usize, keep: &[bool]) -> i64 {
+/// The Euler characteristics `[outside, inside]` of the cubical complexes whose vertices are
+/// the lattice points of each class (an edge, square or cube is in a complex when all its
+/// corners are).
+fn euler(n: usize, inside: &[bool]) -> [i64; 2] {
     let m = n + 1;
-    let at = |i: usize, j: usize, k: usize| keep[(k * m + j) * m + i];
-    let mut chi = 0i64;
+    let mut chi = [0i64; 2];
     for k in 0..m {
         for j in 0..m {
             for i in 0..m {
-                if !at(i, j, k) {
-                    continue;
-                }
-                chi += 1;
+                let p = (k * m + j) * m + i;
+                let class = inside[p];
+                let c = usize::from(class);
+                chi[c] += 1;
+                let same = |q: usize| inside[q] == class;
                 let (x, y, z) = (i < n, j < n, k < n);
-                // Edges, squares and the cube with this point as their lowest corner.
-                if x && at(i + 1, j, k) {
-                    chi -= 1;
+                let (dx, dy, dz) = (1, m, m * m);
+                if x && same(p + dx) {
+                    chi[c] -= 1;
                 }
-                if y && at(i, j + 1, k) {
-                    chi -= 1;
+                if y && same(p + dy) {
+                    chi[c] -= 1;
                 }
-                if z && at(i, j, k + 1) {
-                    chi -= 1;
+                if z && same(p + dz) {
+                    chi[c] -= 1;
                 }
-                let sq = |a: bool, b: bool, c: bool, d: bool| a && b && c && d;
-                if x && y && sq(true, at(i + 1, j, k), at(i, j + 1, k), at(i + 1, j + 1, k)) {
-                    chi += 1;
+                if x && y && same(p + dx) && same(p + dy) && same(p + dx + dy) {
+                    chi[c] += 1;
                 }
-                if x && z && sq(true, at(i + 1, j, k), at(i, j, k + 1), at(i + 1, j, k + 1)) {
-                    chi += 1;
+                if x && z && same(p + dx) && same(p + dz) && same(p + dx + dz) {
+                    chi[c] += 1;
                 }
-                if y && z && sq(true, at(i, j + 1, k), at(i, j, k + 1), at(i, j + 1, k + 1)) {
-                    chi += 1;
+                if y && z && same(p + dy) && same(p + dz) && same(p + dy + dz) {
+                    chi[c] += 1;
                 }
-                if x && y && z && (0..8).all(|c| at(i + (c & 1), j + (c >> 1 & 1), k + (c >> 2 & 1))) {
-                    chi -= 1;
+                if x && y && z && [dx, dy, dz, dx + dy, dx + dz, dy + dz, dx + dy + dz].iter().all(|&d| same(p + d)) {
+                    chi[c] -= 1;
                 }
             }
         }
@@ -125,26 +125,29 @@ fn euler(n: usize, keep: &[bool]) -> i64 {
 /// The topology of the cell with corner values `g` (level 0) on an `n`-step lattice.
 pub fn topology(g: &[f64; 8], n: usize) -> Topology {
     let m = n + 1;
-    let mut values = Vec::with_capacity(m * m * m);
+    let mut inside = Vec::with_capacity(m * m * m);
     for k in 0..m {
+        let z = k as f64 / n as f64;
         for j in 0..m {
+            let y = j as f64 / n as f64;
+            let w = [(1.0 - y) * (1.0 - z), y * (1.0 - z), (1.0 - y) * z, y * z];
+            let a = g[0] * w[0] + g[2] * w[1] + g[4] * w[2] + g[6] * w[3];
+            let b = g[1] * w[0] + g[3] * w[1] + g[5] * w[2] + g[7] * w[3];
             for i in 0..m {
-                values.push(trilinear(g, [i, j, k].map(|v| v as f64 / n as f64)));
+                let x = i as f64 / n as f64;
+                inside.push(a * (1.0 - x) + b * x >= 0.0);
             }
         }
     }
-    let inside: Vec<bool> = values.iter().map(|v| *v >= 0.0).collect();
-    let outside: Vec<bool> = inside.iter().map(|b| !b).collect();
-    let anywhere = |_: usize, _: usize, _: usize| true;
-    let on_surface = |i: usize, j: usize, k: usize| [i, j, k].iter().any(|&v| v == 0 || v == n);
-    let (cin, cout) = (flood(n, &inside, &anywhere), flood(n, &outside, &anywhere));
-    let patches = flood(n, &inside, &on_surface) + flood(n, &outside, &on_surface);
+    let [cout, cin] = flood(n, &inside, false);
+    let [pout, pin] = flood(n, &inside, true);
+    let [eout, ein] = euler(n, &inside);
     Topology {
         inside: cin,
         outside: cout,
         surface: (cin + cout).saturating_sub(1),
-        loops: patches.saturating_sub(1),
-        euler: euler(n, &inside) + euler(n, &outside) - 1,
+        loops: (pin + pout).saturating_sub(1),
+        euler: ein + eout - 1,
     }
 }
 

@@ -1,0 +1,1 @@
+//! Whole volumes: cells, ties, errors.
