@@ -38,9 +38,9 @@ pub(super) fn joins(b: &Boundary, g: &[f64; 8]) -> Vec<u8> {
     // Corners joined in the cell: on its surface (patches) or through its interior.
     let through = interior::components(g);
     let mut parent: [u8; 8] = std::array::from_fn(|c| c as u8);
-    for c in 0..8 {
-        union(&mut parent, c, b.patches[c] as usize);
-        union(&mut parent, c, through[c] as usize);
+    for (c, (patch, inner)) in b.patches.iter().zip(through).enumerate() {
+        union(&mut parent, c, *patch as usize);
+        union(&mut parent, c, inner as usize);
     }
     let group: [u8; 8] = std::array::from_fn(|c| find(&mut parent, c) as u8);
     let key = |l: usize| b.sides.get(l).map(|s| (group[s[0] as usize], group[s[1] as usize]));

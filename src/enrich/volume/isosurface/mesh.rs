@@ -48,6 +48,9 @@ pub(super) struct Builder<'a> {
     positions: Vec<[f64; 3]>,
     gradients: Vec<[f64; 3]>,
     want_gradients: bool,
+    /// Per vertex: whether it was snapped onto a lattice point (only there can triangles meet
+    /// on the same three vertices).
+    snapped: Vec<bool>,
     triangles: Vec<[u32; 3]>,
 }
 
@@ -66,6 +69,7 @@ impl<'a> Builder<'a> {
             positions: Vec::new(),
             gradients: Vec::new(),
             want_gradients,
+            snapped: Vec::new(),
             triangles: Vec::new(),
         }
     }
@@ -130,6 +134,7 @@ impl<'a> Builder<'a> {
         }
         let id = self.positions.len() as u32;
         self.positions.push([0, 1, 2].map(|a| cell[a] as f64 + local[a]));
+        self.snapped.push(snapped.is_some());
         if self.want_gradients {
             let at = |c: usize| {
                 let [x, y, z] = corner_position(c);
@@ -152,6 +157,7 @@ impl<'a> Builder<'a> {
     pub fn centre(&mut self, cell: [usize; 3], _base: usize, p: [f64; 3]) -> u32 {
         let id = self.positions.len() as u32;
         self.positions.push([0, 1, 2].map(|a| cell[a] as f64 + p[a]));
+        self.snapped.push(false);
         if self.want_gradients {
             self.gradients.push(corner_gradients_at(self.volume, cell, p));
         }
@@ -174,7 +180,8 @@ impl<'a> Builder<'a> {
     /// The mesh in world space: unused vertices dropped, the winding reversed when the affine
     /// flips handedness, and normals by `rule`. `inverse` is the world-to-index affine.
     pub fn finish(self, rule: NormalRule, inverse: [[f64; 4]; 3]) -> IsoMesh {
-        let Builder { volume, positions, gradients, mut triangles, .. } = self;
+        let Builder { volume, positions, gradients, snapped, mut triangles, .. } = self;
+        cancel_fins(&mut triangles, &snapped);
         let mut remap = vec![u32::MAX; positions.len()];
         let mut kept = Vec::new();
         for t in &mut triangles {
@@ -205,5 +212,53 @@ impl<'a> Builder<'a> {
         };
         let normals = world_normals(&world, &triangles, &grads, inverse);
         IsoMesh { positions: world, normals, triangles }
+    }
+}
+
+/// Removes pairs of triangles on the same three vertices wound opposite ways: a sheet folded
+/// flat onto itself, left where crossings were snapped onto lattice points. Each pair cancels as
+/// a chain, so every edge stays used equally often each way.
+fn cancel_fins(triangles: &mut Vec<[u32; 3]>, snapped: &[bool]) {
+    let is_snapped = |v: u32| snapped.get(v as usize).copied().unwrap_or(false);
+    let mut groups: HashMap<[u32; 3], Vec<usize>, BuildHasherDefault<KeyHasher>> = HashMap::default();
+    for (n, t) in triangles.iter().enumerate() {
+        if t.iter().any(|&v| is_snapped(v)) {
+            let mut key = *t;
+            key.sort_unstable();
+            groups.entry(key).or_default().push(n);
+        }
+    }
+    let mut drop = vec![false; triangles.len()];
+    for (key, members) in groups {
+        if members.len() < 2 {
+            continue;
+        }
+        // A triangle's winding relative to its sorted vertices: a rotation of the sorted order
+        // is one way, anything else the other.
+        let (mut forward, mut backward) = (Vec::new(), Vec::new());
+        for n in members {
+            let Some(t) = triangles.get(n) else { continue };
+            let rotations = [key, [key[1], key[2], key[0]], [key[2], key[0], key[1]]];
+            if rotations.contains(t) {
+                forward.push(n);
+            } else {
+                backward.push(n);
+            }
+        }
+        for (a, b) in forward.into_iter().zip(backward) {
+            for n in [a, b] {
+                if let Some(d) = drop.get_mut(n) {
+                    *d = true;
+                }
+            }
+        }
+    }
+    if drop.iter().any(|d| *d) {
+        let mut n = 0;
+        triangles.retain(|_| {
+            let keep = !drop.get(n).copied().unwrap_or(false);
+            n += 1;
+            keep
+        });
     }
 }

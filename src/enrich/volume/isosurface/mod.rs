@@ -22,7 +22,8 @@
 //! - **Voxels at the level.** A crossing that falls on a voxel (the voxel's value is `iso`
 //!   exactly, or within a `1e-10` fraction of its edge) is placed on the voxel and shared by all
 //!   crossings there, so no two vertices coincide; triangles whose vertices collapse onto one
-//!   another are dropped. Dropping them keeps every edge used equally often in both directions
+//!   another are dropped, and so are pairs of triangles on the same three vertices wound
+//!   opposite ways (a sheet folded flat). Dropping them keeps every edge used equally often in both directions
 //!   (the surface stays closed and oriented), but where the level set really pinches at such a
 //!   voxel (two sheets touching at a point or along a lattice edge, as the true `{f ≥ iso}` does)
 //!   an edge may be used by four triangles instead of two. A level equal to the data's minimum
