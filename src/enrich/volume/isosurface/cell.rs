@@ -9,7 +9,9 @@
 use std::collections::HashMap;
 
 use super::IsoError;
-use super::cube::{add, dot, edge_faces, edge_midpoint, norm, scale, sub, trilinear, trilinear_gradient};
+use super::cube::{
+    add, cross, dot, edge_corners, edge_faces, edge_midpoint, norm, scale, sub, trilinear, trilinear_gradient,
+};
 use super::interior;
 use super::mesh::Builder;
 use super::surface::{Boundary, boundary, face_decisions, find, inside_mask, union};
@@ -25,6 +27,9 @@ pub(super) struct Template {
     pub triangles: Vec<[u8; 3]>,
     /// For each interior vertex, the crossed edges (one loop) it is the centre of.
     pub centres: Vec<Vec<u8>>,
+    /// Tubes, each as its two loops; stitched per cell by [`stitch`] with the crossings' real
+    /// positions, which decide the best band.
+    pub tubes: Vec<[Vec<u8>; 2]>,
 }
 
 /// How a cell's loops join into surface pieces: for each loop, the first loop of its piece.
@@ -67,7 +72,7 @@ pub(super) fn build(b: &Boundary, joins: &[u8]) -> Template {
         }
         match partners.as_slice() {
             [m] => match b.loops.get(*m) {
-                Some(other) => tube(&mut t, lp, other),
+                Some(other) => t.tubes.push([lp.clone(), other.clone()]),
                 None => disk(&mut t, lp),
             },
             _ => disk(&mut t, lp),
@@ -117,43 +122,110 @@ fn disk(t: &mut Template, lp: &[u8]) {
     }
 }
 
-/// A tube between loops `a` and `b`: a band stitched between them, `a` walked forwards and `b`
-/// backwards (as boundaries of one annulus they run opposite ways), starting at their closest
-/// pair of crossings and always taking the shorter rung.
-fn tube(t: &mut Template, a: &[u8], b: &[u8]) {
+/// The band of least area between loops `a` and `b` (crossing positions `pos`), as triangles
+/// over their vertices: `a` walked forwards and `b` backwards (as boundaries of one annulus they
+/// run opposite ways), one triangle per step on either loop. A band is a cyclic sequence of
+/// steps with distinct rungs; cut where a step along `b` is followed by one along `a`, it is a
+/// walk from rung `(a[i0], c[k0])` that starts along `a`, ends along `b` and never stands on
+/// rung `(a[i0], c[k0])` in between (which would pinch the band shut). Every start is tried and
+/// a dynamic programme over the walks finds the least total area.
+pub(super) fn stitch(a: &[u8], b: &[u8], pos: &dyn Fn(u8) -> [f64; 3]) -> Vec<[u8; 3]> {
     let c: Vec<u8> = b.iter().rev().copied().collect();
     let (m, n) = (a.len(), c.len());
     if m == 0 || n == 0 {
-        return;
+        return Vec::new();
     }
-    let (mut i0, mut k0) = (0, 0);
-    for i in 0..m {
-        for k in 0..n {
-            if dist(a[i], c[k]) < dist(a[i0], c[k0]) {
-                (i0, k0) = (i, k);
+    let area = |p: u8, q: u8, r: u8| 0.5 * norm(cross(sub(pos(q), pos(p)), sub(pos(r), pos(p))));
+    let mut bands: Vec<(f64, Vec<[u8; 3]>)> = Vec::new();
+    for (i0, k0) in (0..m).flat_map(|i| (0..n).map(move |k| (i, k))) {
+        let at = |i: usize| a[(i0 + i) % m];
+        let ct = |k: usize| c[(k0 + k) % n];
+        // cost[i][k]: least area reaching rung (i, k); step[i][k]: whether it came along `a`.
+        let width = n + 1;
+        let mut cost = vec![f64::INFINITY; (m + 1) * width];
+        let mut along_a = vec![false; (m + 1) * width];
+        cost[0] = 0.0;
+        for i in 0..=m {
+            for k in 0..=n {
+                let here = i * width + k;
+                // The first step goes along `a`, the last along `b`, and rung (m, 0) is the
+                // start again.
+                let forbidden = (i == m && k == 0) || (i == 0 && k > 0);
+                if here == 0 || forbidden {
+                    continue;
+                }
+                if i > 0 && !(i == m && k == n) {
+                    let prev = (i - 1) * width + k;
+                    let v = cost[prev] + area(at(i - 1), at(i), ct(k));
+                    if v < cost[here] {
+                        cost[here] = v;
+                        along_a[here] = true;
+                    }
+                }
+                if k > 0 {
+                    let prev = i * width + k - 1;
+                    let v = cost[prev] + area(at(i), ct(k), ct(k - 1));
+                    if v < cost[here] {
+                        cost[here] = v;
+                        along_a[here] = false;
+                    }
+                }
             }
         }
-    }
-    let at = |i: usize| a[(i0 + i) % m];
-    let ct = |k: usize| c[(k0 + k) % n];
-    let (mut i, mut k) = (0, 0);
-    while i < m || k < n {
-        // Never close one loop while the other has not moved: the closing rung would be the
-        // starting one and the band would pinch.
-        let can_a = i < m && !(i + 1 == m && k == 0);
-        let can_c = k < n && !(k + 1 == n && i == 0);
-        let forward_a = match (can_a, can_c) {
-            (true, true) => dist(at(i + 1), ct(k)) <= dist(at(i), ct(k + 1)),
-            (a, _) => a,
-        };
-        if forward_a {
-            t.triangles.push([at(i), at(i + 1), ct(k)]);
-            i += 1;
-        } else {
-            t.triangles.push([at(i), ct(k + 1), ct(k)]);
-            k += 1;
+        let total = cost[m * width + n];
+        if !total.is_finite() {
+            continue;
         }
+        let mut tris = Vec::with_capacity(m + n);
+        let (mut i, mut k) = (m, n);
+        while i > 0 || k > 0 {
+            if along_a[i * width + k] {
+                tris.push([at(i - 1), at(i), ct(k)]);
+                i -= 1;
+            } else {
+                tris.push([at(i), ct(k), ct(k - 1)]);
+                k -= 1;
+            }
+        }
+        tris.reverse();
+        bands.push((total, tris));
     }
+    // The least area among the bands that do not cut themselves, else the least area.
+    bands.sort_by(|x, y| x.0.total_cmp(&y.0));
+    let clean = bands.iter().position(|(_, tris)| !self_crossing(tris, pos));
+    match clean.or(if bands.is_empty() { None } else { Some(0) }) {
+        Some(n) => bands.swap_remove(n).1,
+        None => Vec::new(),
+    }
+}
+
+/// Whether two of `tris` that share no vertex meet (separating axis test over the triangles'
+/// normals and the cross products of their edges; a gap of 1e-12 separates).
+fn self_crossing(tris: &[[u8; 3]], pos: &dyn Fn(u8) -> [f64; 3]) -> bool {
+    tris.iter().enumerate().any(|(n, t)| {
+        tris.iter().skip(n + 1).any(|u| !t.iter().any(|v| u.contains(v)) && triangles_meet(t.map(pos), u.map(pos)))
+    })
+}
+
+/// Whether triangles `a` and `b` share a point, by the separating axis theorem.
+pub(super) fn triangles_meet(a: [[f64; 3]; 3], b: [[f64; 3]; 3]) -> bool {
+    let edges = |t: &[[f64; 3]; 3]| [sub(t[1], t[0]), sub(t[2], t[1]), sub(t[0], t[2])];
+    let (ea, eb) = (edges(&a), edges(&b));
+    let span = |t: &[[f64; 3]; 3], axis: [f64; 3]| {
+        let d = t.map(|p| dot(p, axis));
+        (d[0].min(d[1]).min(d[2]), d[0].max(d[1]).max(d[2]))
+    };
+    let separates = |axis: [f64; 3]| {
+        let len = norm(axis);
+        if !(len > 1e-12) {
+            return false;
+        }
+        let axis = scale(axis, 1.0 / len);
+        let ((a0, a1), (b0, b1)) = (span(&a, axis), span(&b, axis));
+        a1 < b0 - 1e-12 || b1 < a0 - 1e-12
+    };
+    let normals = [cross(ea[0], ea[1]), cross(eb[0], eb[1])];
+    !(normals.into_iter().any(separates) || ea.iter().any(|x| eb.iter().any(|y| separates(cross(*x, *y)))))
 }
 
 /// Boundaries and templates met so far in one extraction.
@@ -202,43 +274,35 @@ fn project(g: &[f64; 8], p: [f64; 3], reach: f64) -> [f64; 3] {
 pub(super) fn march(b: &mut Builder, cache: &mut Cache, cell: [usize; 3], base: usize) -> Result<(), IsoError> {
     let Some(g) = b.corner_values(base) else { return Ok(()) };
     let Some(template) = cache.template(&g) else { return Ok(()) };
+    // Every crossed edge is on a loop, so every one gets a vertex.
     let mut ids = [u32::MAX; 12];
-    let mut local = [[0.0; 3]; 12];
-    let mut vertex = |b: &mut Builder, e: u8| -> (u32, [f64; 3]) {
-        let e = e as usize;
-        if let (Some(&id), Some(&p)) = (ids.get(e), local.get(e))
-            && id != u32::MAX
-        {
-            return (id, p);
+    let mut local = [[0.5; 3]; 12];
+    for e in 0..12 {
+        let [lo, hi] = edge_corners(e);
+        if (g[lo] >= 0.0) == (g[hi] >= 0.0) {
+            continue;
         }
-        let [lo, hi] = super::cube::edge_corners(e % 12);
         let (inside, outside) = if g[lo] >= 0.0 { (lo, hi) } else { (hi, lo) };
-        let (id, p) = b.crossing(cell, base, inside, outside, g[inside], g[outside]);
-        if let (Some(slot), Some(pos)) = (ids.get_mut(e), local.get_mut(e)) {
-            *slot = id;
-            *pos = p;
-        }
-        (id, p)
-    };
+        (ids[e], local[e]) = b.crossing(cell, base, inside, outside, g[inside], g[outside]);
+    }
+    let at = |e: u8| local.get(e as usize).copied().unwrap_or([0.5; 3]);
     let mut centre_ids = Vec::with_capacity(template.centres.len());
     for edges in &template.centres {
-        let points: Vec<[f64; 3]> = edges.iter().map(|&e| vertex(b, e).1).collect();
+        let points: Vec<[f64; 3]> = edges.iter().map(|&e| at(e)).collect();
         let mean = scale(points.iter().fold([0.0; 3], |s, p| add(s, *p)), 1.0 / points.len().max(1) as f64);
         let spread = points.iter().map(|p| norm(sub(*p, mean))).sum::<f64>() / points.len().max(1) as f64;
         let p = project(&g, mean, 0.5 * spread);
         centre_ids.push(b.centre(cell, base, p));
     }
-    for tri in &template.triangles {
+    let stitched: Vec<[u8; 3]> = template.tubes.iter().flat_map(|[a, c]| stitch(a, c, &at)).collect();
+    for tri in template.triangles.iter().chain(&stitched) {
         let mut out = [0u32; 3];
         for (slot, &v) in out.iter_mut().zip(tri) {
-            *slot = if v >= CENTRE {
-                match centre_ids.get((v - CENTRE) as usize) {
-                    Some(&id) => id,
-                    None => return Ok(()),
-                }
-            } else {
-                vertex(b, v).0
-            };
+            let id = if v >= CENTRE { centre_ids.get((v - CENTRE) as usize) } else { ids.get(v as usize) };
+            match id {
+                Some(&id) if id != u32::MAX => *slot = id,
+                _ => return Ok(()),
+            }
         }
         b.triangle(out)?;
     }

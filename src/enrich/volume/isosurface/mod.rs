@@ -63,10 +63,13 @@
 //! 4. **Triangles** ([`cell`]): a disk of three crossings is a triangle, of four to six it is cut
 //!    into ears along the shortest diagonals not lying on a cube face, larger ones are fanned
 //!    around an interior vertex (the loop's centroid moved onto the trilinear level set by a few
-//!    Newton steps when that stays close); a tube is a band stitched between its two loops.
+//!    Newton steps when that stays close); a tube is a band between its two loops, one triangle
+//!    per crossing, chosen per cell from the real crossing positions: the band of least area
+//!    that does not cut itself.
 //!
 //! The result per configuration key (sign pattern, face decisions, which loops are joined) is
-//! memoised during an extraction, so it acts as a generated table. The tests check every one of
+//! memoised during an extraction, so it acts as a generated table (tubes keep their two loops
+//! in it and are stitched per cell). The tests check every one of
 //! the 256 sign patterns, with random corner values covering the face decisions and interior
 //! outcomes, against a brute-force count of components on a fine lattice.
 
