@@ -217,7 +217,7 @@ pub(super) fn triangles_meet(a: [[f64; 3]; 3], b: [[f64; 3]; 3]) -> bool {
     };
     let separates = |axis: [f64; 3]| {
         let len = norm(axis);
-        if !(len > 1e-12) {
+        if len.is_nan() || len <= 1e-12 {
             return false;
         }
         let axis = scale(axis, 1.0 / len);

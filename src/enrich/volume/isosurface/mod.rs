@@ -46,32 +46,35 @@
 //! L. Custodio, T. Etiene, S. Pesco and C. Silva, *Practical considerations on Marching Cubes 33
 //! topological correctness* (Computers & Graphics 37(7), 2013) and D. Vega, J. Abache and
 //! D. Coll, *A fast and memory-saving marching cubes 33 implementation with the correct interior
-//! test* (JCGT 8(3), 2019). No table or code from those works or any implementation was used; the
-//! papers' descriptions are what the steps below follow:
+//! test* (JCGT 8(3), 2019): the surface in each cell has the topology of the trilinear
+//! interpolant. No table or code from those works or any implementation was used; instead of
+//! per-case tables and per-case interior tests, the steps below derive each configuration, and
+//! the tests check every one against a brute-force reference (the 33 configurations of MC33 are
+//! what they find):
 //!
-//! 1. **Faces** ([`surface`]): on each face whose corners alternate in sign, the asymptotic
+//! 1. **Faces** (module `surface`): on each face whose corners alternate in sign, the asymptotic
 //!    decider (Nielson and Hamann, 1991) — the bilinear saddle value
 //!    `(f00·f11 − f10·f01)/(f00 + f11 − f10 − f01)` against `iso` — says whether the inside
 //!    corners are joined across the face. Neighbouring cells decide a shared face identically.
 //! 2. **Loops**: the face segments are chained into closed, oriented loops on the cube's
 //!    surface, cutting it into patches.
-//! 3. **Interior** ([`interior`]): when a cell has two or more loops, the components of
+//! 3. **Interior** (module `interior`): when a cell has two or more loops, the components of
 //!    `{f ≥ iso}` and `{f < iso}` inside the cell are found exactly by sweeping planes across it
 //!    (a generalisation of Chernyaev's and Lopes–Brodlie's plane test to every configuration:
 //!    MC33's tunnels of cases 4, 6, 7, 10, 12 and 13). Loops whose two sides belong to the same
 //!    pair of components are the two ends of one tube; the others bound disks.
-//! 4. **Triangles** ([`cell`]): a disk of three crossings is a triangle, of four to six it is cut
-//!    into ears along the shortest diagonals not lying on a cube face, larger ones are fanned
-//!    around an interior vertex (the loop's centroid moved onto the trilinear level set by a few
-//!    Newton steps when that stays close); a tube is a band between its two loops, one triangle
-//!    per crossing, chosen per cell from the real crossing positions: the band of least area
-//!    that does not cut itself.
+//! 4. **Triangles** (module `cell`): a disk of three crossings is a triangle, of four to six
+//!    it is cut into ears along the shortest diagonals not lying on a cube face, larger ones
+//!    are fanned around an interior vertex (the loop's centroid moved onto the trilinear level
+//!    set by a few Newton steps when that stays close); a tube is a band between its two loops,
+//!    one triangle per crossing, chosen per cell from the real crossing positions: the band of
+//!    least area that does not cut itself.
 //!
 //! The result per configuration key (sign pattern, face decisions, which loops are joined) is
 //! memoised during an extraction, so it acts as a generated table (tubes keep their two loops
-//! in it and are stitched per cell). The tests check every one of
-//! the 256 sign patterns, with random corner values covering the face decisions and interior
-//! outcomes, against a brute-force count of components on a fine lattice.
+//! in it and are stitched per cell). The tests check every one of the 256 sign patterns, with
+//! random corner values covering the face decisions and interior outcomes, against a
+//! brute-force count of components, boundary loops and Euler characteristic on a fine lattice.
 
 mod cell;
 mod cube;
