@@ -292,7 +292,7 @@ pub(super) fn march(b: &mut Builder, cache: &mut Cache, cell: [usize; 3], base: 
         let mean = scale(points.iter().fold([0.0; 3], |s, p| add(s, *p)), 1.0 / points.len().max(1) as f64);
         let spread = points.iter().map(|p| norm(sub(*p, mean))).sum::<f64>() / points.len().max(1) as f64;
         let p = project(&g, mean, 0.5 * spread);
-        centre_ids.push(b.centre(cell, base, p));
+        centre_ids.push(b.centre(cell, p));
     }
     let stitched: Vec<[u8; 3]> = template.tubes.iter().flat_map(|[a, c]| stitch(a, c, &at)).collect();
     for tri in template.triangles.iter().chain(&stitched) {

@@ -154,7 +154,7 @@ impl<'a> Builder<'a> {
     }
 
     /// A new interior vertex of the cell at `cell`, at cell-local position `p`.
-    pub fn centre(&mut self, cell: [usize; 3], _base: usize, p: [f64; 3]) -> u32 {
+    pub fn centre(&mut self, cell: [usize; 3], p: [f64; 3]) -> u32 {
         let id = self.positions.len() as u32;
         self.positions.push([0, 1, 2].map(|a| cell[a] as f64 + p[a]));
         self.snapped.push(false);
