@@ -2,6 +2,7 @@
 //! nearest voxel or trilinear interpolation ([`sample`]) and planes through a volume with their
 //! own 2-D coordinates ([`plane`]).
 
+pub mod isosurface;
 pub mod plane;
 pub mod sample;
 
