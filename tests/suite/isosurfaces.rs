@@ -1,0 +1,148 @@
+//! `kind = "isosurface"`: surfaces of a volume drawn in 3-D and written as glTF, PLY and OBJ.
+//! Areas and enclosed volumes are checked against the sphere's formulas, the files against
+//! their formats, and bad specs against their documented errors.
+
+use crate::common::{Fixture, numbers, run_dataink};
+use dataink::mark::ChartOutput;
+use dataink::scene::{Item, Shape};
+
+/// A 3-D `.npy` (shape nz × ny × nx, x fastest) of `f` at the voxels' world points
+/// `(i·sx, j·sy, k·sz)`.
+fn volume_npy(n: [usize; 3], spacing: [f64; 3], f: impl Fn([f64; 3]) -> f64) -> Vec<u8> {
+    let mut data = Vec::new();
+    for k in 0..n[2] {
+        for j in 0..n[1] {
+            for i in 0..n[0] {
+                let p = [i as f64 * spacing[0], j as f64 * spacing[1], k as f64 * spacing[2]];
+                data.extend(f(p).to_le_bytes());
+            }
+        }
+    }
+    crate::common::npy("<f8", &format!("({}, {}, {})", n[2], n[1], n[0]), &data)
+}
+
+/// Distance from (20, 20, 20): spheres of radius r are its level sets.
+fn distance(p: [f64; 3]) -> f64 {
+    ((p[0] - 20.0).powi(2) + (p[1] - 20.0).powi(2) + (p[2] - 20.0).powi(2)).sqrt()
+}
+
+fn spec(chart: &str, spacing: [f64; 3]) -> String {
+    format!(
+        "[data.field]\npath = \"field.npy\"\nspacing = {spacing:?}\n\n[[chart]]\nname = \"iso\"\nkind = \"isosurface\"\ndata = \"field\"\ntitle = \"Spheres\"\n{chart}"
+    )
+}
+
+fn draw(chart: &str, spacing: [f64; 3], npy: &[u8]) -> Result<ChartOutput, String> {
+    Fixture::new(&spec(chart, spacing), &[("field.npy", npy)]).draw().map(|mut v| v.remove(0))
+}
+
+fn mesh_labels(out: &ChartOutput) -> Vec<String> {
+    let mut found = Vec::new();
+    out.scene.walk(|item: &Item| {
+        if let Shape::Mesh(_) = &item.shape {
+            found.push(item.label.clone().unwrap_or_default());
+        }
+    });
+    found
+}
+
+#[test]
+fn a_sphere_has_the_area_and_volume_of_a_sphere_with_spacing_honoured() {
+    for spacing in [[1.0, 1.0, 1.0], [1.0, 1.0, 2.0]] {
+        let n = [41, 41, (40.0 / spacing[2]) as usize + 1];
+        let npy = volume_npy(n, spacing, distance);
+        let out = draw("iso = 12\n", spacing, &npy).unwrap_or_else(|e| panic!("{e}"));
+        let r: f64 = 12.0;
+        let area = numbers(&out, "area")[0];
+        let volume = numbers(&out, "enclosed_volume")[0].abs();
+        let area_error = (area / (4.0 * std::f64::consts::PI * r * r) - 1.0).abs();
+        let volume_error = (volume / (4.0 / 3.0 * std::f64::consts::PI * r.powi(3)) - 1.0).abs();
+        assert!(area_error < 0.02 && volume_error < 0.02, "{spacing:?}: area {area}, volume {volume}");
+        assert_eq!((numbers(&out, "components"), numbers(&out, "euler_characteristic")), (vec![1.0], vec![2.0]));
+        assert_eq!(mesh_labels(&out), ["value = 12"]);
+        // The caption states the triangle count.
+        let triangles = numbers(&out, "triangles")[0] as usize;
+        let mut caption = String::new();
+        out.scene.walk(|item: &Item| {
+            if item.role == dataink::scene::Role::Caption
+                && let Shape::Text(t) = &item.shape
+            {
+                caption = t.content.clone();
+            }
+        });
+        let shown = triangles.to_string();
+        let grouped: String = shown
+            .chars()
+            .enumerate()
+            .flat_map(|(k, c)| ((k > 0 && (shown.len() - k) % 3 == 0).then_some(',').into_iter().chain([c])))
+            .collect();
+        assert!(caption.starts_with(&format!("{grouped} triangles (marching cubes")), "{caption}");
+    }
+}
+
+#[test]
+fn several_surfaces_draw_opaque_first_and_warn_about_values_outside_the_data() {
+    let npy = volume_npy([41, 41, 41], [1.0; 3], distance);
+    let out = draw("iso = [6, 12, 99]\n", [1.0; 3], &npy).unwrap_or_else(|e| panic!("{e}"));
+    // Two surfaces exist (99 lies outside 0..34.6); the inner one (6) is opaque and drawn
+    // before the translucent outer one.
+    assert_eq!(mesh_labels(&out), ["value = 6", "value = 12"]);
+    let warned: Vec<String> = out.warnings.iter().map(|w| w.message()).collect();
+    assert!(warned.iter().any(|w| w.contains("iso = 99 is outside the volume's values")), "{warned:?}");
+    let tetra = draw("iso = 12\nmethod = \"tetrahedra\"\nnormals = \"faces\"\n", [1.0; 3], &npy)
+        .unwrap_or_else(|e| panic!("{e}"));
+    let area = numbers(&tetra, "area")[0];
+    assert!((area / (4.0 * std::f64::consts::PI * 144.0) - 1.0).abs() < 0.03, "{area}");
+}
+
+#[test]
+fn surfaces_are_written_as_glb_ply_and_obj() {
+    let npy = volume_npy([21, 21, 21], [1.0; 3], |p| distance([p[0] + 10.0, p[1] + 10.0, p[2] + 10.0]));
+    let fx = Fixture::new(&spec("iso = [4, 8]\n", [1.0; 3]), &[("field.npy", &npy)]);
+    let out = run_dataink(fx.dir.path(), &["render", "spec.toml", "--out", "out", "--format", "png,csv,glb,ply,obj"], 120)
+        .expect("finished");
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let dir = fx.dir.path().join("out");
+    let glb = std::fs::read(dir.join("iso.glb")).expect("glb");
+    assert_eq!(&glb[..4], b"glTF");
+    assert_eq!(u32::from_le_bytes([glb[8], glb[9], glb[10], glb[11]]) as usize, glb.len());
+    let json_len = u32::from_le_bytes([glb[12], glb[13], glb[14], glb[15]]) as usize;
+    let doc: serde_json::Value = serde_json::from_slice(&glb[20..20 + json_len]).expect("JSON chunk");
+    assert_eq!(doc["meshes"].as_array().map(Vec::len), Some(2));
+    let csv = std::fs::read_to_string(dir.join("iso.csv")).expect("csv");
+    let vertices: Vec<usize> = csv
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').nth(2).and_then(|v| v.parse::<f64>().ok()).expect("vertices") as usize)
+        .collect();
+    let ply = std::fs::read(dir.join("iso.ply")).expect("ply");
+    let head = String::from_utf8_lossy(&ply[..300]);
+    assert!(head.contains(&format!("element vertex {}\n", vertices.iter().sum::<usize>())), "{head}");
+    let obj = std::fs::read_to_string(dir.join("iso.obj")).expect("obj");
+    assert_eq!(obj.lines().filter(|l| l.starts_with("v ")).count(), vertices.iter().sum::<usize>());
+    assert_eq!(obj.lines().filter(|l| l.starts_with("o ")).count(), 2);
+    // The first surface's glTF positions lie on its sphere (radius 4 about the volume's middle).
+    let accessor = &doc["accessors"][doc["meshes"][0]["primitives"][0]["attributes"]["POSITION"].as_u64().expect("a") as usize];
+    let (lo, hi) = (&accessor["min"], &accessor["max"]);
+    for a in 0..3 {
+        let (l, h) = (lo[a].as_f64().expect("min"), hi[a].as_f64().expect("max"));
+        assert!((l - 6.0).abs() < 0.3 && (h - 14.0).abs() < 0.3, "axis {a}: {l} to {h}");
+    }
+}
+
+#[test]
+fn bad_isosurface_specs_give_their_documented_errors() {
+    let npy = volume_npy([5, 5, 5], [1.0; 3], |p| p[0]);
+    for (chart, message) in [
+        ("iso = [1, 2, 3, 4, 5, 6, 7, 8, 9]", "9 iso values given; a chart draws 1 to 8 surfaces"),
+        ("iso = []", "0 iso values given"),
+        ("iso = [1, 2]\ncolors = [\"red\"]", "1 colours for 2 surfaces"),
+        ("iso = 1\ncolors = [\"nope\"]", "`nope` is not a colour"),
+        ("iso = 1\nopacity = 0", "opacity 0 is not in 0.05 to 1"),
+        ("iso = [1, 2]\nopacity = [0.5]", "1 opacities for 2 surfaces"),
+        ("iso = 1\nzoom = 0", "zoom"),
+    ] {
+        let err = draw(chart, [1.0; 3], &npy).expect_err(chart);
+        assert!(err.contains(message), "{chart}: {err}");
+    }
+}
