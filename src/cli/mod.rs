@@ -182,6 +182,12 @@ enum Format {
     Csv,
     /// Derived geometry as GeoJSON (contour lines and bands).
     Geojson,
+    /// 3-D surfaces as glTF 2.0 binary (isosurfaces).
+    Glb,
+    /// 3-D surfaces as PLY (isosurfaces).
+    Ply,
+    /// 3-D surfaces as Wavefront OBJ (isosurfaces).
+    Obj,
 }
 
 /// Output formats of `dataink lint`.
@@ -393,10 +399,9 @@ pub fn run() -> ExitCode {
                 png: format.contains(&Format::Png),
                 csv: format.contains(&Format::Csv),
                 geojson: format.contains(&Format::Geojson),
-                // Surface files come with the isosurface kind; no chart makes surfaces yet.
-                glb: false,
-                ply: false,
-                obj: false,
+                glb: format.contains(&Format::Glb),
+                ply: format.contains(&Format::Ply),
+                obj: format.contains(&Format::Obj),
             };
             let waiting = if quiet { None } else { Some(say_waiting as fn(&std::path::Path)) };
             let options = RenderOptions { out_dir: out, formats, charts: chart, scale, waiting };

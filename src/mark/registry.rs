@@ -413,6 +413,10 @@ registry! {
     /// positions, a lightbox of evenly spaced slices, or oblique planes, with optional contour
     /// lines and an inset showing where the planes lie.
     Slice(SliceOptions) => volume::slice,
+    /// Surfaces of constant value through a volume (marching cubes with the topology of the
+    /// trilinear interpolant, or marching tetrahedra), shaded in 3-D, several in depth order
+    /// with transparency; `--format glb`, `ply` or `obj` writes the surfaces.
+    Isosurface(IsosurfaceOptions) => volume::isosurface,
 }
 
 /// The facts of the kind named `name` in a spec, if there is one.

@@ -51,7 +51,7 @@ fn a_sphere_has_the_area_and_volume_of_a_sphere_with_spacing_honoured() {
     for spacing in [[1.0, 1.0, 1.0], [1.0, 1.0, 2.0]] {
         let n = [41, 41, (40.0 / spacing[2]) as usize + 1];
         let npy = volume_npy(n, spacing, distance);
-        let out = draw("iso = 12\n", spacing, &npy).unwrap_or_else(|e| panic!("{e}"));
+        let out = draw("levels = [12]\n", spacing, &npy).unwrap_or_else(|e| panic!("{e}"));
         let r: f64 = 12.0;
         let area = numbers(&out, "area")[0];
         let volume = numbers(&out, "enclosed_volume")[0].abs();
@@ -74,7 +74,7 @@ fn a_sphere_has_the_area_and_volume_of_a_sphere_with_spacing_honoured() {
         let grouped: String = shown
             .chars()
             .enumerate()
-            .flat_map(|(k, c)| ((k > 0 && (shown.len() - k) % 3 == 0).then_some(',').into_iter().chain([c])))
+            .flat_map(|(k, c)| (k > 0 && (shown.len() - k) % 3 == 0).then_some(',').into_iter().chain([c]))
             .collect();
         assert!(caption.starts_with(&format!("{grouped} triangles (marching cubes")), "{caption}");
     }
@@ -83,13 +83,13 @@ fn a_sphere_has_the_area_and_volume_of_a_sphere_with_spacing_honoured() {
 #[test]
 fn several_surfaces_draw_opaque_first_and_warn_about_values_outside_the_data() {
     let npy = volume_npy([41, 41, 41], [1.0; 3], distance);
-    let out = draw("iso = [6, 12, 99]\n", [1.0; 3], &npy).unwrap_or_else(|e| panic!("{e}"));
+    let out = draw("levels = [6, 12, 99]\n", [1.0; 3], &npy).unwrap_or_else(|e| panic!("{e}"));
     // Two surfaces exist (99 lies outside 0..34.6); the inner one (6) is opaque and drawn
     // before the translucent outer one.
     assert_eq!(mesh_labels(&out), ["value = 6", "value = 12"]);
     let warned: Vec<String> = out.warnings.iter().map(|w| w.message()).collect();
-    assert!(warned.iter().any(|w| w.contains("iso = 99 is outside the volume's values")), "{warned:?}");
-    let tetra = draw("iso = 12\nmethod = \"tetrahedra\"\nnormals = \"faces\"\n", [1.0; 3], &npy)
+    assert!(warned.iter().any(|w| w.contains("level 99 is outside the volume's values")), "{warned:?}");
+    let tetra = draw("levels = 12\nmethod = \"tetrahedra\"\nnormals = \"faces\"\n", [1.0; 3], &npy)
         .unwrap_or_else(|e| panic!("{e}"));
     let area = numbers(&tetra, "area")[0];
     assert!((area / (4.0 * std::f64::consts::PI * 144.0) - 1.0).abs() < 0.03, "{area}");
@@ -98,9 +98,10 @@ fn several_surfaces_draw_opaque_first_and_warn_about_values_outside_the_data() {
 #[test]
 fn surfaces_are_written_as_glb_ply_and_obj() {
     let npy = volume_npy([21, 21, 21], [1.0; 3], |p| distance([p[0] + 10.0, p[1] + 10.0, p[2] + 10.0]));
-    let fx = Fixture::new(&spec("iso = [4, 8]\n", [1.0; 3]), &[("field.npy", &npy)]);
-    let out = run_dataink(fx.dir.path(), &["render", "spec.toml", "--out", "out", "--format", "png,csv,glb,ply,obj"], 120)
-        .expect("finished");
+    let fx = Fixture::new(&spec("levels = [4, 8]\n", [1.0; 3]), &[("field.npy", &npy)]);
+    let out =
+        run_dataink(fx.dir.path(), &["render", "spec.toml", "--out", "out", "--format", "png,csv,glb,ply,obj"], 120)
+            .expect("finished");
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     let dir = fx.dir.path().join("out");
     let glb = std::fs::read(dir.join("iso.glb")).expect("glb");
@@ -122,7 +123,8 @@ fn surfaces_are_written_as_glb_ply_and_obj() {
     assert_eq!(obj.lines().filter(|l| l.starts_with("v ")).count(), vertices.iter().sum::<usize>());
     assert_eq!(obj.lines().filter(|l| l.starts_with("o ")).count(), 2);
     // The first surface's glTF positions lie on its sphere (radius 4 about the volume's middle).
-    let accessor = &doc["accessors"][doc["meshes"][0]["primitives"][0]["attributes"]["POSITION"].as_u64().expect("a") as usize];
+    let accessor =
+        &doc["accessors"][doc["meshes"][0]["primitives"][0]["attributes"]["POSITION"].as_u64().expect("a") as usize];
     let (lo, hi) = (&accessor["min"], &accessor["max"]);
     for a in 0..3 {
         let (l, h) = (lo[a].as_f64().expect("min"), hi[a].as_f64().expect("max"));
@@ -134,13 +136,13 @@ fn surfaces_are_written_as_glb_ply_and_obj() {
 fn bad_isosurface_specs_give_their_documented_errors() {
     let npy = volume_npy([5, 5, 5], [1.0; 3], |p| p[0]);
     for (chart, message) in [
-        ("iso = [1, 2, 3, 4, 5, 6, 7, 8, 9]", "9 iso values given; a chart draws 1 to 8 surfaces"),
-        ("iso = []", "0 iso values given"),
-        ("iso = [1, 2]\ncolors = [\"red\"]", "1 colours for 2 surfaces"),
-        ("iso = 1\ncolors = [\"nope\"]", "`nope` is not a colour"),
-        ("iso = 1\nopacity = 0", "opacity 0 is not in 0.05 to 1"),
-        ("iso = [1, 2]\nopacity = [0.5]", "1 opacities for 2 surfaces"),
-        ("iso = 1\nzoom = 0", "zoom"),
+        ("levels = [1, 2, 3, 4, 5, 6, 7, 8, 9]", "9 iso values given; a chart draws 1 to 8 surfaces"),
+        ("levels = []", "0 iso values given"),
+        ("levels = [1, 2]\ncolors = [\"red\"]", "1 colours for 2 surfaces"),
+        ("levels = 1\ncolors = [\"nope\"]", "`nope` is not a colour"),
+        ("levels = 1\nopacity = 0", "opacity 0 is not in 0.05 to 1"),
+        ("levels = [1, 2]\nopacity = [0.5]", "1 opacities for 2 surfaces"),
+        ("levels = 1\nzoom = 0", "zoom"),
     ] {
         let err = draw(chart, [1.0; 3], &npy).expect_err(chart);
         assert!(err.contains(message), "{chart}: {err}");

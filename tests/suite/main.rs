@@ -26,6 +26,7 @@ mod heatmap;
 mod histogram;
 mod hostile_inputs;
 mod hostile_work;
+mod isosurfaces;
 mod layout;
 mod line_band;
 mod lint;

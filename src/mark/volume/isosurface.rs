@@ -24,7 +24,7 @@ use super::box_frame;
 #[derive(Clone, Debug, Deserialize, Serialize, JsonSchema, PartialEq)]
 pub struct IsosurfaceOptions {
     /// The value of the surface, or several values (at most 8), one surface each.
-    pub iso: IsoValues,
+    pub levels: IsoValues,
     /// `cubes` (default: marching cubes with the topology of the trilinear interpolant) or
     /// `tetrahedra` (six per cube, for comparison).
     #[serde(default)]
@@ -157,26 +157,25 @@ pub fn draw(cx: &ChartContext<'_>, options: &IsosurfaceOptions) -> Result<ChartO
     for (k, &iso) in values.iter().enumerate() {
         if let Some((lo, hi)) = range.filter(|(lo, hi)| iso < *lo || iso > *hi) {
             warnings.push(Warning::Note(format!(
-                "chart \"{}\": iso = {} is outside the volume's values ({} to {}): no surface",
-                chart.name,
+                "level {} is outside the volume's values ({} to {}): no surface",
                 format_value(iso),
                 format_value(lo),
                 format_value(hi)
             )));
         }
         let mesh = isosurface::extract(&volume, iso, method, normals, None)
-            .map_err(|e| MarkError::at(&["iso"], format!("{e}"), "choose another value or crop the volume"))?;
+            .map_err(|e| MarkError::at(&["levels"], format!("{e}"), "choose another value or crop the volume"))?;
         surfaces.push(Surface { iso, mesh, color: colors[k], opacity: opacities[k] });
     }
     if options.opacity.is_none() {
         see_through_outer(&mut surfaces);
     }
     let view = view_of(options)?;
-    let sampler = Sampler::new(&volume).map_err(|e| MarkError::at(&["data"], e, "check the file's orientation header"))?;
+    let sampler =
+        Sampler::new(&volume).map_err(|e| MarkError::at(&["data"], e, "check the file's orientation header"))?;
     let corners = sampler.corners(Interpolation::Trilinear);
-    let ranges = [0, 1, 2].map(|a| {
-        corners.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), c| (lo.min(c[a]), hi.max(c[a])))
-    });
+    let ranges = [0, 1, 2]
+        .map(|a| corners.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), c| (lo.min(c[a]), hi.max(c[a]))));
     let camera = Camera::new(ranges, equal_extent(ranges), view)
         .map_err(|e| MarkError::at(&["azimuth"], format!("{e}"), "check the view settings"))?;
     let light = light_for(&view, options.specular.unwrap_or(false));
@@ -234,24 +233,31 @@ pub fn draw(cx: &ChartContext<'_>, options: &IsosurfaceOptions) -> Result<ChartO
     };
     let scene = canvas.scene(chart, items, Some(&caption));
     let meshes = surfaces.iter().filter(|s| !s.mesh.triangles.is_empty()).map(world_mesh).collect();
-    Ok(ChartOutput { scene, derived: derived(&surfaces), warnings, meshes, geojson: None, geometry: Default::default() })
+    Ok(ChartOutput {
+        scene,
+        derived: derived(&surfaces),
+        warnings,
+        meshes,
+        geojson: None,
+        geometry: Default::default(),
+    })
 }
 
 /// The iso values, 1 to [`MAX_SURFACES`], each finite.
 fn iso_values(options: &IsosurfaceOptions) -> Result<Vec<f64>, MarkError> {
-    let values = match &options.iso {
+    let values = match &options.levels {
         IsoValues::One(v) => vec![*v],
         IsoValues::Many(v) => v.clone(),
     };
     if values.is_empty() || values.len() > MAX_SURFACES {
         return Err(MarkError::at(
-            &["iso"],
+            &["levels"],
             format!("{} iso values given; a chart draws 1 to {MAX_SURFACES} surfaces", values.len()),
-            "give one value, e.g. iso = 300, or a short list",
+            "give one value, e.g. levels = [300], or a short list",
         ));
     }
     if let Some(bad) = values.iter().find(|v| !v.is_finite()) {
-        return Err(MarkError::at(&["iso"], format!("iso value {bad} is not a number"), "give finite values"));
+        return Err(MarkError::at(&["levels"], format!("iso value {bad} is not a number"), "give finite values"));
     }
     Ok(values)
 }
@@ -354,12 +360,7 @@ fn screen_mesh(s: &Surface, camera: &Camera, light: &Light, to_px: &impl Fn([f64
         let [r, g, b] = light.shade(*n, camera.toward_eye_from(model)).apply(rgb);
         colors.push(Color::rgb(r, g, b).with_opacity(s.opacity));
     }
-    Mesh {
-        positions: positions.into(),
-        indices: s.mesh.triangles.clone().into(),
-        colors: colors.into(),
-        normals: None,
-    }
+    Mesh { positions: positions.into(), indices: s.mesh.triangles.clone().into(), colors: colors.into(), normals: None }
 }
 
 fn world_mesh(s: &Surface) -> WorldMesh {

@@ -4,5 +4,6 @@
 
 pub mod box_frame;
 pub mod inset;
+pub mod isosurface;
 pub mod planes;
 pub mod slice;
