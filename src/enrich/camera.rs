@@ -365,6 +365,35 @@ impl Camera {
         ((sx - self.min.0) * self.scale + self.offset.0, (sy - self.min.1) * self.scale + self.offset.1)
     }
 
+    /// The ray through unit-square screen point `(sx, sy)`: a model point on it in front of the
+    /// whole box and its unit direction away from the viewer (from the eye, in perspective).
+    /// [`Camera::screen`] takes every point of the ray back to `(sx, sy)`.
+    pub fn ray(&self, sx: f64, sy: f64) -> ([f64; 3], [f64; 3]) {
+        let u = (sx - self.offset.0) / self.scale + self.min.0;
+        let v = (sy - self.offset.1) / self.scale + self.min.1;
+        let (r, up, e) = (self.right, self.up, self.eye);
+        let across = [u * r[0] + v * up[0], u * r[1] + v * up[1], u * r[2] + v * up[2]];
+        match self.eye_distance {
+            None => {
+                let back = dot(self.extent, self.extent).sqrt() + 1.0;
+                ([across[0] + back * e[0], across[1] + back * e[1], across[2] + back * e[2]], e.map(|c| -c))
+            }
+            Some(d) => {
+                let dir = normalized([across[0] - d * e[0], across[1] - d * e[1], across[2] - d * e[2]]);
+                (e.map(|c| d * c), dir)
+            }
+        }
+    }
+
+    /// The data point of a model point ([`Camera::model`] undone; a flat axis gives its low end).
+    pub fn data(&self, m: [f64; 3]) -> [f64; 3] {
+        std::array::from_fn(|a| {
+            let (lo, hi) = self.ranges[a];
+            let e = self.extent[a];
+            if e > 0.0 { lo + (m[a] / e + 0.5) * (hi - lo) } else { lo }
+        })
+    }
+
     /// Unit-square screen coordinates of a data point.
     pub fn project(&self, p: [f64; 3]) -> (f64, f64) {
         self.screen(self.model(p))
@@ -433,6 +462,83 @@ impl Camera {
     }
 }
 
+/// A box edge chosen to carry one axis's ticks.
+#[derive(Debug, Clone, PartialEq)]
+pub struct AxisLine {
+    /// The data axis the line runs along: 0 for x, 1 for y, 2 for z.
+    pub axis: usize,
+    /// Data point `[x, y, z]` at the low end of the axis.
+    pub from: [f64; 3],
+    /// Data point `[x, y, z]` at the high end of the axis.
+    pub to: [f64; 3],
+    /// Screen position of `from`.
+    pub start: (f64, f64),
+    /// Screen position of `to`.
+    pub end: (f64, f64),
+    /// Unit screen direction pointing away from the box, for tick marks and labels.
+    pub outward: (f64, f64),
+}
+
+impl AxisLine {
+    /// The data point on this line where the axis coordinate is `value` (pass it to
+    /// [`Camera::project`] to place a tick).
+    pub fn at(&self, value: f64) -> [f64; 3] {
+        let mut p = self.from;
+        let k = self.axis;
+        if let Some(c) = p.get_mut(k) {
+            *c = value;
+        }
+        p
+    }
+}
+
+/// Screen direction of the model direction `d`, normalised; `fallback` when it is edge-on.
+fn screen_direction(t: &Camera, d: [f64; 3], fallback: (f64, f64)) -> (f64, f64) {
+    let (right, up) = t.screen_axes();
+    let (sx, sy) = (dot(right, d), dot(up, d));
+    let len = sx.hypot(sy);
+    if len > 1e-9 { (sx / len, sy / len) } else { fallback }
+}
+
+/// The box edges carrying each axis's ticks: x and y along the edges of the bottom face lowest
+/// on screen (nearest the camera when seen from above), z along the leftmost vertical edge.
+pub fn axis_lines(t: &Camera) -> [AxisLine; 3] {
+    let [(x0, x1), (y0, y1), (z0, z1)] = t.ranges();
+    let eye = t.toward_camera();
+    let line = |axis, from: [f64; 3], to: [f64; 3], outward| AxisLine {
+        axis,
+        from,
+        to,
+        start: t.project(from),
+        end: t.project(to),
+        outward,
+    };
+    // The camera is on the high side of an axis when the eye vector points that way. Seen from
+    // below, the bottom face shows and its far edges are the lowest on screen.
+    let below = eye[2] < 0.0;
+    let near_y_high = (eye[1] > 0.0) != below;
+    let near_x_high = (eye[0] > 0.0) != below;
+    let y_near = if near_y_high { y1 } else { y0 };
+    let x_near = if near_x_high { x1 } else { x0 };
+    let x_out = screen_direction(t, [0.0, if near_y_high { 1.0 } else { -1.0 }, 0.0], (0.0, -1.0));
+    let y_out = screen_direction(t, [if near_x_high { 1.0 } else { -1.0 }, 0.0, 0.0], (0.0, -1.0));
+    // Leftmost vertical edge: the bottom corner with the smallest screen x.
+    let mut best = (x0, y0);
+    let mut best_sx = f64::INFINITY;
+    for (x, y) in [(x0, y0), (x1, y0), (x0, y1), (x1, y1)] {
+        let (sx, _) = t.project([x, y, z0]);
+        if sx < best_sx {
+            best_sx = sx;
+            best = (x, y);
+        }
+    }
+    [
+        line(0, [x0, y_near, z0], [x1, y_near, z0], x_out),
+        line(1, [x_near, y0, z0], [x_near, y1, z0], y_out),
+        line(2, [best.0, best.1, z0], [best.0, best.1, z1], (-1.0, 0.0)),
+    ]
+}
+
 /// Model extents that keep the data box's proportions, the longest side 1 (a flat axis gets 0;
 /// all-flat gives zeros).
 pub fn equal_extent(ranges: [(f64, f64); 3]) -> [f64; 3] {
@@ -497,6 +603,29 @@ mod tests {
 
     fn perspective(az: f64, el: f64, fov_deg: f64) -> View {
         View { projection: Projection::Perspective { fov_deg }, ..View::new(az, el) }
+    }
+
+    #[test]
+    fn rays_project_back_to_their_screen_point() {
+        let ranges = [(0.0, 4.0), (-1.0, 1.0), (10.0, 13.0)];
+        for projection in [Projection::Orthographic, Projection::Perspective { fov_deg: 30.0 }] {
+            let view = View { azimuth_deg: -50.0, elevation_deg: 35.0, zoom: 1.3, projection };
+            let cam = Camera::new(ranges, equal_extent(ranges), view).unwrap();
+            for (sx, sy) in [(0.5, 0.5), (0.2, 0.7), (0.9, 0.1)] {
+                let (o, d) = cam.ray(sx, sy);
+                assert!((dot(d, d) - 1.0).abs() < 1e-12);
+                // In perspective the ray starts at the eye, which has no screen point.
+                for t in [0.3, 0.7, 1.9] {
+                    let m = [o[0] + t * d[0], o[1] + t * d[1], o[2] + t * d[2]];
+                    let (x, y) = cam.screen(m);
+                    assert!((x - sx).abs() < 1e-9 && (y - sy).abs() < 1e-9, "{projection:?} {t}: {x} {y}");
+                    let back = cam.model(cam.data(m));
+                    assert!((0..3).all(|a| (back[a] - m[a]).abs() < 1e-9));
+                }
+                // The origin lies in front of the box: nearer the viewer than every corner.
+                assert!(cam.corners().iter().all(|c| cam.distance(*c) > cam.distance(o)));
+            }
+        }
     }
 
     #[test]

@@ -39,8 +39,8 @@
 
 use std::fmt;
 
-use super::camera::{Camera, CameraError, cross, dot, span_ratio, sub};
-pub use super::camera::{Light, View};
+pub use super::camera::{AxisLine, Light, View};
+use super::camera::{Camera, CameraError, axis_lines, cross, span_ratio, sub};
 use super::grid::Grid;
 
 /// Largest number of cells drawn along each grid axis; larger grids are decimated by striding.
@@ -99,40 +99,6 @@ pub struct BoxEdge {
     /// everything inside the box. Draw hidden edges before the quads (or dashed), the others
     /// after.
     pub hidden: bool,
-}
-
-/// A box edge chosen to carry one axis's ticks.
-#[derive(Debug, Clone, PartialEq)]
-pub struct AxisLine {
-    /// The data axis the line runs along.
-    pub axis: SurfaceAxis,
-    /// Data point `[x, y, z]` at the low end of the axis.
-    pub from: [f64; 3],
-    /// Data point `[x, y, z]` at the high end of the axis.
-    pub to: [f64; 3],
-    /// Screen position of `from`.
-    pub start: (f64, f64),
-    /// Screen position of `to`.
-    pub end: (f64, f64),
-    /// Unit screen direction pointing away from the box, for tick marks and labels.
-    pub outward: (f64, f64),
-}
-
-impl AxisLine {
-    /// The data point on this line where the axis coordinate is `value` (pass it to
-    /// [`SurfaceProjection::project_point`] to place a tick).
-    pub fn at(&self, value: f64) -> [f64; 3] {
-        let mut p = self.from;
-        let k = match self.axis {
-            SurfaceAxis::X => 0,
-            SurfaceAxis::Y => 1,
-            SurfaceAxis::Z => 2,
-        };
-        if let Some(c) = p.get_mut(k) {
-            *c = value;
-        }
-        p
-    }
 }
 
 /// The projected surface: quads in painter's order, box edges, axis lines.
@@ -412,51 +378,6 @@ fn box_edges(t: &Camera, corners: &[[f64; 3]; 8]) -> Vec<BoxEdge> {
         }
     }
     edges
-}
-
-/// Screen direction of the model direction `d`, normalised; `fallback` when it is edge-on.
-fn screen_direction(t: &Camera, d: [f64; 3], fallback: (f64, f64)) -> (f64, f64) {
-    let (right, up) = t.screen_axes();
-    let (sx, sy) = (dot(right, d), dot(up, d));
-    let len = sx.hypot(sy);
-    if len > 1e-9 { (sx / len, sy / len) } else { fallback }
-}
-
-/// Tick lines: x and y along the bottom edges nearest the camera, z along the leftmost vertical
-/// edge.
-fn axis_lines(t: &Camera) -> [AxisLine; 3] {
-    let [(x0, x1), (y0, y1), (z0, z1)] = t.ranges();
-    let eye = t.toward_camera();
-    let line = |axis, from: [f64; 3], to: [f64; 3], outward| AxisLine {
-        axis,
-        from,
-        to,
-        start: t.project(from),
-        end: t.project(to),
-        outward,
-    };
-    // The camera is on the high side of an axis when the eye vector points that way.
-    let near_y_high = eye[1] > 0.0;
-    let near_x_high = eye[0] > 0.0;
-    let y_near = if near_y_high { y1 } else { y0 };
-    let x_near = if near_x_high { x1 } else { x0 };
-    let x_out = screen_direction(t, [0.0, if near_y_high { 1.0 } else { -1.0 }, 0.0], (0.0, -1.0));
-    let y_out = screen_direction(t, [if near_x_high { 1.0 } else { -1.0 }, 0.0, 0.0], (0.0, -1.0));
-    // Leftmost vertical edge: the bottom corner with the smallest screen x.
-    let mut best = (x0, y0);
-    let mut best_sx = f64::INFINITY;
-    for (x, y) in [(x0, y0), (x1, y0), (x0, y1), (x1, y1)] {
-        let (sx, _) = t.project([x, y, z0]);
-        if sx < best_sx {
-            best_sx = sx;
-            best = (x, y);
-        }
-    }
-    [
-        line(SurfaceAxis::X, [x0, y_near, z0], [x1, y_near, z0], x_out),
-        line(SurfaceAxis::Y, [x_near, y0, z0], [x_near, y1, z0], y_out),
-        line(SurfaceAxis::Z, [best.0, best.1, z0], [best.0, best.1, z1], (-1.0, 0.0)),
-    ]
 }
 
 /// Node indices kept along an axis of `n` nodes and the stride: every `s`-th node plus the last,
@@ -792,10 +713,10 @@ mod tests {
         let g = Grid::from_fn(lin(4, 1.0), lin(3, 1.0), |x, y| x + y).unwrap();
         let p = project(&g, View::default(), Light::default(), None).unwrap();
         let [x, y, z] = &p.axes;
-        assert_eq!((x.axis, x.from, x.to), (SurfaceAxis::X, [0.0, 0.0, 0.0], [3.0, 0.0, 0.0]));
-        assert_eq!((y.axis, y.from, y.to), (SurfaceAxis::Y, [3.0, 0.0, 0.0], [3.0, 2.0, 0.0]));
+        assert_eq!((x.axis, x.from, x.to), (0, [0.0, 0.0, 0.0], [3.0, 0.0, 0.0]));
+        assert_eq!((y.axis, y.from, y.to), (1, [3.0, 0.0, 0.0], [3.0, 2.0, 0.0]));
         // Leftmost vertical edge in the default view: the near-left corner (x0, y0).
-        assert_eq!((z.axis, z.from, z.to), (SurfaceAxis::Z, [0.0, 0.0, 0.0], [0.0, 0.0, 5.0]));
+        assert_eq!((z.axis, z.from, z.to), (2, [0.0, 0.0, 0.0], [0.0, 0.0, 5.0]));
         assert_eq!(x.start, p.project_point(0.0, 0.0, 0.0));
         assert_eq!(x.at(1.5), [1.5, 0.0, 0.0]);
         assert_eq!(z.at(2.0), [0.0, 0.0, 2.0]);

@@ -417,6 +417,9 @@ registry! {
     /// trilinear interpolant, or marching tetrahedra), shaded in 3-D, several in depth order
     /// with transparency; `--format glb`, `ply` or `obj` writes the surfaces.
     Isosurface(IsosurfaceOptions) => volume::isosurface,
+    /// Direct volume rendering by ray casting: compositing through an opacity and colour
+    /// transfer function, maximum intensity projection or the mean along each ray.
+    Volume(VolumeOptions) => volume::direct,
 }
 
 /// The facts of the kind named `name` in a spec, if there is one.

@@ -239,7 +239,8 @@ mod tests {
             let own: &[&str] = match *kind {
                 "hyperslice" => &["axes", "z"],
                 "splom" | "parallel" | "daisy" | "segments" => &["columns"],
-                "faces" | "slice" => &[],
+                "faces" | "slice" | "volume" => &[],
+                "isosurface" => &["levels"],
                 "box" | "violin" => &["y"],
                 "histogram" => &["x"],
                 "treemap" | "hypertree" => &["tree"],
@@ -284,9 +285,9 @@ mod tests {
         walk(&schema, &mut count);
         // Spec, DataSource, Selection, LintConfig, ChannelOptions, ColorOptions, SizeOptions,
         // FaceFeatures, TreeSource, NodeTable, TransformStep, TrendOptions, LineBandOptions,
-        // BarLabelOptions, FacetOptions, FacetResolve, Annotation, PlaneSpec, ValueColor and one
-        // branch per kind.
-        assert_eq!(count, 19 + crate::mark::registry::KINDS.len());
+        // BarLabelOptions, FacetOptions, FacetResolve, Annotation, PlaneSpec, ValueColor,
+        // ValueLabel and one branch per kind.
+        assert_eq!(count, 20 + crate::mark::registry::KINDS.len());
         // Maps stay open: any data source name, any column in inline rows.
         assert_eq!(schema["properties"]["data"]["additionalProperties"]["$ref"], "#/$defs/DataSource");
         assert_eq!(def(&schema, "DataSource")["properties"]["values"]["items"]["additionalProperties"], true);

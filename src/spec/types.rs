@@ -145,6 +145,11 @@ pub struct DataSource {
     #[serde(default)]
     #[schemars(transform = positive_items, example = [1.0, 1.0, 2.5])]
     pub spacing: Option<[f64; 3]>,
+    /// For volumes from a 3-D `.npy` array or a raw file: the world position of voxel
+    /// `(0, 0, 0)` (default `[0, 0, 0]`; NIfTI files carry their own).
+    #[serde(default)]
+    #[schemars(example = [-1.0, -1.0, -1.0])]
+    pub origin: Option<[f64; 3]>,
     /// For raw volumes (`format = "raw"`): the number of voxels along x, y and z, x varying
     /// fastest in the file.
     #[serde(default)]

@@ -231,3 +231,16 @@ pub fn axis_titles(out: &ChartOutput) -> Vec<String> {
     });
     titles
 }
+
+/// A 3-D `.npy` (shape nz × ny × nx, x fastest) of `f(i, j, k)` as f64.
+pub fn volume_npy(n: [usize; 3], f: impl Fn(f64, f64, f64) -> f64) -> Vec<u8> {
+    let mut data = Vec::new();
+    for k in 0..n[2] {
+        for j in 0..n[1] {
+            for i in 0..n[0] {
+                data.extend(f(i as f64, j as f64, k as f64).to_le_bytes());
+            }
+        }
+    }
+    npy("<f8", &format!("({}, {}, {})", n[2], n[1], n[0]), &data)
+}

@@ -89,6 +89,9 @@ fn several_surfaces_draw_opaque_first_and_warn_about_values_outside_the_data() {
     assert_eq!(mesh_labels(&out), ["value = 6", "value = 12"]);
     let warned: Vec<String> = out.warnings.iter().map(|w| w.message()).collect();
     assert!(warned.iter().any(|w| w.contains("level 99 is outside the volume's values")), "{warned:?}");
+    // Opaque surfaces share one mesh, so its depth buffer decides which hides which.
+    let opaque = draw("levels = [6, 12]\nopacity = 1\n", [1.0; 3], &npy).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(mesh_labels(&opaque), ["values = 6, 12"]);
     let tetra = draw("levels = 12\nmethod = \"tetrahedra\"\nnormals = \"faces\"\n", [1.0; 3], &npy)
         .unwrap_or_else(|e| panic!("{e}"));
     let area = numbers(&tetra, "area")[0];
@@ -147,4 +150,28 @@ fn bad_isosurface_specs_give_their_documented_errors() {
         let err = draw(chart, [1.0; 3], &npy).expect_err(chart);
         assert!(err.contains(message), "{chart}: {err}");
     }
+}
+
+#[test]
+fn the_readme_example_draws_the_orbitals_lobes_and_torus_lint_clean() {
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let readme = std::fs::read_to_string(root.join("README.md")).expect("README");
+    let start =
+        readme.find("[data.hydrogen]\npath = \"data/hydrogen-3dz2.npy\"").expect("the README's isosurface example");
+    let block = &readme[start..start + readme[start..].find("```").expect("end of block")];
+    let npy = std::fs::read(root.join("examples/data/hydrogen-3dz2.npy")).expect("the shipped field");
+    let fx = Fixture::new(block, &[("data/hydrogen-3dz2.npy", &npy)]);
+    let out = fx.draw().unwrap_or_else(|e| panic!("{e}")).remove(0);
+    // The 3dz² density |ψ|², ψ ∝ r²e^(−r/3)(3cos²θ − 1): along z the lobes peak at 4× the torus
+    // around the waist. At half the peak only the two lobes remain (two spheres: χ = 2 + 2); at
+    // a tenth the torus (χ = 0) joins them; every surface stays inside the box, so is closed.
+    assert_eq!(numbers(&out, "iso"), [0.01, 0.1, 0.5]);
+    let components = numbers(&out, "components");
+    let euler = numbers(&out, "euler_characteristic");
+    assert_eq!((components[2], euler[2]), (2.0, 4.0));
+    assert_eq!((components[1], euler[1]), (3.0, 4.0));
+    // The 0.5 surface is drawn first and opaque; the two around it see-through.
+    assert_eq!(mesh_labels(&out), ["value = 0.5", "value = 0.1", "value = 0.01"]);
+    let lint = fx.lint().unwrap_or_else(|e| panic!("{e}"));
+    assert!(lint[0].findings.is_empty(), "{:?}", lint[0].findings);
 }

@@ -96,9 +96,11 @@ fn every_chart_is_labelled() {
         });
         assert!(marks >= 1, "{name} has data marks");
         // Marks drawn one per row keep their rows; derived geometry (contour lines, sections,
-        // surface quads, slices) is not one row per mark.
+        // surface quads, slices, isosurfaces, ray-cast images) is not one row per mark.
         // Hyperbolic-tree edges are geometry between two rows' nodes.
-        let derived = ["contour", "section", "surface", "hyperslice", "hypertree", "flow", "slice"].contains(&kind);
+        let derived =
+            ["contour", "section", "surface", "hyperslice", "hypertree", "flow", "slice", "isosurface", "volume"]
+                .contains(&kind);
         if !derived {
             assert_eq!(with_rows, marks, "{name}: every data mark keeps its source rows");
         }

@@ -41,4 +41,5 @@ mod slices;
 mod tooltips;
 mod transform;
 mod trend;
+mod volume_rendering;
 mod volumes;

@@ -2,23 +2,10 @@
 //! analytic fields the volumes sample, shapes against the known sections of a cube, contour
 //! lines against circles of a radial field, and bad specs against their documented errors.
 
-use crate::common::{Fixture, numbers};
+use crate::common::{Fixture, numbers, volume_npy};
 use dataink::guide::color;
 use dataink::mark::ChartOutput;
 use dataink::scene::{Item, PathCmd, Raster, Role, Shape};
-
-/// A 3-D `.npy` (shape nz × ny × nx, x fastest) of `f(i, j, k)` as f64.
-fn volume_npy(n: [usize; 3], f: impl Fn(f64, f64, f64) -> f64) -> Vec<u8> {
-    let mut data = Vec::new();
-    for k in 0..n[2] {
-        for j in 0..n[1] {
-            for i in 0..n[0] {
-                data.extend(f(i as f64, j as f64, k as f64).to_le_bytes());
-            }
-        }
-    }
-    crate::common::npy("<f8", &format!("({}, {}, {})", n[2], n[1], n[0]), &data)
-}
 
 fn draw_one(chart: &str, spacing: &str, npy: &[u8]) -> Result<ChartOutput, String> {
     let spec = format!(

@@ -73,7 +73,7 @@ fn raw_big_endian_and_3d_npy_sources() {
     raw.extend(values.iter().flat_map(|v| v.to_be_bytes()));
     let data: Vec<u8> = (0..24i16).flat_map(|v| (-v).to_le_bytes()).collect();
     let npy_3d = crate::common::npy("<i2", "(2, 3, 4)", &data);
-    let spec = "[data.t]\npath = \"t.csv\"\n[data.ct]\npath = \"ct.raw\"\nformat = \"raw\"\ndims = [4, 3, 2]\ndtype = \"u16\"\nbyte_order = \"big\"\nspacing = [0.5, 0.5, 1.5]\nheader_bytes = 16\n\n[data.field]\npath = \"field.npy\"\nspacing = [1, 2, 3]\n\n[data.grid]\npath = \"grid.npy\"\n";
+    let spec = "[data.t]\npath = \"t.csv\"\n[data.ct]\npath = \"ct.raw\"\nformat = \"raw\"\ndims = [4, 3, 2]\ndtype = \"u16\"\nbyte_order = \"big\"\nspacing = [0.5, 0.5, 1.5]\nheader_bytes = 16\n\n[data.field]\npath = \"field.npy\"\nspacing = [1, 2, 3]\norigin = [-1.5, 0, 10]\n\n[data.grid]\npath = \"grid.npy\"\n";
     let grid = crate::common::npy_f8(2, 2, &[1.0, 2.0, 3.0, 4.0]);
     let spec = format!("{spec}{SCATTER}");
     let files: &[(&str, &[u8])] =
@@ -85,6 +85,9 @@ fn raw_big_endian_and_3d_npy_sources() {
     assert_eq!(ct.spacing(), [0.5, 0.5, 1.5]);
     let field = &loaded.volumes["field"];
     assert_eq!((field.dims(), field.value(3, 2, 1), field.spacing()), ([4, 3, 2], -23.0, [1.0, 2.0, 3.0]));
+    // `origin` places voxel (0, 0, 0); the spacing still steps from it.
+    assert_eq!(field.affine(), [[1.0, 0.0, 0.0, -1.5], [0.0, 2.0, 0.0, 0.0], [0.0, 0.0, 3.0, 10.0]]);
+    assert_eq!(ct.affine()[0][3], 0.0, "the default origin is 0");
     assert!(loaded.tables.contains_key("grid") && !loaded.volumes.contains_key("grid"), "a 2-D array stays a grid");
 }
 
@@ -99,6 +102,7 @@ fn keys_that_do_not_fit_the_source_are_errors() {
     let files: &[(&str, &[u8])] = &[("v.nii", &nii), ("t.csv", b"x,y\n1,2\n")];
     let cases = [
         ("[data.v]\npath = \"v.nii\"\nspacing = [1, 1, 1]\n", "data \"v\": `spacing` does not apply to NIfTI-1 files"),
+        ("[data.v]\npath = \"v.nii\"\norigin = [1, 2, 3]\n", "data \"v\": `origin` does not apply to NIfTI-1 files"),
         ("[data.v]\npath = \"v.nii\"\nframe = 7\n", "`frame = 7` asks for volume 7, but the file holds 3 (0 to 2)"),
         (
             "[data.v]\npath = \"v.nii\"\ntransform = [{ filter = \"x > 1\" }]\n",

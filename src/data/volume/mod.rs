@@ -140,6 +140,20 @@ impl Volume {
         Ok(self)
     }
 
+    /// The same volume moved so that voxel `(0, 0, 0)` lies at `origin`, or why it cannot be
+    /// (a coordinate that is not a finite number).
+    pub fn with_origin(mut self, origin: [f64; 3]) -> Result<Volume, String> {
+        if let Some(bad) = origin.iter().find(|c| !c.is_finite()) {
+            return Err(format!(
+                "origin {origin:?} has {bad}, which is not a finite number; give the position of the first voxel"
+            ));
+        }
+        for (row, o) in self.affine.iter_mut().zip(origin) {
+            row[3] = o;
+        }
+        Ok(self)
+    }
+
     /// The same volume with its stored values mapped by `scale` on read (`None`: as stored).
     pub fn with_scale(mut self, scale: Option<Scale>) -> Volume {
         self.scale = scale.filter(|s| s.slope != 0.0 && s.slope.is_finite() && s.inter.is_finite());
@@ -298,5 +312,15 @@ mod tests {
         assert!(err.contains("take 2147483648 bytes, more than the limit of 1073741824"), "{err}");
         assert_eq!(check_size([512, 512, 1024], VoxelType::F32), Ok(1 << 28));
         assert!(check_spacing([1.0, f64::NAN, 1.0]).is_err_and(|e| e.contains("along y")));
+    }
+
+    #[test]
+    fn an_origin_moves_voxel_zero_and_must_be_finite() {
+        let v = Volume::new([2, 2, 2], Voxels::U8(vec![0; 8]), [1.0, 2.0, 3.0]).expect("volume");
+        let moved = v.clone().with_origin([-1.0, 5.0, 0.5]).expect("finite");
+        assert_eq!(moved.world(0.0, 0.0, 0.0), [-1.0, 5.0, 0.5]);
+        assert_eq!(moved.world(1.0, 1.0, 1.0), [0.0, 7.0, 3.5]);
+        let err = v.with_origin([0.0, f64::INFINITY, 0.0]).expect_err("infinite");
+        assert!(err.contains("not a finite number"), "{err}");
     }
 }

@@ -28,6 +28,7 @@ pub struct VolumeData {
 pub fn volume_key(source: &DataSource) -> Option<&'static str> {
     [
         ("spacing", source.spacing.is_some()),
+        ("origin", source.origin.is_some()),
         ("dims", source.dims.is_some()),
         ("dtype", source.dtype.is_some()),
         ("byte_order", source.byte_order.is_some()),
@@ -54,12 +55,11 @@ fn misplaced_key(source: &DataSource, format: DataFormat) -> Option<&'static str
         ("byte_order", source.byte_order.is_some()),
         ("header_bytes", source.header_bytes.is_some()),
     ];
-    let others = match format {
-        DataFormat::Nifti => [("spacing", source.spacing.is_some())],
-        _ => [("frame", source.frame.is_some())],
-    };
+    let nifti_only = [("frame", source.frame.is_some())];
+    let header_given = [("spacing", source.spacing.is_some()), ("origin", source.origin.is_some())];
+    let others = if format == DataFormat::Nifti { &header_given[..] } else { &nifti_only[..] };
     let raw_only = if format == DataFormat::Raw { &[][..] } else { &raw_only[..] };
-    table_only.iter().chain(raw_only).chain(&others).find_map(|&(key, given)| given.then_some(key))
+    table_only.iter().chain(raw_only).chain(others).find_map(|&(key, given)| given.then_some(key))
 }
 
 /// Whether a file name's format (its extension before any `.gz`/`.zst`) is `ext`.
@@ -157,6 +157,12 @@ fn read(
             super::raw::read(resolved, layout)?
         }
         _ => super::npy::read(resolved, source.spacing.unwrap_or([1.0; 3]))?,
+    };
+    let volume = match source.origin {
+        Some(origin) if format != DataFormat::Nifti => volume
+            .with_origin(origin)
+            .map_err(|message| LoadError::Parse { origin: format!("`{}`", resolved.display()), format, message })?,
+        _ => volume,
     };
     Ok(VolumeData { volume, format, files, warnings })
 }

@@ -4,19 +4,15 @@
 
 use crate::data::Table;
 use crate::enrich::camera::{Light, Shade, View};
-use crate::enrich::surface::{self, AxisLine, SurfaceProjection};
-use crate::guide::Theme;
+use crate::enrich::surface::{self, SurfaceProjection};
 use crate::guide::axis::title_with_unit;
-use crate::guide::format::format_ticks;
 use crate::guide::legend::Legend;
-use crate::guide::ticks::extended;
 use crate::mark::derived::Derived;
 use crate::mark::gridded::{self, GridInput};
 use crate::mark::registry::{ChartContext, ColourSpec, KindInfo, Technique};
-use crate::mark::{ChartOutput, MarkError, encode, frame};
-use crate::scene::{Anchor, Baseline, Color, Item, Mesh, PathCmd, Point, Rect, Role, Shape, Style, Text};
+use crate::mark::{ChartOutput, MarkError, axis3d, encode, frame};
+use crate::scene::{Color, Item, Mesh, PathCmd, Point, Rect, Role, Shape, Style};
 use crate::spec::{Channel, Chart, ColorChannel, defaults};
-use crate::text::measure;
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
@@ -109,9 +105,9 @@ pub fn draw(chart: &Chart, options: &SurfaceOptions, table: &Table) -> Result<Ch
         z_title,
     ];
     let ranges = [projection.x_range, projection.y_range, projection.z_range];
-    for (((line, title), range), name) in projection.axes.iter().zip(&titles).zip(ranges).zip(AXIS_NAMES) {
-        items.extend(axis_items(&projection, line, (name, title), range, &to_px, &theme));
-    }
+    let project = |p: [f64; 3]| to_px(projection.project_point(p[0], p[1], p[2]));
+    let [tx, ty, tz] = &titles;
+    items.extend(axis3d::draw_all(&projection.axes, [tx, ty, tz], ranges, &project, &theme));
     let scene = canvas.scene(chart, items, None);
 
     let derived = Derived::of_rows(rows, &[&x_opts.field, &y_opts.field, &z_opts.field]);
@@ -142,103 +138,6 @@ fn cell_mesh(
         indices.push([first, first + 2, first + 3]);
     }
     Mesh { positions: positions.into(), indices: indices.into(), colors: colors.into(), normals: None }
-}
-
-/// The scene labels of the projected axes' items, in the order x, y, z.
-const AXIS_NAMES: [&str; 3] = ["x axis", "y axis", "z axis"];
-
-/// Nice tick values within `range` (at least two when a finer step gives them: a short axis
-/// over a narrow range can hold a single nice value, which shows no scale) and their step.
-fn ticks_inside(range: (f64, f64), target: usize) -> (Vec<f64>, f64) {
-    let within = |target: usize| {
-        let ticks = extended(range.0, range.1, target, false);
-        let inside: Vec<f64> =
-            ticks.values.iter().copied().filter(|v| *v >= range.0 - 1e-12 && *v <= range.1 + 1e-12).collect();
-        (inside, ticks.step)
-    };
-    let first = within(target);
-    if first.0.len() >= 2 || range.1 <= range.0 {
-        return first;
-    }
-    (target + 1..=MAX_TICKS).map(within).find(|(inside, _)| inside.len() >= 2).unwrap_or(first)
-}
-
-/// The most ticks [`ticks_inside`] asks for on one projected axis.
-const MAX_TICKS: usize = 10;
-
-/// Tick marks, tick labels and the title of one projected axis; the ticks and their labels
-/// are labelled with the axis's `name`.
-fn axis_items(
-    projection: &SurfaceProjection,
-    line: &AxisLine,
-    (name, title): (&str, &str),
-    range: (f64, f64),
-    to_px: &impl Fn((f64, f64)) -> Point,
-    theme: &Theme,
-) -> Vec<Item> {
-    let mut items = Vec::new();
-    let (start, end) = (to_px(line.start), to_px(line.end));
-    let length = (end.x - start.x).hypot(end.y - start.y);
-    let target = ((length / (theme.font_size * 6.0)).round() as usize).clamp(2, 6);
-    let (inside, step) = ticks_inside(range, target);
-    let labels = format_ticks(&inside, step);
-    // `outward` is in screen units with y up; canvas y runs down.
-    let (nx, ny) = (line.outward.0, -line.outward.1);
-    let anchor = if nx > 0.3 {
-        Anchor::Start
-    } else if nx < -0.3 {
-        Anchor::End
-    } else {
-        Anchor::Middle
-    };
-    let baseline = if ny > 0.3 {
-        Baseline::Top
-    } else if ny < -0.3 {
-        Baseline::Bottom
-    } else {
-        Baseline::Middle
-    };
-    let mut cmds = Vec::new();
-    let mut widest: f64 = 0.0;
-    for (v, label) in inside.iter().zip(labels) {
-        let [x, y, z] = line.at(*v);
-        let p = to_px(projection.project_point(x, y, z));
-        let tip = Point::new(p.x + nx * theme.tick_length, p.y + ny * theme.tick_length);
-        cmds.push(PathCmd::MoveTo(p));
-        cmds.push(PathCmd::LineTo(tip));
-        widest = widest.max(measure(&label, theme.font_size).width);
-        items.push(
-            Item::text(
-                Role::TickLabel,
-                Text {
-                    at: Point::new(tip.x + nx * 3.0, tip.y + ny * 3.0),
-                    content: label,
-                    size: theme.font_size,
-                    anchor,
-                    baseline,
-                    angle: 0.0,
-                    color: theme.muted_text,
-                },
-            )
-            .labelled(name),
-        );
-    }
-    items.push(Item::new(Role::Axis, Shape::Path(cmds), Style::stroke(theme.axis, 1.0)).labelled(name));
-    let mid = Point::new((start.x + end.x) / 2.0, (start.y + end.y) / 2.0);
-    let away = theme.tick_length + 6.0 + if nx.abs() > 0.3 { widest } else { theme.font_size * 1.2 };
-    items.push(Item::text(
-        Role::AxisTitle,
-        Text {
-            at: Point::new(mid.x + nx * away, mid.y + ny * (away + theme.font_size * 0.3)),
-            content: title.to_string(),
-            size: theme.label_size,
-            anchor,
-            baseline,
-            angle: 0.0,
-            color: theme.text,
-        },
-    ));
-    items
 }
 
 /// `kind = "surface"`.

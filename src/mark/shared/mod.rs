@@ -1,10 +1,11 @@
 //! Pieces the kinds share: categories in bands (`bands`), channels and the non-finite policy (`encode`), the cartesian frame,
 //! selections drawn (`highlight`), derived output, categorical colours, gridded input, trees and
 //! networks read from tables, marker sizes, rasters, contour labels, node-link drawing, hover texts (`tooltip`),
-//! group spreads (mean, stdev, standard error, t-based confidence intervals, range: `spread`), trend lines (`trend`) and annotations (`annotate`).
+//! group spreads (mean, stdev, standard error, t-based confidence intervals, range: `spread`), trend lines (`trend`), annotations (`annotate`) and the axes of a 3-D box (`axis3d`).
 //! Nothing here imports a kind.
 
 pub mod annotate;
+pub mod axis3d;
 pub mod bands;
 pub mod categorical;
 pub mod derived;

@@ -3,9 +3,9 @@
 //! 3-D camera, several of them in depth order with transparency, in the volume's box with its
 //! axes; `--format glb`, `ply` or `obj` writes the surfaces themselves.
 
-use crate::enrich::camera::{Camera, Light, Projection, Specular, View, equal_extent};
+use crate::enrich::camera::{Camera, Light};
+use crate::enrich::volume::Sampler;
 use crate::enrich::volume::isosurface::{self, IsoMesh, Method, NormalRule};
-use crate::enrich::volume::{Interpolation, Sampler};
 use crate::guide::axis::title_with_unit;
 use crate::guide::color;
 use crate::guide::format::format_value;
@@ -14,11 +14,11 @@ use crate::mark::derived::{Derived, DerivedColumn};
 use crate::mark::registry::{ChartContext, KindInfo, Technique};
 use crate::mark::warning::Warning;
 use crate::mark::{ChartOutput, MarkError, frame};
-use crate::scene::{Color, Item, Mesh, Point, Rect, Role, Shape, Style, WorldMesh};
+use crate::scene::{Color, Item, Mesh, Point, Role, Shape, Style, WorldMesh};
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
-use super::box_frame;
+use super::box_frame::{self, BoxView, ProjectionKind, ValueLabel};
 
 /// Options of `kind = "isosurface"`.
 #[derive(Clone, Debug, Deserialize, Serialize, JsonSchema, PartialEq)]
@@ -33,16 +33,17 @@ pub struct IsosurfaceOptions {
     /// triangle normals).
     #[serde(default)]
     pub normals: Option<IsoNormals>,
-    /// One colour per surface (CSS names or `#rrggbb`; default: the `okabe-ito` palette).
+    /// One colour per surface (CSS names or `#rrggbb`; default: a light bone tone for one surface,
+    /// the `okabe-ito` palette for several).
     #[serde(default)]
     pub colors: Option<Vec<String>>,
-    /// Opacity of every surface, or one per surface, each 0.05 to 1 (default 1; with several
-    /// surfaces, 1 for the innermost (the smallest box around it) and 0.35 for the others).
+    /// Opacity of every surface, or one per surface, each 0.05 to 1 (default 1, except 0.35 for
+    /// a surface around another: one whose bounding box holds another surface's).
     #[serde(default)]
     pub opacity: Option<Opacities>,
     /// Legend title and unit of the values: `{ title, unit }` (default `value`).
     #[serde(default)]
-    pub value: Option<IsoValueLabel>,
+    pub value: Option<ValueLabel>,
     /// Viewing direction in degrees counter-clockwise from +x (default −60).
     #[serde(default)]
     pub azimuth: Option<f64>,
@@ -83,18 +84,6 @@ pub enum Opacities {
     Each(Vec<f64>),
 }
 
-/// The title of the values in the legend.
-#[derive(Clone, Debug, Default, Deserialize, Serialize, JsonSchema, PartialEq)]
-#[serde(deny_unknown_fields)]
-pub struct IsoValueLabel {
-    /// Legend title (default `value`).
-    #[serde(default)]
-    pub title: Option<String>,
-    /// Unit of the values.
-    #[serde(default)]
-    pub unit: Option<String>,
-}
-
 /// How surfaces are extracted.
 #[derive(Clone, Copy, Debug, Deserialize, Serialize, JsonSchema, PartialEq, Eq)]
 #[serde(rename_all = "lowercase")]
@@ -113,16 +102,6 @@ pub enum IsoNormals {
     Gradient,
     /// The average of the adjacent triangles' normals.
     Faces,
-}
-
-/// The camera's projection.
-#[derive(Clone, Copy, Debug, Deserialize, Serialize, JsonSchema, PartialEq, Eq)]
-#[serde(rename_all = "lowercase")]
-pub enum ProjectionKind {
-    /// Parallel projection.
-    Orthographic,
-    /// Central projection.
-    Perspective,
 }
 
 /// Most surfaces one chart draws.
@@ -170,57 +149,46 @@ pub fn draw(cx: &ChartContext<'_>, options: &IsosurfaceOptions) -> Result<ChartO
     if options.opacity.is_none() {
         see_through_outer(&mut surfaces);
     }
-    let view = view_of(options)?;
+    let view = box_frame::view(options.azimuth, options.elevation, options.zoom, options.projection, options.fov);
     let sampler =
         Sampler::new(&volume).map_err(|e| MarkError::at(&["data"], e, "check the file's orientation header"))?;
-    let corners = sampler.corners(Interpolation::Trilinear);
-    let ranges = [0, 1, 2]
-        .map(|a| corners.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), c| (lo.min(c[a]), hi.max(c[a]))));
-    let camera = Camera::new(ranges, equal_extent(ranges), view)
-        .map_err(|e| MarkError::at(&["azimuth"], format!("{e}"), "check the view settings"))?;
-    let light = light_for(&view, options.specular.unwrap_or(false));
+    let light = box_frame::light_for(&view, options.specular.unwrap_or(false));
 
     let label = options.value.clone().unwrap_or_default();
     let title = title_with_unit(label.title.as_deref().unwrap_or("value"), label.unit.as_deref());
-    let entries: Vec<(String, Color)> = surfaces.iter().map(|s| (format_value(s.iso), s.color)).collect();
+    let entries: Vec<(String, Color)> =
+        surfaces.iter().map(|s| (format_value(s.iso), s.color.with_opacity(s.opacity))).collect();
     let legend = Legend::Categorical { title, entries, symbol: Symbol::Square };
     let canvas = frame::PanelCanvas::new(chart, vec![legend]);
     let theme = canvas.theme.clone();
-    let m = theme.margin;
-    let room_w = canvas.width - 2.0 * m - canvas.legend_room();
-    let side = room_w.min(canvas.room).max(1.0);
-    let square = Rect::new(m + (room_w - side) / 2.0, canvas.top() + (canvas.room - side) / 2.0, side, side);
-    let to_px = |p: [f64; 3]| {
-        let (sx, sy) = camera.project(p);
-        Point::new(square.x + sx * square.w, square.y + (1.0 - sy) * square.h)
-    };
+    let boxed = BoxView::new(&sampler, view, &canvas)?;
+    let (camera, ranges) = (&boxed.camera, boxed.ranges);
+    let to_px = |p: [f64; 3]| boxed.to_px(p);
 
     let mut items = vec![canvas.background()];
-    let (back, front) = box_frame::edges(&camera, ranges, &to_px, &theme);
+    let (back, front) = box_frame::edges(camera, ranges, &to_px, &theme);
     items.push(back);
-    // Opaque surfaces first, then translucent ones from the farthest to the nearest.
-    let mut order: Vec<usize> = (0..surfaces.len()).collect();
-    let centre_distance = |s: &Surface| {
-        let n = s.mesh.positions.len().max(1) as f64;
-        let c = s.mesh.positions.iter().fold([0.0; 3], |a, p| [a[0] + p[0] / n, a[1] + p[1] / n, a[2] + p[2] / n]);
-        camera.distance(camera.model(c))
-    };
-    order.sort_by(|&a, &b| {
-        let (sa, sb) = (&surfaces[a], &surfaces[b]);
-        (sa.opacity < 1.0).cmp(&(sb.opacity < 1.0)).then(centre_distance(sb).total_cmp(&centre_distance(sa)))
-    });
-    for &k in &order {
-        let s = &surfaces[k];
-        if s.mesh.triangles.is_empty() {
-            continue;
-        }
+    // The opaque surfaces as one mesh, so its depth buffer sorts them against each other; then
+    // the translucent ones from the innermost (smallest box) out, each showing its nearest layer.
+    let drawn: Vec<&Surface> = surfaces.iter().filter(|s| !s.mesh.triangles.is_empty()).collect();
+    let (opaque, mut translucent): (Vec<&Surface>, Vec<&Surface>) = drawn.into_iter().partition(|s| s.opacity >= 1.0);
+    let box_size =
+        |s: &Surface| bounding_box(&s.mesh).map_or(0.0, |(lo, hi)| (hi[0] - lo[0]) * (hi[1] - lo[1]) * (hi[2] - lo[2]));
+    translucent.sort_by(|a, b| box_size(a).total_cmp(&box_size(b)));
+    if !opaque.is_empty() {
+        let values: Vec<String> = opaque.iter().map(|s| format_value(s.iso)).collect();
+        let label = format!("{} = {}", if values.len() == 1 { "value" } else { "values" }, values.join(", "));
+        let meshes: Vec<Mesh> = opaque.iter().map(|s| screen_mesh(s, camera, &light, &to_px)).collect();
+        items.push(Item::new(Role::DataMark, Shape::Mesh(joined(meshes)), Style::default()).labelled(label));
+    }
+    for s in translucent {
         items.push(
-            Item::new(Role::DataMark, Shape::Mesh(screen_mesh(s, &camera, &light, &to_px)), Style::default())
+            Item::new(Role::DataMark, Shape::Mesh(screen_mesh(s, camera, &light, &to_px)), Style::default())
                 .labelled(format!("value = {}", format_value(s.iso))),
         );
     }
     items.push(front);
-    items.extend(box_frame::axis_labels(ranges, &to_px, Role::AxisTitle, theme.text, theme.font_size, true));
+    items.extend(boxed.axes(volume.unit().map(|u| u.symbol()), &theme));
     let triangles: usize = surfaces.iter().map(|s| s.mesh.triangles.len()).sum();
     let how = match method {
         Method::MarchingCubes => "marching cubes, trilinear topology",
@@ -262,9 +230,14 @@ fn iso_values(options: &IsosurfaceOptions) -> Result<Vec<f64>, MarkError> {
     Ok(values)
 }
 
+/// The colour of a lone surface when none is given: a light bone tone.
+const SINGLE_SURFACE: Color = Color::rgb(226, 218, 200);
+
 fn surface_colors(options: &IsosurfaceOptions, n: usize) -> Result<Vec<Color>, MarkError> {
     let palette = color::categorical(color::DEFAULT_CATEGORICAL).unwrap_or_default();
     match &options.colors {
+        // One surface in a light neutral tone, so its shading reads; several in the palette.
+        None if n == 1 => Ok(vec![SINGLE_SURFACE]),
         None => Ok((0..n).map(|k| palette.get(k % palette.len().max(1)).copied().unwrap_or(Color::BLACK)).collect()),
         Some(given) if given.len() < n => Err(MarkError::at(
             &["colors"],
@@ -302,50 +275,37 @@ fn surface_opacities(options: &IsosurfaceOptions, n: usize) -> Result<Vec<f64>, 
     Ok(values)
 }
 
-fn view_of(options: &IsosurfaceOptions) -> Result<View, MarkError> {
-    let projection = match options.projection.unwrap_or(ProjectionKind::Orthographic) {
-        ProjectionKind::Orthographic => Projection::Orthographic,
-        ProjectionKind::Perspective => Projection::Perspective { fov_deg: options.fov.unwrap_or(30.0) },
-    };
-    Ok(View {
-        azimuth_deg: options.azimuth.unwrap_or(-60.0),
-        elevation_deg: options.elevation.unwrap_or(25.0),
-        zoom: options.zoom.unwrap_or(1.0),
-        projection,
-    })
-}
-
-/// A light from above and to the left of the viewer, turning with the view.
-fn light_for(view: &View, specular: bool) -> Light {
-    Light {
-        azimuth_deg: view.azimuth_deg - 50.0,
-        elevation_deg: (view.elevation_deg + 30.0).min(85.0),
-        ambient: 0.3,
-        diffuse: 0.95,
-        specular: specular.then_some(Specular { strength: 0.35, shininess: 40.0 }),
-    }
-}
-
-/// With several surfaces and no opacity given, all but the innermost (the smallest box around
-/// its vertices) are drawn at 0.35, so what they enclose shows.
+/// With several surfaces and no opacity given, a surface whose bounding box holds another
+/// surface's is drawn at [`SEE_THROUGH`], so what it encloses shows; surfaces side by side
+/// (a positive and a negative blob) stay opaque.
 fn see_through_outer(surfaces: &mut [Surface]) {
-    let size = |s: &Surface| -> f64 {
-        let first = s.mesh.positions.first().copied().unwrap_or([0.0; 3]);
-        let (lo, hi) = s.mesh.positions.iter().fold((first, first), |(lo, hi), p| {
-            ([lo[0].min(p[0]), lo[1].min(p[1]), lo[2].min(p[2])], [hi[0].max(p[0]), hi[1].max(p[1]), hi[2].max(p[2])])
-        });
-        (hi[0] - lo[0]) * (hi[1] - lo[1]) * (hi[2] - lo[2])
+    let boxes: Vec<Option<([f64; 3], [f64; 3])>> = surfaces.iter().map(|s| bounding_box(&s.mesh)).collect();
+    let holds = |outer: ([f64; 3], [f64; 3]), inner: ([f64; 3], [f64; 3])| {
+        (0..3).all(|a| outer.0[a] <= inner.0[a] && inner.1[a] <= outer.1[a])
     };
-    let drawn: Vec<usize> = (0..surfaces.len()).filter(|&k| !surfaces[k].mesh.triangles.is_empty()).collect();
-    if drawn.len() < 2 {
-        return;
-    }
-    let inner = drawn.iter().copied().min_by(|&a, &b| size(&surfaces[a]).total_cmp(&size(&surfaces[b])));
-    for k in drawn {
-        if Some(k) != inner {
-            surfaces[k].opacity = 0.35;
+    let outer: Vec<bool> = (0..surfaces.len())
+        .map(|k| {
+            boxes[k].is_some_and(|bk| {
+                (0..surfaces.len()).any(|j| j != k && boxes[j].is_some_and(|bj| bj != bk && holds(bk, bj)))
+            })
+        })
+        .collect();
+    for (s, outer) in surfaces.iter_mut().zip(outer) {
+        if outer {
+            s.opacity = SEE_THROUGH;
         }
     }
+}
+
+/// The opacity of a surface drawn around another when no opacity is given.
+const SEE_THROUGH: f64 = 0.35;
+
+/// The smallest box around a mesh's vertices; `None` for an empty mesh.
+fn bounding_box(mesh: &IsoMesh) -> Option<([f64; 3], [f64; 3])> {
+    let first = *mesh.positions.first()?;
+    Some(mesh.positions.iter().fold((first, first), |(lo, hi), p| {
+        ([lo[0].min(p[0]), lo[1].min(p[1]), lo[2].min(p[2])], [hi[0].max(p[0]), hi[1].max(p[1]), hi[2].max(p[2])])
+    }))
 }
 
 /// The surface projected to the canvas and lit per vertex (Gouraud).
@@ -361,6 +321,18 @@ fn screen_mesh(s: &Surface, camera: &Camera, light: &Light, to_px: &impl Fn([f64
         colors.push(Color::rgb(r, g, b).with_opacity(s.opacity));
     }
     Mesh { positions: positions.into(), indices: s.mesh.triangles.clone().into(), colors: colors.into(), normals: None }
+}
+
+/// The meshes as one, their triangles renumbered.
+fn joined(meshes: Vec<Mesh>) -> Mesh {
+    let (mut positions, mut colors, mut indices) = (Vec::new(), Vec::new(), Vec::new());
+    for m in meshes {
+        let offset = positions.len() as u32;
+        positions.extend(m.positions.iter().copied());
+        colors.extend(m.colors.iter().copied());
+        indices.extend(m.indices.iter().map(|t| t.map(|i| i + offset)));
+    }
+    Mesh { positions: positions.into(), indices: indices.into(), colors: colors.into(), normals: None }
 }
 
 fn world_mesh(s: &Surface) -> WorldMesh {
