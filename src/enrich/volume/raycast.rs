@@ -20,6 +20,10 @@
 //! - **Compositing.** Front to back: `C += (1 − A)·α'·c`, `A += (1 − A)·α'`. A ray stops once
 //!   `A ≥` [`TERMINATION`], where what is left could change no 8-bit channel by more than 1/2
 //!   of a level.
+//! - **Empty space.** The volume is cut into blocks of 8³ cells with their value ranges; an
+//!   image's rays jump over a block the transfer function leaves wholly transparent, and a
+//!   maximum over a block no higher than the maximum found so far. Only samples that would add
+//!   nothing are skipped, so the image is the same.
 //! - **Missing voxels.** A sample with a missing (NaN) voxel among its eight is skipped: it adds
 //!   nothing (transparent; left out of maxima and means).
 //! - **Shading.** Optional: the colour is scaled by `ambient + diffuse·|n·l|` with `n` the
@@ -123,9 +127,14 @@ impl TransferFunction {
 
     /// Colour and opacity at `value` (the nearest table entry; the ends beyond the domain).
     pub fn at(&self, value: f64) -> [f64; 4] {
+        self.table[self.entry(value)]
+    }
+
+    /// The table entry `value` looks up (monotone in the value).
+    fn entry(&self, value: f64) -> usize {
         let (lo, hi) = self.domain;
         let f = ((value - lo) / (hi - lo)).clamp(0.0, 1.0);
-        self.table[(f * (LUT_SIZE - 1) as f64).round() as usize]
+        (f * (LUT_SIZE - 1) as f64).round() as usize
     }
 
     /// The values the table spans.
@@ -156,7 +165,15 @@ pub struct RayCaster {
     values: Vec<f32>,
     /// Rows of `index = inverse · (x, y, z, 1)`.
     inverse: [[f64; 4]; 3],
+    /// The smallest and largest voxel value of each block of [`BLOCK`]³ cells (its voxels and the
+    /// next ones, which its cells' corners reach), x fastest; NaN voxels left out.
+    blocks: Vec<(f32, f32)>,
+    /// Blocks along x, y and z.
+    block_dims: [usize; 3],
 }
+
+/// Cells along each side of the blocks used to skip empty space.
+const BLOCK: usize = 8;
 
 impl RayCaster {
     /// A ray caster over `volume`, or why there is none: fewer than two voxels along an axis, or
@@ -178,8 +195,9 @@ impl RayCaster {
                 volume.affine()
             )
         })?;
-        let values = volume.values().map(|v| v as f32).collect();
-        Ok(RayCaster { dims, values, inverse })
+        let values: Vec<f32> = volume.values().map(|v| v as f32).collect();
+        let (blocks, block_dims) = block_ranges(&values, dims);
+        Ok(RayCaster { dims, values, inverse, blocks, block_dims })
     }
 
     fn index_of(&self, w: [f64; 3]) -> [f64; 3] {
@@ -220,6 +238,31 @@ impl RayCaster {
             t[a] = x - i0 as f64;
         }
         (lower, t)
+    }
+
+    /// The block holding the cell of index point `p`.
+    fn block_of(&self, p: [f64; 3]) -> usize {
+        let (lower, _) = self.cell(p);
+        let [bx, by, bz] = [0, 1, 2].map(|a| lower[a] / BLOCK);
+        (bz * self.block_dims[1] + by) * self.block_dims[0] + bx
+    }
+
+    /// Where the ray `p0 + t·d` leaves the block holding the cell of `p0 + t·d` (a `t`).
+    fn block_exit(&self, p0: [f64; 3], d: [f64; 3], t: f64) -> f64 {
+        let (lower, _) = self.cell([p0[0] + t * d[0], p0[1] + t * d[1], p0[2] + t * d[2]]);
+        let mut exit = f64::INFINITY;
+        for a in 0..3 {
+            let b = (lower[a] / BLOCK) as f64 * BLOCK as f64;
+            let wall = if d[a] > 0.0 {
+                b + BLOCK as f64
+            } else if d[a] < 0.0 {
+                b
+            } else {
+                continue;
+            };
+            exit = exit.min((wall - p0[a]) / d[a]);
+        }
+        exit
     }
 
     /// The eight voxel values around a cell's lower corner, bit 0 of the index picking +x,
@@ -291,14 +334,39 @@ impl RayCaster {
     /// The composited colour of the ray from world point `origin` along unit `dir`:
     /// premultiplied RGB and accumulated opacity, all 0 to 1.
     pub fn composite(&self, origin: [f64; 3], dir: [f64; 3], tf: &TransferFunction, settings: &Settings) -> [f64; 4] {
+        self.composite_skipping(origin, dir, tf, settings, None)
+    }
+
+    /// [`RayCaster::composite`], jumping over the blocks `clear` marks wholly transparent: the
+    /// samples skipped would add nothing, so the colour is the same.
+    fn composite_skipping(
+        &self,
+        origin: [f64; 3],
+        dir: [f64; 3],
+        tf: &TransferFunction,
+        settings: &Settings,
+        clear: Option<&[bool]>,
+    ) -> [f64; 4] {
         let (p0, d) = (self.index_of(origin), self.index_direction(dir));
         let Some((t0, t1)) = self.clip(p0, d) else { return [0.0; 4] };
         let exponent = settings.step / settings.reference;
         let mut acc = [0.0f64; 4];
-        let mut t = t0 + 0.5 * settings.step;
-        while t < t1 {
+        let step = settings.step;
+        let mut n = 0usize;
+        loop {
+            let t = t0 + (n as f64 + 0.5) * step;
+            if t >= t1 {
+                break;
+            }
             let p = [p0[0] + t * d[0], p0[1] + t * d[1], p0[2] + t * d[2]];
-            t += settings.step;
+            if let Some(clear) = clear
+                && clear[self.block_of(p)]
+            {
+                let exit = self.block_exit(p0, d, t);
+                n = (n + 1).max(((exit - t0) / step - 0.5).ceil().max(0.0) as usize);
+                continue;
+            }
+            n += 1;
             let Some([r, g, b, alpha]) = self.classified(p, tf, settings.classify) else { continue };
             if alpha <= 0.0 {
                 continue;
@@ -338,9 +406,18 @@ impl RayCaster {
         // From the entry point on, so a step that divides the voxel spacing lands on every
         // voxel plane an axis-aligned ray crosses.
         let samples = ((t1 - t0) / step + 1e-9).floor() as usize + 1;
-        for s in 0..samples {
+        let mut s = 0;
+        while s < samples {
             let t = t0 + s as f64 * step;
-            let v = self.value([p0[0] + t * d[0], p0[1] + t * d[1], p0[2] + t * d[2]]);
+            let p = [p0[0] + t * d[0], p0[1] + t * d[1], p0[2] + t * d[2]];
+            // A maximum skips a block no higher than what it has found.
+            if mode == Mode::Mip && f64::from(self.blocks[self.block_of(p)].1) <= best {
+                let exit = self.block_exit(p0, d, t);
+                s = (s + 1).max(((exit - t0) / step).ceil().max(0.0) as usize);
+                continue;
+            }
+            s += 1;
+            let v = self.value(p);
             if v.is_nan() {
                 continue;
             }
@@ -361,16 +438,85 @@ impl RayCaster {
         job: Job<'_>,
     ) -> Vec<[f64; 4]> {
         let mut out = vec![[0.0; 4]; width * height];
+        let clear = match job {
+            Job::Composite(tf, _) => clear_blocks(self, tf),
+            Job::Reduce(..) => Vec::new(),
+        };
         out.par_chunks_mut(width.max(1)).enumerate().for_each(|(y, row)| {
             for (x, px) in row.iter_mut().enumerate() {
                 let (o, d) = ray(x, y);
                 *px = match job {
-                    Job::Composite(tf, settings) => self.composite(o, d, tf, settings),
+                    Job::Composite(tf, settings) => self.composite_skipping(o, d, tf, settings, Some(&clear)),
                     Job::Reduce(mode, step) => [self.reduce(o, d, mode, step).unwrap_or(f64::NAN), 0.0, 0.0, 0.0],
                 };
             }
         });
         out
+    }
+}
+
+/// The value range of every block of [`BLOCK`]³ cells of a volume (see [`RayCaster`]).
+fn block_ranges(values: &[f32], dims: [usize; 3]) -> (Vec<(f32, f32)>, [usize; 3]) {
+    let block_dims = dims.map(|n| (n - 1).div_ceil(BLOCK));
+    let count = block_dims.iter().product();
+    let ranges: Vec<(f32, f32)> = (0..count)
+        .into_par_iter()
+        .map(|b| {
+            let (bx, by, bz) =
+                (b % block_dims[0], b / block_dims[0] % block_dims[1], b / (block_dims[0] * block_dims[1]));
+            let span = |bi: usize, n: usize| (bi * BLOCK)..=((bi + 1) * BLOCK).min(n - 1);
+            let (mut lo, mut hi) = (f32::INFINITY, f32::NEG_INFINITY);
+            for k in span(bz, dims[2]) {
+                for j in span(by, dims[1]) {
+                    let row = (k * dims[1] + j) * dims[0];
+                    for &v in &values[row + bx * BLOCK..=row + ((bx + 1) * BLOCK).min(dims[0] - 1)] {
+                        if !v.is_nan() {
+                            lo = lo.min(v);
+                            hi = hi.max(v);
+                        }
+                    }
+                }
+            }
+            (lo, hi)
+        })
+        .collect();
+    (ranges, block_dims)
+}
+
+/// Which blocks a transfer function leaves wholly transparent: every table entry their value
+/// range can look up has opacity 0.
+fn clear_blocks(caster: &RayCaster, tf: &TransferFunction) -> Vec<bool> {
+    // Prefix counts of entries with some opacity, for an O(1) test per block.
+    let mut seen = Vec::with_capacity(tf.table.len() + 1);
+    seen.push(0usize);
+    for e in &tf.table {
+        seen.push(seen[seen.len() - 1] + usize::from(e[3] > 0.0));
+    }
+    caster
+        .blocks
+        .iter()
+        .map(|&(lo, hi)| {
+            if lo > hi {
+                return true; // only missing voxels
+            }
+            let (a, b) = (tf.entry(f64::from(lo)), tf.entry(f64::from(hi)));
+            seen[b + 1] - seen[a] == 0
+        })
+        .collect()
+}
+
+#[cfg(test)]
+impl RayCaster {
+    /// The largest value along a ray sampled every `step` from its entry, no block skipped.
+    fn reduce_all(&self, origin: [f64; 3], dir: [f64; 3], step: f64) -> Option<f64> {
+        let (p0, d) = (self.index_of(origin), self.index_direction(dir));
+        let (t0, t1) = self.clip(p0, d)?;
+        let samples = ((t1 - t0) / step + 1e-9).floor() as usize + 1;
+        (0..samples)
+            .map(|s| t0 + s as f64 * step)
+            .map(|t| self.value([p0[0] + t * d[0], p0[1] + t * d[1], p0[2] + t * d[2]]))
+            .filter(|v| !v.is_nan())
+            .reduce(f64::max)
     }
 }
 
@@ -493,6 +639,33 @@ mod tests {
             assert!(ratio > 1.6, "{errors:?}");
         }
         assert!(errors[3] < 5e-3, "{errors:?}");
+    }
+
+    #[test]
+    fn skipping_clear_blocks_changes_nothing() {
+        // A blob in a 40³ volume: most 8³ blocks are clear for a transfer function that is
+        // transparent below 0.5.
+        let vol = volume([40, 37, 33], [1.0, 1.5, 1.0], |x, y, z| {
+            (-((x - 22.0).powi(2) + (y - 15.0).powi(2) + (z - 17.0).powi(2)) / 40.0).exp()
+        });
+        let caster = RayCaster::new(&vol).unwrap();
+        let tf = TransferFunction::new(|v| [v, 0.5, 1.0 - v], &[(0.5, 0.0), (0.7, 0.3), (1.0, 0.9)]).unwrap();
+        let clear = clear_blocks(&caster, &tf);
+        let skipped = clear.iter().filter(|&&c| c).count();
+        assert!(skipped > clear.len() / 2 && skipped < clear.len(), "{skipped} of {}", clear.len());
+        let mut s = settings(0.37, TERMINATION);
+        for classify in [Classify::After, Classify::Before] {
+            s.classify = classify;
+            for k in 0..40 {
+                let d = [1.0, 0.02 * k as f64 - 0.3, 0.45 - 0.01 * k as f64];
+                let len = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
+                let (o, d) = ([-5.0, 5.0 + 0.6 * k as f64, 10.0 + 0.3 * k as f64], d.map(|c| c / len));
+                let all = caster.composite(o, d, &tf, &s);
+                assert_eq!(all, caster.composite_skipping(o, d, &tf, &s, Some(&clear)), "ray {k}");
+                let (plain, fast) = (caster.reduce_all(o, d, 0.25), caster.reduce(o, d, Mode::Mip, 0.25));
+                assert_eq!(plain, fast, "ray {k}");
+            }
+        }
     }
 
     #[test]

@@ -192,8 +192,9 @@ pub fn draw(cx: &ChartContext<'_>, options: &VolumeOptions) -> Result<ChartOutpu
         }
         (None, m) => {
             let reduce = if m == RenderMode::Mip { Mode::Mip } else { Mode::Average };
-            // Maxima sample every quarter voxel at most, so axis-aligned rays meet every plane.
-            let pixels = caster.image((side, side), &ray, Job::Reduce(reduce, step.min(0.25 * voxel)));
+            // Sampled from the entry on: a step dividing the voxel spacing meets every voxel
+            // plane of an axis-aligned ray.
+            let pixels = caster.image((side, side), &ray, Job::Reduce(reduce, step));
             let what = if m == RenderMode::Mip { "maximum intensity projection" } else { "mean along each ray" };
             // The colours span the values the rays found, not the whole volume's.
             let found = pixels.iter().map(|p| p[0]).filter(|v| v.is_finite());
