@@ -1,6 +1,6 @@
 """Peer of `kind = "volume"` in benches/volume_256.toml: VTK's CPU ray caster
 (vtkFixedPointVolumeRayCastMapper, offscreen) rendering the 256³ float32 field of four Gaussian
-blobs (benches/data/blobs_256.npy, written by benches/peer_marching_cubes.py) to a 512 × 512
+blobs (benches/data/blobs_256.npy, written by benches/make_blobs.py) to a 512 × 512
 image with the same opacity points, sample distance half a voxel, shading off. Prints the best
 of five frames after one warm-up frame (rendering only: the field is already in memory).
 

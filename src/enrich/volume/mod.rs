@@ -1,11 +1,14 @@
 //! Numbers on volumes, shared by the volume kinds: reading a value anywhere in the world by
 //! nearest voxel or trilinear interpolation ([`sample`]) and planes through a volume with their
-//! own 2-D coordinates ([`plane`]), isosurfaces ([`isosurface`]) and ray casting ([`raycast`]).
+//! own 2-D coordinates ([`plane`]), isosurfaces ([`isosurface`]), a span-space index of the
+//! cells a level crosses, reused across levels ([`span_space`]), and ray casting ([`raycast`]).
 
 pub mod isosurface;
 pub mod plane;
 pub mod raycast;
 pub mod sample;
+pub mod span_space;
 
 pub use plane::Plane;
 pub use sample::{Interpolation, Sampler};
+pub use span_space::SpanSpace;
