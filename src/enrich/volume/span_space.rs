@@ -21,6 +21,8 @@ use rayon::prelude::*;
 
 use crate::data::volume::Volume;
 
+use super::isosurface::{corner_offsets, corner_range};
+
 /// Most buckets along each axis of the lattice (so a bucket number fits in a `u16`).
 const MAX_BUCKETS: usize = 255;
 
@@ -49,27 +51,6 @@ pub struct SpanSpace<'v> {
     offsets: Vec<u32>,
     /// Cell numbers, bucket after bucket, increasing within each.
     ids: Vec<u32>,
-}
-
-/// The corner offsets (voxel numbers relative to a cell's first corner) of a cell.
-fn corner_offsets(volume: &Volume) -> [usize; 8] {
-    let [nx, ny, _] = volume.dims();
-    std::array::from_fn(|c| (c & 1) + (c >> 1 & 1) * nx + (c >> 2 & 1) * nx * ny)
-}
-
-/// The corner minimum and maximum of the cell whose first corner is voxel `base`, or `None` if
-/// a corner is missing: the rule of [`active_cells`](super::isosurface::active_cells).
-#[inline]
-fn corner_range(volume: &Volume, base: usize, offsets: &[usize; 8]) -> Option<(f64, f64)> {
-    let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
-    let mut missing = false;
-    for off in offsets {
-        let v = volume.get(base + off);
-        missing |= v.is_nan();
-        lo = lo.min(v);
-        hi = hi.max(v);
-    }
-    (!missing).then_some((lo, hi))
 }
 
 /// The bucket of `v` among `edges`: how many boundaries are `≤ v`. Monotone, so `a ≤ b` gives

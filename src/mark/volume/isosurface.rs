@@ -111,6 +111,8 @@ pub const MAX_SURFACES: usize = 8;
 struct Surface {
     iso: f64,
     mesh: IsoMesh,
+    /// The smallest box around the mesh's vertices (`None` when it is empty).
+    bounds: Option<([f64; 3], [f64; 3])>,
     color: Color,
     opacity: f64,
 }
@@ -144,7 +146,7 @@ pub fn draw(cx: &ChartContext<'_>, options: &IsosurfaceOptions) -> Result<ChartO
         }
         let mesh = isosurface::extract(&volume, iso, method, normals, None)
             .map_err(|e| MarkError::at(&["levels"], format!("{e}"), "choose another value or crop the volume"))?;
-        surfaces.push(Surface { iso, mesh, color: colors[k], opacity: opacities[k] });
+        surfaces.push(Surface { iso, bounds: bounding_box(&mesh), mesh, color: colors[k], opacity: opacities[k] });
     }
     if options.opacity.is_none() {
         see_through_outer(&mut surfaces);
@@ -172,8 +174,7 @@ pub fn draw(cx: &ChartContext<'_>, options: &IsosurfaceOptions) -> Result<ChartO
     // the translucent ones from the innermost (smallest box) out, each showing its nearest layer.
     let drawn: Vec<&Surface> = surfaces.iter().filter(|s| !s.mesh.triangles.is_empty()).collect();
     let (opaque, mut translucent): (Vec<&Surface>, Vec<&Surface>) = drawn.into_iter().partition(|s| s.opacity >= 1.0);
-    let box_size =
-        |s: &Surface| bounding_box(&s.mesh).map_or(0.0, |(lo, hi)| (hi[0] - lo[0]) * (hi[1] - lo[1]) * (hi[2] - lo[2]));
+    let box_size = |s: &Surface| s.bounds.map_or(0.0, |(lo, hi)| (hi[0] - lo[0]) * (hi[1] - lo[1]) * (hi[2] - lo[2]));
     translucent.sort_by(|a, b| box_size(a).total_cmp(&box_size(b)));
     if !opaque.is_empty() {
         let values: Vec<String> = opaque.iter().map(|s| format_value(s.iso)).collect();
@@ -279,7 +280,7 @@ fn surface_opacities(options: &IsosurfaceOptions, n: usize) -> Result<Vec<f64>, 
 /// surface's is drawn at [`SEE_THROUGH`], so what it encloses shows; surfaces side by side
 /// (a positive and a negative blob) stay opaque.
 fn see_through_outer(surfaces: &mut [Surface]) {
-    let boxes: Vec<Option<([f64; 3], [f64; 3])>> = surfaces.iter().map(|s| bounding_box(&s.mesh)).collect();
+    let boxes: Vec<Option<([f64; 3], [f64; 3])>> = surfaces.iter().map(|s| s.bounds).collect();
     let holds = |outer: ([f64; 3], [f64; 3]), inner: ([f64; 3], [f64; 3])| {
         (0..3).all(|a| outer.0[a] <= inner.0[a] && inner.1[a] <= outer.1[a])
     };

@@ -187,22 +187,13 @@ pub fn active_cells(volume: &Volume, iso: f64) -> Vec<u32> {
         return out;
     }
     let [nx, ny, _] = volume.dims();
-    let offsets: [usize; 8] = std::array::from_fn(|c| (c & 1) + (c >> 1 & 1) * nx + (c >> 2 & 1) * nx * ny);
+    let offsets = corner_offsets(volume);
     let mut id: u32 = 0;
     for k in 0..cz {
         for j in 0..cy {
             let row = (k * ny + j) * nx;
             for i in 0..cx {
-                let base = row + i;
-                let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
-                let mut missing = false;
-                for off in offsets {
-                    let v = volume.get(base + off);
-                    missing |= v.is_nan();
-                    lo = lo.min(v);
-                    hi = hi.max(v);
-                }
-                if !missing && lo <= iso && iso <= hi {
+                if corner_range(volume, row + i, &offsets).is_some_and(|(lo, hi)| lo <= iso && iso <= hi) {
                     out.push(id);
                 }
                 id = id.wrapping_add(1);
@@ -210,6 +201,29 @@ pub fn active_cells(volume: &Volume, iso: f64) -> Vec<u32> {
         }
     }
     out
+}
+
+/// The corner offsets (voxel numbers relative to a cell's first corner) of a cell, bit 0 of the
+/// corner number picking +x, bit 1 +y, bit 2 +z.
+pub(crate) fn corner_offsets(volume: &Volume) -> [usize; 8] {
+    let [nx, ny, _] = volume.dims();
+    std::array::from_fn(|c| (c & 1) + (c >> 1 & 1) * nx + (c >> 2 & 1) * nx * ny)
+}
+
+/// The corner minimum and maximum of the cell whose first corner is voxel `base`, or `None` if
+/// a corner is missing: the rule of [`active_cells`] (a cell is active when `lo ≤ iso ≤ hi`),
+/// which the span-space index shares.
+#[inline]
+pub(crate) fn corner_range(volume: &Volume, base: usize, offsets: &[usize; 8]) -> Option<(f64, f64)> {
+    let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+    let mut missing = false;
+    for off in offsets {
+        let v = volume.get(base + off);
+        missing |= v.is_nan();
+        lo = lo.min(v);
+        hi = hi.max(v);
+    }
+    (!missing).then_some((lo, hi))
 }
 
 /// The isosurface `f = iso` of `volume` by `method`, with normals by `normals`, from the cells
