@@ -1,10 +1,12 @@
-//! Legends: categorical swatches, continuous colour bars and marker-size keys.
+//! Legends: categorical swatches, continuous colour bars, transfer functions and marker-size
+//! keys.
 
 use std::sync::Arc;
 
 use super::Theme;
 use super::color::ContinuousMap;
 use super::scale::{LinearScale, Scale};
+use super::transfer_legend::TransferLegend;
 use crate::scene::{Anchor, Baseline, Color, Item, PathCmd, Point, Raster, Rect, Role, Shape, Style, Text};
 use crate::text::measure;
 
@@ -62,6 +64,14 @@ pub enum Legend {
         /// The lines, top to bottom.
         lines: Vec<String>,
     },
+    /// A volume's transfer function: colour ramp, opacity curve and the histogram of the
+    /// volume's values along one value axis.
+    TransferFunction {
+        /// Legend title.
+        title: String,
+        /// The ramp, curve and histogram.
+        function: TransferLegend,
+    },
     /// Reference circles for a size (area) encoding.
     Size {
         /// Legend title.
@@ -106,6 +116,11 @@ impl Legend {
                     .max(measure(&shown_title(title, theme), theme.label_size).width);
                 (w, h + theme.font_size * 0.5)
             }
+            Legend::TransferFunction { title, function } => {
+                let length = color_bar_length(available_height - title_h - theme.font_size * 2.0);
+                let (w, h) = function.extent(theme, length);
+                (w.max(measure(&shown_title(title, theme), theme.label_size).width), title_h + h)
+            }
             Legend::Notes { title, lines } => {
                 let w = lines.iter().map(|l| measure(l, theme.font_size).width).fold(0.0, f64::max);
                 (w.max(measure(&shown_title(title, theme), theme.label_size).width), title_h + row * lines.len() as f64)
@@ -128,6 +143,7 @@ impl Legend {
             | Legend::ColorBar { title, .. }
             | Legend::Steps { title, .. }
             | Legend::Notes { title, .. }
+            | Legend::TransferFunction { title, .. }
             | Legend::Size { title, .. } => title,
         }
     }
@@ -211,6 +227,10 @@ impl Legend {
                     bar_tick(&mut ticks, &mut items, bar, bar.bottom() - step * i as f64, label, theme);
                 }
                 items.push(Item::new(Role::Legend, Shape::Path(ticks), Style::stroke(theme.axis, 1.0)));
+            }
+            Legend::TransferFunction { function, .. } => {
+                let length = color_bar_length(available_height - title_h - theme.font_size * 2.0);
+                items.extend(function.draw(Point::new(at.x, top), theme, length));
             }
             Legend::Notes { lines, .. } => {
                 for (i, line) in lines.iter().enumerate() {

@@ -12,5 +12,6 @@ pub mod scale;
 pub mod theme;
 pub mod ticks;
 pub mod time;
+pub mod transfer_legend;
 
 pub use theme::Theme;

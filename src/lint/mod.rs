@@ -325,6 +325,7 @@ pub(crate) mod test_support {
             warnings: Vec::new(),
             meshes: Vec::new(),
             geojson: None,
+            volume: None,
             geometry: Default::default(),
         }
     }

@@ -48,6 +48,8 @@ pub struct ChartOutput {
     pub geojson: Option<geojson::ContourFeatures>,
     /// Surfaces in world coordinates (`--format glb`, `ply`, `obj`), for kinds that make them.
     pub meshes: Vec<crate::scene::WorldMesh>,
+    /// What a volume chart showed of its volume, for the lint rules (`None` for other kinds).
+    pub volume: Option<volume::VolumeFacts>,
     /// Where the plots, axes or disk are and their scales, for the explorer (empty for kinds
     /// that expose nothing to brush or navigate).
     pub geometry: geometry::Geometry,

@@ -286,8 +286,8 @@ mod tests {
         // Spec, DataSource, Selection, LintConfig, ChannelOptions, ColorOptions, SizeOptions,
         // FaceFeatures, TreeSource, NodeTable, TransformStep, TrendOptions, LineBandOptions,
         // BarLabelOptions, FacetOptions, FacetResolve, Annotation, PlaneSpec, ValueColor,
-        // ValueLabel and one branch per kind.
-        assert_eq!(count, 20 + crate::mark::registry::KINDS.len());
+        // ValueLabel, VolumeLabel and one branch per kind.
+        assert_eq!(count, 21 + crate::mark::registry::KINDS.len());
         // Maps stay open: any data source name, any column in inline rows.
         assert_eq!(schema["properties"]["data"]["additionalProperties"]["$ref"], "#/$defs/DataSource");
         assert_eq!(def(&schema, "DataSource")["properties"]["values"]["items"]["additionalProperties"], true);

@@ -89,6 +89,16 @@ fn several_surfaces_draw_opaque_first_and_warn_about_values_outside_the_data() {
     assert_eq!(mesh_labels(&out), ["value = 6", "value = 12"]);
     let warned: Vec<String> = out.warnings.iter().map(|w| w.message()).collect();
     assert!(warned.iter().any(|w| w.contains("level 99 is outside the volume's values")), "{warned:?}");
+    // Lint rule DI008 reports the missing surface as an error; levels inside the data pass.
+    let files: &[(&str, &[u8])] = &[("field.npy", &npy)];
+    let found = crate::common::lint_findings(&spec("levels = [6, 12, 99, -1]\n", [1.0; 3]), files, "DI008");
+    assert_eq!(found.len(), 1, "{found:?}");
+    assert!(
+        found[0].message.starts_with("levels 99, −1 are outside the volume's values (0 to"),
+        "{}",
+        found[0].message
+    );
+    assert!(crate::common::lint_findings(&spec("levels = [6, 12]\n", [1.0; 3]), files, "DI008").is_empty());
     // Opaque surfaces share one mesh, so its depth buffer decides which hides which.
     let opaque = draw("levels = [6, 12]\nopacity = 1\n", [1.0; 3], &npy).unwrap_or_else(|e| panic!("{e}"));
     assert_eq!(mesh_labels(&opaque), ["values = 6, 12"]);

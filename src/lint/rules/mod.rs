@@ -33,6 +33,7 @@ mod text_size;
 mod tiny_treemap_leaves;
 mod too_many_categories;
 mod unshared_scales;
+mod volume_checks;
 
 /// Every rule, in code order. Codes are stable: a retired rule's code is never reused.
 pub static ALL: &[&Rule] = &[
@@ -42,6 +43,7 @@ pub static ALL: &[&Rule] = &[
     &axis_ticks::TICK_COUNT,
     &colour_legend::RULE,
     &numbers_as_text::RULE,
+    &volume_checks::WITHOUT_LEGEND,
     // Labelling.
     &missing_title::RULE,
     &text_overlap::RULE,
@@ -56,6 +58,7 @@ pub static ALL: &[&Rule] = &[
     &hidden_values::OUTSIDE_DOMAIN,
     &banking::RULE,
     &repeated_x::RULE,
+    &volume_checks::ISO_OUTSIDE_RANGE,
     // Colour.
     &rainbow_map::RULE,
     &diverging_midpoint::RULE,
@@ -71,4 +74,5 @@ pub static ALL: &[&Rule] = &[
     &contour_labels::RULE,
     &flow_key::RULE,
     &faces_key::RULE,
+    &volume_checks::COVERAGE,
 ];

@@ -217,7 +217,7 @@ pub fn draw(chart: &Chart, options: &AreaOptions, table: &Table) -> Result<Chart
     let scene = frame::scene(chart, frame, &theme, marks, &mut warnings);
     let x_field = (x_opts.field.as_str(), x_col.is_time());
     let derived = derived_table(x_field, color.as_ref().map(ColorChannel::field), &positions, &series, &bounds);
-    Ok(ChartOutput { scene, derived, warnings, meshes: Vec::new(), geojson: None, geometry })
+    Ok(ChartOutput { scene, derived, warnings, meshes: Vec::new(), geojson: None, volume: None, geometry })
 }
 
 /// Errors for columns an area chart cannot draw.

@@ -504,7 +504,7 @@ pub fn draw(chart: &Chart, options: &BarOptions, table: &Table) -> Result<ChartO
         derived.push("lower", DerivedColumn::Number(end(|(l, _)| l)));
         derived.push("upper", DerivedColumn::Number(end(|(_, u)| u)));
     }
-    Ok(ChartOutput { scene, derived, warnings, meshes: Vec::new(), geojson: None, geometry })
+    Ok(ChartOutput { scene, derived, warnings, meshes: Vec::new(), geojson: None, volume: None, geometry })
 }
 
 /// A bar's name in the scene: its category, and its group when there are several.

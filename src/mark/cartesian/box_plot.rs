@@ -136,7 +136,7 @@ pub fn draw(
         extra.push(("notch_high", DerivedColumn::Number(grouped.list.iter().map(|g| g.stats.notch.1).collect())));
     }
     let derived = grouped.derived(extra);
-    Ok(ChartOutput { scene, derived, warnings, meshes: Vec::new(), geojson: None, geometry })
+    Ok(ChartOutput { scene, derived, warnings, meshes: Vec::new(), geojson: None, volume: None, geometry })
 }
 
 /// The marks of one box, and whether its notch had to be cut at the quartiles.

@@ -248,7 +248,7 @@ pub fn draw(chart: &Chart, options: &HeatmapOptions, table: &Table) -> Result<Ch
         Geometry::of_plot(Plot::of_frame(&frame, Some((&x_opts.field, x_col)), Some((&y_opts.field, y_col))));
     let scene = frame::scene(chart, frame, &theme, marks, &mut warnings);
     let derived = derived_table(&x_opts.field, &y_opts.field, &x_side, &y_side, &cells);
-    Ok(ChartOutput { scene, derived, warnings, meshes: Vec::new(), geojson: None, geometry })
+    Ok(ChartOutput { scene, derived, warnings, meshes: Vec::new(), geojson: None, volume: None, geometry })
 }
 
 /// Decimals of cell labels: counts none, other values about three significant digits of the

@@ -339,7 +339,7 @@ pub fn draw(
     let geometry = Geometry::of_plot(Plot::of_frame(&frame, Some((&x_opts.field, x_col)), None));
     let scene = frame::scene(chart, frame, &theme, marks, &mut warnings);
     let derived = derived_table(&binned, &group_heights, color.as_ref().map(|c| (c.field(), groups.as_slice())));
-    Ok(ChartOutput { scene, derived, warnings, meshes: Vec::new(), geojson: None, geometry })
+    Ok(ChartOutput { scene, derived, warnings, meshes: Vec::new(), geojson: None, volume: None, geometry })
 }
 
 /// How many bars share a bin side by side.

@@ -234,7 +234,15 @@ pub fn draw(chart: &Chart, options: &Interp1dOptions, table: &Table) -> Result<C
     );
     derived.push(&x_opts.field, DerivedColumn::Number(sampled.iter().flatten().map(|p| p.0).collect()));
     derived.push(&y_opts.field, DerivedColumn::Number(sampled.iter().flatten().map(|p| p.1).collect()));
-    Ok(ChartOutput { scene, derived, warnings, meshes: Vec::new(), geojson: None, geometry: Default::default() })
+    Ok(ChartOutput {
+        scene,
+        derived,
+        warnings,
+        meshes: Vec::new(),
+        geojson: None,
+        volume: None,
+        geometry: Default::default(),
+    })
 }
 
 /// Whether the scale maps data to pixels by an affine function (so Bézier curves map exactly).

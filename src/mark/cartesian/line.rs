@@ -435,7 +435,7 @@ pub fn draw(chart: &Chart, options: &LineOptions, table: &Table) -> Result<Chart
         derived.push(&x_opts.field, DerivedColumn::Source(x_opts.field.clone()));
         derived.push("y", DerivedColumn::Number(derived_y));
     }
-    Ok(ChartOutput { scene, derived, warnings, meshes: Vec::new(), geojson: None, geometry })
+    Ok(ChartOutput { scene, derived, warnings, meshes: Vec::new(), geojson: None, volume: None, geometry })
 }
 
 /// Where a line's band comes from: two columns, or a spread of the rows at each x.

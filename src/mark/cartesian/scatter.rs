@@ -209,7 +209,7 @@ pub fn draw(
         derived.push("selected", DerivedColumn::Selected(h.selected.clone()));
     }
     let geometry = Geometry { plots: vec![plot], ..Geometry::default() };
-    Ok(ChartOutput { scene, derived, warnings, meshes: Vec::new(), geojson: None, geometry })
+    Ok(ChartOutput { scene, derived, warnings, meshes: Vec::new(), geojson: None, volume: None, geometry })
 }
 
 /// `kind = "scatter"`.

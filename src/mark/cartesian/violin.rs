@@ -204,7 +204,7 @@ pub fn draw(
     let (scene, geometry) = layout.scene(chart, &grouped, table, marks, &mut warnings);
     let bandwidths = densities.iter().map(|d| d.bandwidth.unwrap_or(f64::NAN)).collect();
     let derived = grouped.derived(vec![("bandwidth", DerivedColumn::Number(bandwidths))]);
-    Ok(ChartOutput { scene, derived, warnings, meshes: Vec::new(), geojson: None, geometry })
+    Ok(ChartOutput { scene, derived, warnings, meshes: Vec::new(), geojson: None, volume: None, geometry })
 }
 
 /// `v` rounded to two significant digits, for the note.

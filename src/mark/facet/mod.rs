@@ -264,6 +264,7 @@ fn compose(
         warnings,
         meshes: Vec::new(),
         geojson: None,
+        volume: None,
         geometry,
     }
 }

@@ -199,6 +199,7 @@ pub fn draw(chart: &Chart, options: &ContourOptions, table: &Table) -> Result<Ch
         warnings,
         meshes: Vec::new(),
         geojson: Some(crate::mark::geojson::ContourFeatures { lines, bands }),
+        volume: None,
         geometry: Default::default(),
     })
 }

@@ -181,7 +181,15 @@ pub fn draw(chart: &Chart, options: &HypersliceOptions, table: &Table) -> Result
         derived.push(name, DerivedColumn::Source(name.clone()));
     }
     derived.push(&z_opts.field, DerivedColumn::Source(z_opts.field.clone()));
-    Ok(ChartOutput { scene, derived, warnings, meshes: Vec::new(), geojson: None, geometry: Default::default() })
+    Ok(ChartOutput {
+        scene,
+        derived,
+        warnings,
+        meshes: Vec::new(),
+        geojson: None,
+        volume: None,
+        geometry: Default::default(),
+    })
 }
 
 /// `kind = "hyperslice"`.

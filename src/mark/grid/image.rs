@@ -87,7 +87,15 @@ pub fn draw(chart: &Chart, options: &ImageOptions, table: &Table) -> Result<Char
     let scene = frame::scene(chart, frame, &theme, marks, &mut warnings);
 
     let derived = Derived::of_rows(rows, &[&x_opts.field, &y_opts.field, &z_opts.field]);
-    Ok(ChartOutput { scene, derived, warnings, meshes: Vec::new(), geojson: None, geometry: Default::default() })
+    Ok(ChartOutput {
+        scene,
+        derived,
+        warnings,
+        meshes: Vec::new(),
+        geojson: None,
+        volume: None,
+        geometry: Default::default(),
+    })
 }
 
 /// `kind = "image"`.

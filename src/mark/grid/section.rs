@@ -182,7 +182,15 @@ pub fn draw(chart: &Chart, options: &SectionOptions, table: &Table) -> Result<Ch
         .push(&pos_opts.field, DerivedColumn::Number(cuts.iter().flat_map(|c| c.points.iter().map(|p| p.0)).collect()));
     derived
         .push(&z_opts.field, DerivedColumn::Number(cuts.iter().flat_map(|c| c.points.iter().map(|p| p.1)).collect()));
-    Ok(ChartOutput { scene, derived, warnings, meshes: Vec::new(), geojson: None, geometry: Default::default() })
+    Ok(ChartOutput {
+        scene,
+        derived,
+        warnings,
+        meshes: Vec::new(),
+        geojson: None,
+        volume: None,
+        geometry: Default::default(),
+    })
 }
 
 /// A section's polyline, broken where the field is missing.

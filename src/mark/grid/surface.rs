@@ -111,7 +111,15 @@ pub fn draw(chart: &Chart, options: &SurfaceOptions, table: &Table) -> Result<Ch
     let scene = canvas.scene(chart, items, None);
 
     let derived = Derived::of_rows(rows, &[&x_opts.field, &y_opts.field, &z_opts.field]);
-    Ok(ChartOutput { scene, derived, warnings, meshes: Vec::new(), geojson: None, geometry: Default::default() })
+    Ok(ChartOutput {
+        scene,
+        derived,
+        warnings,
+        meshes: Vec::new(),
+        geojson: None,
+        volume: None,
+        geometry: Default::default(),
+    })
 }
 
 /// The projected cells as one mesh: four vertices per cell in its flat shaded colour (its base

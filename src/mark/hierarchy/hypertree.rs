@@ -204,7 +204,15 @@ pub fn draw(chart: &Chart, options: &HypertreeOptions, table: &Table, view: &Mob
         })
         .collect();
     let geometry = Geometry { disk: Some(Disk { center, radius, nodes }), ..Geometry::default() };
-    Ok(ChartOutput { scene, derived: d, warnings: Vec::new(), meshes: Vec::new(), geojson: None, geometry })
+    Ok(ChartOutput {
+        scene,
+        derived: d,
+        warnings: Vec::new(),
+        meshes: Vec::new(),
+        geojson: None,
+        volume: None,
+        geometry,
+    })
 }
 
 /// The node nearest the disk's centre.

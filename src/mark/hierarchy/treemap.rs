@@ -196,7 +196,15 @@ pub fn draw(chart: &Chart, options: &TreemapOptions, table: &Table) -> Result<Ch
 
     let derived = derived(&tree, &labels, &map, &depths, limit);
     let scene = canvas.scene(chart, items, None);
-    Ok(ChartOutput { scene, derived, warnings, meshes: Vec::new(), geojson: None, geometry: Default::default() })
+    Ok(ChartOutput {
+        scene,
+        derived,
+        warnings,
+        meshes: Vec::new(),
+        geojson: None,
+        volume: None,
+        geometry: Default::default(),
+    })
 }
 
 /// The deepest level to draw so that at most `max_cells` cells are drawn: the leaves above that

@@ -146,6 +146,7 @@ pub fn draw(
         warnings,
         meshes: Vec::new(),
         geojson: None,
+        volume: None,
         geometry,
     })
 }

@@ -221,6 +221,7 @@ pub fn draw(
         warnings,
         meshes: Vec::new(),
         geojson: None,
+        volume: None,
         geometry: Default::default(),
     })
 }

@@ -289,6 +289,7 @@ pub fn draw(
         warnings,
         meshes: Vec::new(),
         geojson: None,
+        volume: None,
         geometry,
     })
 }

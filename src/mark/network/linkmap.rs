@@ -206,6 +206,7 @@ fn draw_matrix(chart: &Chart, options: &LinkmapOptions, input: NetworkInput) -> 
         warnings: input.warnings,
         meshes: Vec::new(),
         geojson: None,
+        volume: None,
         geometry: Default::default(),
     })
 }

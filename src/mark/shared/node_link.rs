@@ -150,7 +150,15 @@ pub fn draw_network(chart: &Chart, input: NetworkInput, look: &Look) -> Result<C
         warnings.push(Warning::from(note));
     }
     let scene = canvas.scene(chart, items, note.as_deref());
-    Ok(ChartOutput { scene, derived, warnings, meshes: Vec::new(), geojson: None, geometry: Default::default() })
+    Ok(ChartOutput {
+        scene,
+        derived,
+        warnings,
+        meshes: Vec::new(),
+        geojson: None,
+        volume: None,
+        geometry: Default::default(),
+    })
 }
 
 /// The default caption: layout, counts and components.

@@ -289,6 +289,7 @@ pub fn draw(chart: &Chart, options: &FlowOptions, table: &Table) -> Result<Chart
         warnings,
         meshes: Vec::new(),
         geojson: None,
+        volume: None,
         geometry: Default::default(),
     })
 }

@@ -3,6 +3,7 @@
 //! an X-ray-like average — drawn as an image inside the volume's box with its axes.
 
 use crate::enrich::volume::Sampler;
+use crate::enrich::volume::census::census;
 use crate::enrich::volume::raycast::{
     Classify, Job, Mode, RayCaster, Settings, Shading, TERMINATION, TransferFunction,
 };
@@ -10,6 +11,7 @@ use crate::guide::axis::title_with_unit;
 use crate::guide::color::ContinuousMap;
 use crate::guide::format::format_value;
 use crate::guide::legend::Legend;
+use crate::guide::transfer_legend::TransferLegend;
 use crate::mark::derived::{Derived, DerivedColumn};
 use crate::mark::registry::{ChartContext, KindInfo, Technique};
 use crate::mark::{ChartOutput, MarkError, encode, frame};
@@ -18,6 +20,8 @@ use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
 use super::box_frame::{self, BoxView, ProjectionKind, ValueLabel};
+use super::labels::{Labels, VolumeLabel};
+use super::{SHOWN_OPACITY, VolumeFacts};
 
 /// Options of `kind = "volume"`.
 #[derive(Clone, Debug, Deserialize, Serialize, JsonSchema, PartialEq)]
@@ -54,9 +58,23 @@ pub struct VolumeOptions {
     /// to 2048).
     #[serde(default)]
     pub resolution: Option<u32>,
-    /// Colour-bar title and unit: `{ title, unit }` (default `value`).
+    /// Opacity scaled by the gradient magnitude (composite; default false): uniform regions
+    /// fade and boundaries between materials stay. Full opacity from the 95th percentile of
+    /// the volume's gradient magnitudes up.
+    #[serde(default)]
+    pub gradient_opacity: Option<bool>,
+    /// A label volume (segmentation): `[{ value, name, color, opacity }, ...]`, one per
+    /// whole-number voxel value shown; other values are transparent (composite, classified
+    /// before interpolation; instead of `opacity`, `preset` and `scheme`).
+    #[serde(default)]
+    pub labels: Option<Vec<VolumeLabel>>,
+    /// Legend title and unit: `{ title, unit }` (default `value`; `label` for labels).
     #[serde(default)]
     pub value: Option<ValueLabel>,
+    /// Draw the legend: the transfer function over the histogram of the values, the colour bar
+    /// (mip, average) or the labels (default true).
+    #[serde(default)]
+    pub legend: Option<bool>,
     /// Viewing direction in degrees counter-clockwise from +x (default −60).
     #[serde(default)]
     pub azimuth: Option<f64>,
@@ -114,6 +132,20 @@ const CT_OPACITY: [[f64; 2]; 6] =
 const DEFAULT_MAX_RESOLUTION: f64 = 1024.0;
 const RESOLUTION_RANGE: (u32, u32) = (16, 2048);
 
+/// Bins of the histogram behind the transfer function in the legend.
+const LEGEND_BINS: usize = 96;
+
+/// The gradient magnitude quantile at which `gradient_opacity` reaches full opacity.
+const GRADIENT_FULL_QUANTILE: f64 = 0.95;
+
+/// What colours the rays: a transfer function with its control points, labels, or a colour
+/// map over the values a maximum or mean finds.
+enum Look {
+    Function { tf: TransferFunction, points: Vec<[f64; 2]>, colours: (f64, f64) },
+    Labels { tf: TransferFunction, labels: Labels },
+    Reduce(Mode),
+}
+
 /// Draw a volume-rendering chart.
 pub fn draw(cx: &ChartContext<'_>, options: &VolumeOptions) -> Result<ChartOutput, MarkError> {
     let chart = &cx.chart;
@@ -122,6 +154,7 @@ pub fn draw(cx: &ChartContext<'_>, options: &VolumeOptions) -> Result<ChartOutpu
     let sampler =
         Sampler::new(&volume).map_err(|e| MarkError::at(&["data"], e, "check the file's orientation header"))?;
     let mode = options.mode.unwrap_or(RenderMode::Composite);
+    check_combination(options, mode)?;
     let step_voxels = options.step.unwrap_or(0.5);
     if !(0.05..=4.0).contains(&step_voxels) {
         return Err(MarkError::at(
@@ -138,19 +171,60 @@ pub fn draw(cx: &ChartContext<'_>, options: &VolumeOptions) -> Result<ChartOutpu
     let default_scheme = if mode == RenderMode::Composite { "magma" } else { "greys_r" };
     let map = encode::continuous_map(&["scheme"], Some(options.scheme.as_deref().unwrap_or(default_scheme)))?;
     let view = box_frame::view(options.azimuth, options.elevation, options.zoom, options.projection, options.fov);
-
     let label = options.value.clone().unwrap_or_default();
-    let title = title_with_unit(label.title.as_deref().unwrap_or("value"), label.unit.as_deref());
-    let opacity = match mode {
-        RenderMode::Composite => Some(opacity_points(options, &volume)?),
-        _ => None,
+    let default_title = if options.labels.is_some() { "label" } else { "value" };
+    let title = title_with_unit(label.title.as_deref().unwrap_or(default_title), label.unit.as_deref());
+
+    let look = match (mode, &options.labels) {
+        (RenderMode::Composite, Some(given)) => {
+            let labels = Labels::resolve(given, &volume)?;
+            Look::Labels { tf: labels.transfer_function()?, labels }
+        }
+        (RenderMode::Composite, None) => {
+            let points = opacity_points(options, &volume)?;
+            let colours = (points[0][0], points[points.len() - 1][0]).max_span();
+            let pairs: Vec<(f64, f64)> = points.iter().map(|p| (p[0], p[1])).collect();
+            let (c0, c1) = colours;
+            let tf = TransferFunction::new(|v| rgb(&map, (v - c0) / (c1 - c0)), &pairs)
+                .map_err(|e| MarkError::at(&["opacity"], e, "give [value, opacity] pairs rising in value"))?;
+            Look::Function { tf, points, colours }
+        }
+        (RenderMode::Mip, _) => Look::Reduce(Mode::Mip),
+        (RenderMode::Average, _) => Look::Reduce(Mode::Average),
     };
-    let mut domain = match &opacity {
-        Some(points) => (points[0][0], points[points.len() - 1][0]).max_span(),
-        None => (lo, hi).max_span(),
+    // The value axis of a transfer-function legend: the data's range and every control point.
+    let axis = match &look {
+        Look::Function { points, .. } => (lo.min(points[0][0]), hi.max(points[points.len() - 1][0])).max_span(),
+        _ => (lo, hi).max_span(),
     };
-    let legend = |domain| Legend::ColorBar { title: title.clone(), map: map.clone(), domain };
-    let canvas = frame::PanelCanvas::new(chart, vec![legend(domain)]);
+    let counted = match &look {
+        Look::Function { tf, .. } | Look::Labels { tf, .. } => {
+            Some(census(&volume, axis, LEGEND_BINS, |v| tf.at(v)[3] >= SHOWN_OPACITY))
+        }
+        Look::Reduce(_) => None,
+    };
+    // The legend before the image, so the rays fit the room it leaves; a colour bar's domain is
+    // known only once the rays have found their values (the first one only sizes the box).
+    let legend = |domain: (f64, f64)| -> Vec<Legend> {
+        if options.legend == Some(false) {
+            return Vec::new();
+        }
+        vec![match &look {
+            Look::Function { points, colours, .. } => Legend::TransferFunction {
+                title: title.clone(),
+                function: TransferLegend {
+                    map: map.clone(),
+                    colour_domain: *colours,
+                    domain: axis,
+                    opacity: points.clone(),
+                    counts: counted.as_ref().map(|c| c.counts.clone()).unwrap_or_default(),
+                },
+            },
+            Look::Labels { labels, .. } => labels.legend(title.clone()),
+            Look::Reduce(_) => Legend::ColorBar { title: title.clone(), map: map.clone(), domain },
+        }]
+    };
+    let canvas = frame::PanelCanvas::new(chart, legend((lo, hi).max_span()));
     let boxed = BoxView::new(&sampler, view, &canvas)?;
     let side = match options.resolution {
         Some(r) if (RESOLUTION_RANGE.0..=RESOLUTION_RANGE.1).contains(&r) => r as usize,
@@ -172,30 +246,33 @@ pub fn draw(cx: &ChartContext<'_>, options: &VolumeOptions) -> Result<ChartOutpu
         let len = (dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]).sqrt();
         (origin, dir.map(|c| c / len))
     };
-    let classify = match options.classify.unwrap_or(ClassifyWhen::After) {
-        ClassifyWhen::After => Classify::After,
-        ClassifyWhen::Before => Classify::Before,
-    };
-    let (rgba, how) = match (&opacity, mode) {
-        (Some(points), _) => {
-            let pairs: Vec<(f64, f64)> = points.iter().map(|p| (p[0], p[1])).collect();
-            let (d0, d1) = domain;
-            let tf = TransferFunction::new(|v| rgb(&map, (v - d0) / (d1 - d0)), &pairs)
-                .map_err(|e| MarkError::at(&["opacity"], e, "give [value, opacity] pairs rising in value"))?;
+    let mut domain = (lo, hi).max_span();
+    let (rgba, how) = match &look {
+        Look::Function { tf, .. } | Look::Labels { tf, .. } => {
+            let labelled = matches!(look, Look::Labels { .. });
+            let classify = match options.classify {
+                _ if labelled => Classify::Before,
+                Some(ClassifyWhen::Before) => Classify::Before,
+                _ => Classify::After,
+            };
             let shading = options.shade.unwrap_or(true).then(|| {
                 let light = box_frame::light_for(&view, false);
                 Shading { light: light.direction(), ambient: 0.35, diffuse: 0.65 }
             });
-            let settings = Settings { step, reference: voxel, termination: TERMINATION, classify, shading };
-            let pixels = caster.image((side, side), &ray, Job::Composite(&tf, &settings));
-            (composited_rgba(&pixels), composite_note(side, step_voxels, classify))
+            let gradient_opacity = options
+                .gradient_opacity
+                .unwrap_or(false)
+                .then(|| caster.gradient_quantile(GRADIENT_FULL_QUANTILE).unwrap_or(1.0));
+            let settings =
+                Settings { step, reference: voxel, termination: TERMINATION, classify, shading, gradient_opacity };
+            let pixels = caster.image((side, side), &ray, Job::Composite(tf, &settings));
+            (composited_rgba(&pixels), composite_note(side, step_voxels, classify, gradient_opacity.is_some()))
         }
-        (None, m) => {
-            let reduce = if m == RenderMode::Mip { Mode::Mip } else { Mode::Average };
+        Look::Reduce(reduce) => {
             // Sampled from the entry on: a step dividing the voxel spacing meets every voxel
             // plane of an axis-aligned ray.
-            let pixels = caster.image((side, side), &ray, Job::Reduce(reduce, step));
-            let what = if m == RenderMode::Mip { "maximum intensity projection" } else { "mean along each ray" };
+            let pixels = caster.image((side, side), &ray, Job::Reduce(*reduce, step));
+            let what = if *reduce == Mode::Mip { "maximum intensity projection" } else { "mean along each ray" };
             // The colours span the values the rays found, not the whole volume's.
             let found = pixels.iter().map(|p| p[0]).filter(|v| v.is_finite());
             let (a, b) = found.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| (a.min(v), b.max(v)));
@@ -206,8 +283,8 @@ pub fn draw(cx: &ChartContext<'_>, options: &VolumeOptions) -> Result<ChartOutpu
         }
     };
     // The rays are cast in the camera's unit square, so the image fits whatever room the final
-    // colour bar leaves.
-    let canvas = frame::PanelCanvas::new(chart, vec![legend(domain)]);
+    // legend leaves.
+    let canvas = frame::PanelCanvas::new(chart, legend(domain));
     let theme = canvas.theme.clone();
     let boxed = BoxView::new(&sampler, view, &canvas)?;
     let image = Raster { dest: boxed.square, width: side as u32, height: side as u32, rgba: rgba.into(), smooth: true };
@@ -226,14 +303,63 @@ pub fn draw(cx: &ChartContext<'_>, options: &VolumeOptions) -> Result<ChartOutpu
         None => how,
     };
     let scene = canvas.scene(chart, items, Some(&caption));
+    let derived = match &look {
+        Look::Function { points, colours, .. } => derived(Some(points), *colours, &map),
+        Look::Labels { labels, .. } => labels.derived(),
+        Look::Reduce(_) => derived(None, domain, &map),
+    };
+    let facts = VolumeFacts {
+        range: Some((lo, hi)),
+        levels: Vec::new(),
+        shown: counted.map(|c| c.kept_share()),
+        coloured: true,
+    };
     Ok(ChartOutput {
         scene,
-        derived: derived(opacity.as_deref(), domain, &map),
+        derived,
         warnings: Vec::new(),
         meshes: Vec::new(),
         geojson: None,
+        volume: Some(facts),
         geometry: Default::default(),
     })
+}
+
+/// Keys that do not go together: labels with a transfer function's keys or another mode,
+/// composite-only keys with a maximum or mean.
+fn check_combination(options: &VolumeOptions, mode: RenderMode) -> Result<(), MarkError> {
+    let composite_only = [
+        ("labels", options.labels.is_some()),
+        ("opacity", options.opacity.is_some()),
+        ("preset", options.preset.is_some()),
+        ("gradient_opacity", options.gradient_opacity.is_some()),
+        ("classify", options.classify.is_some()),
+    ];
+    if mode != RenderMode::Composite
+        && let Some((key, _)) = composite_only.iter().find(|(_, given)| *given)
+    {
+        return Err(MarkError::at(
+            &[key],
+            format!("`{key}` applies to mode = \"composite\", not to a maximum or mean"),
+            format!("leave out `{key}`, or use mode = \"composite\""),
+        ));
+    }
+    if options.labels.is_some() {
+        let clash = [
+            ("opacity", options.opacity.is_some()),
+            ("preset", options.preset.is_some()),
+            ("scheme", options.scheme.is_some()),
+            ("classify", options.classify == Some(ClassifyWhen::After)),
+        ];
+        if let Some((key, _)) = clash.iter().find(|(_, given)| *given) {
+            return Err(MarkError::at(
+                &[key],
+                format!("`{key}` does not go with `labels`: each label has its own colour and opacity"),
+                format!("leave out `{key}`, or give colours and opacities in `labels`"),
+            ));
+        }
+    }
+    Ok(())
 }
 
 /// The opacity control points: the spec's, a preset's, or the MRI preset from the volume's
@@ -297,12 +423,13 @@ fn mapped_rgba(pixels: &[[f64; 4]], map: &ContinuousMap, (lo, hi): (f64, f64)) -
     out
 }
 
-fn composite_note(side: usize, step: f64, classify: Classify) -> String {
+fn composite_note(side: usize, step: f64, classify: Classify, gradient_opacity: bool) -> String {
     let when = match classify {
         Classify::After => "classified after interpolation",
         Classify::Before => "classified before interpolation",
     };
-    format!("ray casting: {side} × {side} rays, a sample every {} voxel, {when}", format_value(step))
+    let scaled = if gradient_opacity { ", opacity scaled by the gradient magnitude" } else { "" };
+    format!("ray casting: {side} × {side} rays, a sample every {} voxel, {when}{scaled}", format_value(step))
 }
 
 /// One row per opacity control point (value, opacity, colour), or the colour bar's ends.
@@ -339,5 +466,9 @@ impl Technique for VolumeOptions {
 
     fn draw(&self, cx: &ChartContext<'_>) -> Result<ChartOutput, MarkError> {
         draw(cx, self)
+    }
+
+    fn scheme(&self) -> Option<&str> {
+        self.scheme.as_deref()
     }
 }

@@ -18,6 +18,7 @@ use crate::scene::{Color, Item, Mesh, Point, Role, Shape, Style, WorldMesh};
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
+use super::VolumeFacts;
 use super::box_frame::{self, BoxView, ProjectionKind, ValueLabel};
 
 /// Options of `kind = "isosurface"`.
@@ -208,6 +209,7 @@ pub fn draw(cx: &ChartContext<'_>, options: &IsosurfaceOptions) -> Result<ChartO
         warnings,
         meshes,
         geojson: None,
+        volume: Some(VolumeFacts { range, levels: values, shown: None, coloured: false }),
         geometry: Default::default(),
     })
 }

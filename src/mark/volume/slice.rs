@@ -237,6 +237,7 @@ pub fn draw(cx: &ChartContext<'_>, options: &SliceOptions) -> Result<ChartOutput
         warnings: Vec::new(),
         meshes: Vec::new(),
         geojson: None,
+        volume: None,
         geometry: Default::default(),
     })
 }
