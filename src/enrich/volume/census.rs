@@ -1,10 +1,8 @@
-//! Counts over a volume's values in one parallel pass: a histogram over a value range (the
+//! Counts over a volume's values (as ray casting holds them) in one parallel pass: a histogram over a value range (the
 //! transfer-function legend draws it) and how many voxels a predicate keeps (how much of the
 //! volume a transfer function shows).
 
 use rayon::prelude::*;
-
-use crate::data::volume::Volume;
 
 /// A histogram of the values that are not missing and how many of them a predicate kept.
 #[derive(Clone, Debug, PartialEq)]
@@ -28,18 +26,17 @@ impl Census {
 /// Voxels per voxel-range task.
 const CHUNK: usize = 1 << 16;
 
-/// Count `volume`'s values into `bins` equal bins over `(lo, hi)` (values outside fall into
-/// the end bins) and count those `keep` accepts; missing (NaN) voxels are left out of both.
-pub fn census(volume: &Volume, (lo, hi): (f64, f64), bins: usize, keep: impl Fn(f64) -> bool + Sync) -> Census {
+/// Count `values` into `bins` equal bins over `(lo, hi)` (values outside fall into the end
+/// bins) and count those `keep` accepts; missing (NaN) values are left out of both.
+pub fn census(values: &[f32], (lo, hi): (f64, f64), bins: usize, keep: impl Fn(f64) -> bool + Sync) -> Census {
     let bins = bins.max(1);
     let width = if hi > lo { (hi - lo) / bins as f64 } else { 1.0 };
-    let chunks = volume.len().div_ceil(CHUNK);
     let empty = || Census { counts: vec![0; bins], present: 0, kept: 0 };
-    (0..chunks)
-        .into_par_iter()
-        .fold(empty, |mut acc, c| {
-            for n in c * CHUNK..((c + 1) * CHUNK).min(volume.len()) {
-                let v = volume.get(n);
+    values
+        .par_chunks(CHUNK)
+        .fold(empty, |mut acc, chunk| {
+            for &v in chunk {
+                let v = f64::from(v);
                 if v.is_nan() {
                     continue;
                 }
@@ -61,15 +58,13 @@ pub fn census(volume: &Volume, (lo, hi): (f64, f64), bins: usize, keep: impl Fn(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::data::volume::Voxels;
 
     #[test]
     fn counts_equal_a_hand_count_with_ends_and_missing_values() {
         // 0, 1, ..., 199 and two NaNs, over (50, 150) in 4 bins of 25.
         let mut values: Vec<f32> = (0..200).map(|v| v as f32).collect();
         values.extend([f32::NAN, f32::NAN]);
-        let volume = Volume::new([202, 1, 1], Voxels::F32(values), [1.0; 3]).unwrap();
-        let c = census(&volume, (50.0, 150.0), 4, |v| v >= 100.0);
+        let c = census(&values, (50.0, 150.0), 4, |v| v >= 100.0);
         // Bin 0 takes 0..=74 (below the domain too), bin 3 takes 125..=199 (above it too).
         assert_eq!(c.counts, vec![75, 25, 25, 75]);
         assert_eq!((c.present, c.kept), (200, 100));
@@ -80,8 +75,7 @@ mod tests {
     fn large_volumes_are_counted_across_tasks() {
         let n = 3 * CHUNK + 17;
         let values: Vec<f32> = (0..n).map(|i| (i % 10) as f32).collect();
-        let volume = Volume::new([n, 1, 1], Voxels::F32(values), [1.0; 3]).unwrap();
-        let c = census(&volume, (0.0, 10.0), 10, |v| v == 9.0);
+        let c = census(&values, (0.0, 10.0), 10, |v| v == 9.0);
         assert_eq!(c.counts.iter().sum::<u64>(), n as u64);
         assert_eq!(c.counts[3], (0..n).filter(|i| i % 10 == 3).count() as u64);
         assert_eq!(c.kept, (0..n).filter(|i| i % 10 == 9).count() as u64);

@@ -214,7 +214,7 @@ pub struct RayCaster {
 }
 
 /// Cells along each side of the blocks used to skip empty space.
-const BLOCK: usize = 8;
+pub(super) const BLOCK: usize = 8;
 
 impl RayCaster {
     /// A ray caster over `volume`, or why there is none: fewer than two voxels along an axis, or
@@ -236,16 +236,16 @@ impl RayCaster {
                 volume.affine()
             )
         })?;
-        let values: Vec<f32> = volume.values().map(|v| v as f32).collect();
+        let values: Vec<f32> = (0..volume.len()).into_par_iter().map(|n| volume.get(n) as f32).collect();
         let (blocks, block_dims) = block_ranges(&values, dims);
         Ok(RayCaster { dims, values, inverse, blocks, block_dims })
     }
 
-    fn index_of(&self, w: [f64; 3]) -> [f64; 3] {
+    pub(super) fn index_of(&self, w: [f64; 3]) -> [f64; 3] {
         self.inverse.map(|row| row[0] * w[0] + row[1] * w[1] + row[2] * w[2] + row[3])
     }
 
-    fn index_direction(&self, d: [f64; 3]) -> [f64; 3] {
+    pub(super) fn index_direction(&self, d: [f64; 3]) -> [f64; 3] {
         self.inverse.map(|row| row[0] * d[0] + row[1] * d[1] + row[2] * d[2])
     }
 
@@ -343,6 +343,49 @@ impl RayCaster {
             *ga = if hi[a] > lo[a] { (self.value(hi) - self.value(lo)) / (hi[a] - lo[a]) } else { 0.0 };
         }
         // ∂f/∂w_c = Σ_r ∂f/∂i_r · ∂i_r/∂w_c.
+        [0, 1, 2].map(|c| (0..3).map(|r| g[r] * self.inverse[r][c]).sum())
+    }
+
+    /// The voxel values as `f32`, x fastest (NaN where missing).
+    pub fn values(&self) -> &[f32] {
+        &self.values
+    }
+
+    /// For each voxel-run block, whether `tf` leaves it wholly transparent, and a function
+    /// from a voxel to its block: a voxel of a clear block is transparent.
+    pub(super) fn clear_voxels(&self, tf: &TransferFunction) -> impl Fn([usize; 3]) -> bool + Sync + '_ {
+        let clear = clear_blocks(self, tf);
+        move |p: [usize; 3]| {
+            let [bx, by, bz] = [0, 1, 2].map(|a| (p[a] / BLOCK).min(self.block_dims[a] - 1));
+            clear[(bz * self.block_dims[1] + by) * self.block_dims[0] + bx]
+        }
+    }
+
+    /// Voxels along x, y and z.
+    pub(super) fn dims(&self) -> [usize; 3] {
+        self.dims
+    }
+
+    /// The value of voxel number `n` (x fastest; NaN where missing).
+    pub(super) fn voxel(&self, n: usize) -> f32 {
+        self.values[n]
+    }
+
+    /// The world gradient at voxel `(i, j, k)`: central differences over the neighbouring
+    /// voxels, one-sided at the faces — what [`RayCaster::gradient`] gives at a voxel, without
+    /// interpolating.
+    pub(super) fn voxel_gradient(&self, [i, j, k]: [usize; 3]) -> [f64; 3] {
+        let [nx, ny, _] = self.dims;
+        let at = |i: usize, j: usize, k: usize| f64::from(self.values[(k * ny + j) * nx + i]);
+        let mut g = [0.0; 3];
+        let p = [i, j, k];
+        for (a, ga) in g.iter_mut().enumerate() {
+            let (lo, hi) = (p[a].saturating_sub(1), (p[a] + 1).min(self.dims[a] - 1));
+            let (mut q0, mut q1) = (p, p);
+            q0[a] = lo;
+            q1[a] = hi;
+            *ga = (at(q1[0], q1[1], q1[2]) - at(q0[0], q0[1], q0[2])) / (hi - lo) as f64;
+        }
         [0, 1, 2].map(|c| (0..3).map(|r| g[r] * self.inverse[r][c]).sum())
     }
 
