@@ -40,7 +40,9 @@ pub fn census(values: &[f32], (lo, hi): (f64, f64), bins: usize, keep: impl Fn(f
                 if v.is_nan() {
                     continue;
                 }
-                let bin = ((v - lo) / width).floor().clamp(0.0, (bins - 1) as f64) as usize;
+                // Truncation floors what is not negative; negative and NaN-free values below
+                // the range saturate to bin 0.
+                let bin = (((v - lo) / width).max(0.0) as usize).min(bins - 1);
                 acc.counts[bin] += 1;
                 acc.present += 1;
                 acc.kept += u64::from(keep(v));

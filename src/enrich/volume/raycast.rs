@@ -173,8 +173,10 @@ impl TransferFunction {
         let f = ((value - lo) / (hi - lo)).clamp(0.0, 1.0);
         match self.outside {
             // Label tables: entry k covers [lo + k, lo + k + 1).
-            Some(_) => ((f * self.table.len() as f64).floor() as usize).min(self.table.len() - 1),
-            None => (f * (self.table.len() - 1) as f64).round() as usize,
+            // `f` is not negative: truncation floors, and adding ½ first rounds (without a call
+            // to libm's floor or round in the hot loop).
+            Some(_) => ((f * self.table.len() as f64) as usize).min(self.table.len() - 1),
+            None => (f * (self.table.len() - 1) as f64 + 0.5) as usize,
         }
     }
 
@@ -274,7 +276,8 @@ impl RayCaster {
         let mut t = [0.0; 3];
         for a in 0..3 {
             let x = p[a].clamp(0.0, (self.dims[a] - 1) as f64);
-            let i0 = (x.floor() as usize).min(self.dims[a] - 2);
+            // Not negative: truncation floors.
+            let i0 = (x as usize).min(self.dims[a] - 2);
             lower[a] = i0;
             t[a] = x - i0 as f64;
         }
