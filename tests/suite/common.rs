@@ -109,6 +109,14 @@ pub fn root() -> &'static Path {
     Path::new(env!("CARGO_MANIFEST_DIR"))
 }
 
+/// The policy for a test whose tool or data comes from outside the repository (installed by
+/// `.ci/run`): outside CI print `note` (why the test skips and how to install what it needs)
+/// and return, so the caller skips; with `CI` set, fail with `in_ci` instead.
+pub fn skip_outside_ci(in_ci: &str, note: &str) {
+    assert!(std::env::var_os("CI").is_none(), "{in_ci}");
+    eprintln!("{note}");
+}
+
 /// Assert that an SVG document parses with usvg.
 pub fn assert_svg_parses(svg: &str) {
     if let Err(e) = usvg::Tree::from_str(svg, &usvg::Options::default()) {

@@ -21,6 +21,7 @@ mod explore;
 mod facet;
 mod flow;
 mod frame_fit;
+mod gltf;
 mod golden;
 mod heatmap;
 mod histogram;

@@ -1,9 +1,10 @@
-//! glTF 2.0 binary (`.glb`): one JSON chunk describing a node, mesh and material per surface,
-//! and one binary chunk holding, per surface, positions (float VEC3, with the `min` and `max`
-//! glTF requires), unit normals (float VEC3), colours (normalised unsigned-byte VEC4, `COLOR_0`)
-//! and triangle indices (unsigned int). Materials are double-sided and unlit-looking PBR
-//! (metallic 0, rough), `BLEND` when a surface has a translucent vertex. Every chunk and buffer
-//! view starts on a 4-byte boundary, as the format requires.
+//! glTF 2.0 binary (`.glb`): one JSON chunk describing a node, mesh and material per surface
+//! (with no surface, the asset alone: glTF forbids empty arrays), and one binary chunk holding,
+//! per surface, positions (float VEC3, with the `min` and `max` glTF requires), unit normals
+//! (float VEC3), colours (normalised unsigned-byte VEC4, `COLOR_0`) and triangle indices
+//! (unsigned int). Materials are double-sided and unlit-looking PBR (metallic 0, rough), `BLEND`
+//! when a surface has a translucent vertex. Every chunk and buffer view starts on a 4-byte
+//! boundary, as the format requires.
 
 use serde_json::{Value, json};
 
@@ -94,13 +95,11 @@ pub fn to_glb(meshes: &[WorldMesh]) -> Vec<u8> {
         b.bin.push(0);
     }
     let node_ids: Vec<usize> = (0..nodes.len()).collect();
-    let mut doc = json!({
-        "asset": { "version": "2.0", "generator": "dataink" },
-        "scene": 0,
-        "scenes": [{ "nodes": node_ids }],
-        "nodes": nodes,
-    });
+    let mut doc = json!({ "asset": { "version": "2.0", "generator": "dataink" } });
     if !gltf_meshes.is_empty() {
+        doc["scene"] = json!(0);
+        doc["scenes"] = json!([{ "nodes": node_ids }]);
+        doc["nodes"] = json!(nodes);
         doc["meshes"] = json!(gltf_meshes);
         doc["materials"] = json!(materials);
         doc["accessors"] = json!(b.accessors);
