@@ -36,7 +36,9 @@
 
 use rayon::prelude::*;
 
-use crate::data::volume::Volume;
+use std::borrow::Cow;
+
+use crate::data::volume::{Volume, Voxels};
 
 use super::sample::invert;
 
@@ -180,6 +182,13 @@ impl TransferFunction {
         }
     }
 
+    /// The same function with each opacity `α` replaced by `1 − (1 − α)^exponent`: the opacity
+    /// of a sample `exponent` reference lengths long.
+    pub fn corrected(&self, exponent: f64) -> TransferFunction {
+        let table = self.table.iter().map(|&[r, g, b, a]| [r, g, b, 1.0 - (1.0 - a.min(1.0)).powf(exponent)]).collect();
+        TransferFunction { table, ..self.clone() }
+    }
+
     /// The values the table spans.
     pub fn domain(&self) -> (f64, f64) {
         self.domain
@@ -201,11 +210,12 @@ pub fn piecewise(points: &[(f64, f64)], v: f64) -> f64 {
     points.last().map_or(0.0, |p| p.1)
 }
 
-/// A volume prepared for ray casting: its values as `f32`, x fastest, and its world-to-index map.
+/// A volume prepared for ray casting: its values as `f32`, x fastest (borrowed when the volume
+/// holds unscaled `f32` voxels, converted otherwise), and its world-to-index map.
 #[derive(Clone, Debug)]
-pub struct RayCaster {
+pub struct RayCaster<'v> {
     dims: [usize; 3],
-    values: Vec<f32>,
+    values: Cow<'v, [f32]>,
     /// Rows of `index = inverse · (x, y, z, 1)`.
     inverse: [[f64; 4]; 3],
     /// The smallest and largest voxel value of each block of [`BLOCK`]³ cells (its voxels and the
@@ -218,10 +228,10 @@ pub struct RayCaster {
 /// Cells along each side of the blocks used to skip empty space.
 pub(super) const BLOCK: usize = 8;
 
-impl RayCaster {
+impl<'v> RayCaster<'v> {
     /// A ray caster over `volume`, or why there is none: fewer than two voxels along an axis, or
     /// a voxel-to-world matrix without an inverse.
-    pub fn new(volume: &Volume) -> Result<RayCaster, String> {
+    pub fn new(volume: &'v Volume) -> Result<RayCaster<'v>, String> {
         let dims = volume.dims();
         if let Some(a) = (0..3).find(|&a| dims[a] < 2) {
             return Err(format!(
@@ -238,7 +248,10 @@ impl RayCaster {
                 volume.affine()
             )
         })?;
-        let values: Vec<f32> = (0..volume.len()).into_par_iter().map(|n| volume.get(n) as f32).collect();
+        let values: Cow<'v, [f32]> = match (volume.voxels(), volume.scale()) {
+            (Voxels::F32(stored), None) => Cow::Borrowed(stored),
+            _ => Cow::Owned((0..volume.len()).into_par_iter().map(|n| volume.get(n) as f32).collect()),
+        };
         let (blocks, block_dims) = block_ranges(&values, dims);
         Ok(RayCaster { dims, values, inverse, blocks, block_dims })
     }
@@ -442,11 +455,12 @@ impl RayCaster {
     /// The composited colour of the ray from world point `origin` along unit `dir`:
     /// premultiplied RGB and accumulated opacity, all 0 to 1.
     pub fn composite(&self, origin: [f64; 3], dir: [f64; 3], tf: &TransferFunction, settings: &Settings) -> [f64; 4] {
-        self.composite_skipping(origin, dir, tf, settings, None)
+        self.composite_skipping(origin, dir, tf, settings, None, false)
     }
 
     /// [`RayCaster::composite`], jumping over the blocks `clear` marks wholly transparent: the
-    /// samples skipped would add nothing, so the colour is the same.
+    /// samples skipped would add nothing, so the colour is the same. With `corrected`, `tf`'s
+    /// opacities are already corrected for the step (see [`TransferFunction::corrected`]).
     fn composite_skipping(
         &self,
         origin: [f64; 3],
@@ -454,6 +468,7 @@ impl RayCaster {
         tf: &TransferFunction,
         settings: &Settings,
         clear: Option<&[bool]>,
+        corrected: bool,
     ) -> [f64; 4] {
         let (p0, d) = (self.index_of(origin), self.index_direction(dir));
         let Some((t0, t1)) = self.clip(p0, d) else { return [0.0; 4] };
@@ -489,7 +504,7 @@ impl RayCaster {
                     continue;
                 }
             }
-            let a = 1.0 - (1.0 - alpha.min(1.0)).powf(exponent);
+            let a = if corrected { alpha } else { 1.0 - (1.0 - alpha.min(1.0)).powf(exponent) };
             let light = match (settings.shading, gradient) {
                 (Some(s), Some((n, len))) => {
                     let cos = if len > 1e-12 {
@@ -558,11 +573,22 @@ impl RayCaster {
             Job::Composite(tf, _) => clear_blocks(self, tf),
             Job::Reduce(..) => Vec::new(),
         };
+        // Classified after interpolation and not scaled by the gradient, a sample's opacity is
+        // a table entry: correct the table once instead of every sample.
+        let corrected = match job {
+            Job::Composite(tf, s) if s.classify == Classify::After && s.gradient_opacity.is_none() => {
+                Some(tf.corrected(s.step / s.reference))
+            }
+            _ => None,
+        };
         out.par_chunks_mut(width.max(1)).enumerate().for_each(|(y, row)| {
             for (x, px) in row.iter_mut().enumerate() {
                 let (o, d) = ray(x, y);
                 *px = match job {
-                    Job::Composite(tf, settings) => self.composite_skipping(o, d, tf, settings, Some(&clear)),
+                    Job::Composite(tf, settings) => match &corrected {
+                        Some(c) => self.composite_skipping(o, d, c, settings, Some(&clear), true),
+                        None => self.composite_skipping(o, d, tf, settings, Some(&clear), false),
+                    },
                     Job::Reduce(mode, step) => [self.reduce(o, d, mode, step).unwrap_or(f64::NAN), 0.0, 0.0, 0.0],
                 };
             }
@@ -601,7 +627,7 @@ fn block_ranges(values: &[f32], dims: [usize; 3]) -> (Vec<(f32, f32)>, [usize; 3
 
 /// Which blocks a transfer function leaves wholly transparent: every table entry their value
 /// range can look up has opacity 0.
-fn clear_blocks(caster: &RayCaster, tf: &TransferFunction) -> Vec<bool> {
+fn clear_blocks(caster: &RayCaster<'_>, tf: &TransferFunction) -> Vec<bool> {
     // Prefix counts of entries with some opacity, for an O(1) test per block.
     let mut seen = Vec::with_capacity(tf.table.len() + 1);
     seen.push(0usize);
@@ -622,7 +648,7 @@ fn clear_blocks(caster: &RayCaster, tf: &TransferFunction) -> Vec<bool> {
 }
 
 #[cfg(test)]
-impl RayCaster {
+impl RayCaster<'_> {
     /// The largest value along a ray sampled every `step` from its entry, no block skipped.
     fn reduce_all(&self, origin: [f64; 3], dir: [f64; 3], step: f64) -> Option<f64> {
         let (p0, d) = (self.index_of(origin), self.index_direction(dir));
@@ -658,7 +684,6 @@ fn trilinear(c: &[f64; 8], t: [f64; 3]) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::data::volume::Voxels;
 
     fn volume(n: [usize; 3], spacing: [f64; 3], mut f: impl FnMut(f64, f64, f64) -> f64) -> Volume {
         let mut v = Vec::new();
@@ -777,7 +802,7 @@ mod tests {
                 let len = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
                 let (o, d) = ([-5.0, 5.0 + 0.6 * k as f64, 10.0 + 0.3 * k as f64], d.map(|c| c / len));
                 let all = caster.composite(o, d, &tf, &s);
-                assert_eq!(all, caster.composite_skipping(o, d, &tf, &s, Some(&clear)), "ray {k}");
+                assert_eq!(all, caster.composite_skipping(o, d, &tf, &s, Some(&clear), false), "ray {k}");
                 let (plain, fast) = (caster.reduce_all(o, d, 0.25), caster.reduce(o, d, Mode::Mip, 0.25));
                 assert_eq!(plain, fast, "ray {k}");
             }
@@ -801,7 +826,8 @@ mod tests {
         assert!((full[3] - (1.0 - 0.8f64.powi(11))).abs() < 1e-9, "{full:?}");
         let q = caster.gradient_quantile(0.5).unwrap();
         assert!((q - 2.0).abs() < 1e-9, "{q}");
-        let flat = RayCaster::new(&volume([6, 6, 6], [1.0; 3], |_, _, _| 3.0)).unwrap();
+        let uniform = volume([6, 6, 6], [1.0; 3], |_, _, _| 3.0);
+        let flat = RayCaster::new(&uniform).unwrap();
         assert_eq!(flat.gradient_quantile(0.95), None);
         let c = flat.composite([-1.0, 2.0, 2.0], [1.0, 0.0, 0.0], &tf, &with(1.0));
         assert_eq!(c, [0.0; 4]);
@@ -823,6 +849,30 @@ mod tests {
         let caster = RayCaster::new(&vol).unwrap();
         let c = caster.classified([0.5, 0.5, 0.5], &tf, Classify::Before).unwrap();
         assert!((c[3] - 0.25).abs() < 1e-12 && (c[0] - 1.0).abs() < 1e-12 && c[2] == 0.0, "{c:?}");
+    }
+
+    #[test]
+    fn an_image_is_its_rays_composited_one_by_one() {
+        // The image corrects the table's opacities once, skips clear blocks and runs rows in
+        // parallel; each pixel must still be exactly its ray's colour.
+        let vol = volume([30, 26, 22], [1.0, 1.2, 1.0], |x, y, z| {
+            (-((x - 14.0).powi(2) + (y - 12.0).powi(2) + (z - 10.0).powi(2)) / 30.0).exp()
+        });
+        let caster = RayCaster::new(&vol).unwrap();
+        let tf = TransferFunction::new(|v| [v, 0.3, 1.0 - v], &[(0.3, 0.0), (0.6, 0.4), (1.0, 0.9)]).unwrap();
+        let ray = |x: usize, y: usize| ([-5.0, 2.0 + 1.5 * x as f64, 1.0 + 1.2 * y as f64], [0.96, 0.2, 0.195]);
+        for classify in [Classify::After, Classify::Before] {
+            let s = Settings { classify, ..settings(0.37, TERMINATION) };
+            let img = caster.image((16, 16), &ray, Job::Composite(&tf, &s));
+            let shown = img.iter().filter(|p| p[3] > 0.1).count();
+            assert!(shown > 20, "{shown}");
+            for y in 0..16 {
+                for x in 0..16 {
+                    let (o, d) = ray(x, y);
+                    assert_eq!(img[y * 16 + x], caster.composite(o, d, &tf, &s), "{classify:?} ({x}, {y})");
+                }
+            }
+        }
     }
 
     #[test]

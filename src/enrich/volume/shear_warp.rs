@@ -37,7 +37,7 @@ pub type RayFn<'a> = &'a (dyn Fn(usize, usize) -> ([f64; 3], [f64; 3]) + Sync);
 /// and `settings.classify` are not used (one sample per slice, classified at the voxels). Fails
 /// when the rays are not parallel (a perspective view).
 pub fn shear_warp(
-    caster: &RayCaster,
+    caster: &RayCaster<'_>,
     tf: &TransferFunction,
     settings: &Settings,
     (width, height): (usize, usize),
@@ -140,7 +140,7 @@ impl Image {
 }
 
 /// The intermediate image: every slice sheared into place and composited front to back.
-fn composite(caster: &RayCaster, tf: &TransferFunction, settings: &Settings, frame: &SliceFrame) -> Image {
+fn composite(caster: &RayCaster<'_>, tf: &TransferFunction, settings: &Settings, frame: &SliceFrame) -> Image {
     let [a, b, c] = frame.axes;
     let (nb, nc) = (frame.dims[b], frame.dims[c]);
     let [w, h] = frame.size;
@@ -207,7 +207,7 @@ fn composite(caster: &RayCaster, tf: &TransferFunction, settings: &Settings, fra
 
 /// What classifying a slice needs.
 struct Pass<'a, C> {
-    caster: &'a RayCaster,
+    caster: &'a RayCaster<'a>,
     tf: &'a TransferFunction,
     settings: &'a Settings,
     frame: &'a SliceFrame,
