@@ -533,30 +533,58 @@ impl<'v> RayCaster<'v> {
     pub fn reduce(&self, origin: [f64; 3], dir: [f64; 3], mode: Mode, step: f64) -> Option<f64> {
         let (p0, d) = (self.index_of(origin), self.index_direction(dir));
         let (t0, t1) = self.clip(p0, d)?;
-        let (mut best, mut sum, mut n) = (f64::NEG_INFINITY, 0.0, 0usize);
         // From the entry point on, so a step that divides the voxel spacing lands on every
         // voxel plane an axis-aligned ray crosses.
         let samples = ((t1 - t0) / step + 1e-9).floor() as usize + 1;
-        let mut s = 0;
-        while s < samples {
+        let at = |s: usize| {
             let t = t0 + s as f64 * step;
-            let p = [p0[0] + t * d[0], p0[1] + t * d[1], p0[2] + t * d[2]];
-            // A maximum skips a block no higher than what it has found.
-            if mode == Mode::Mip && f64::from(self.blocks[self.block_of(p)].1) <= best {
-                let exit = self.block_exit(p0, d, t);
-                s = (s + 1).max(((exit - t0) / step).ceil().max(0.0) as usize);
-                continue;
-            }
-            s += 1;
-            let v = self.value(p);
-            if v.is_nan() {
-                continue;
-            }
-            best = best.max(v);
+            self.value([p0[0] + t * d[0], p0[1] + t * d[1], p0[2] + t * d[2]])
+        };
+        if mode == Mode::Mip {
+            return self.largest(p0, d, (t0, step, samples), at);
+        }
+        let (mut sum, mut n) = (0.0, 0usize);
+        for v in (0..samples).map(at).filter(|v| !v.is_nan()) {
             sum += v;
             n += 1;
         }
-        (n > 0).then(|| if mode == Mode::Mip { best } else { sum / n as f64 })
+        (n > 0).then(|| sum / n as f64)
+    }
+
+    /// The largest of the ray's `samples` (`at(s)` for `s` in `0..samples`, at `t0 + s·step`):
+    /// the samples are grouped by the block they fall in, the blocks visited from the highest
+    /// block maximum down, and the search stops at a block no higher than what it has found —
+    /// the same maximum as visiting every sample.
+    fn largest(
+        &self,
+        p0: [f64; 3],
+        d: [f64; 3],
+        (t0, step, samples): (f64, f64, usize),
+        at: impl Fn(usize) -> f64,
+    ) -> Option<f64> {
+        // (block maximum, first sample, end), in ray order.
+        let mut runs: Vec<(f32, usize, usize)> = Vec::new();
+        let mut s = 0;
+        while s < samples {
+            let t = t0 + s as f64 * step;
+            let block = self.block_of([p0[0] + t * d[0], p0[1] + t * d[1], p0[2] + t * d[2]]);
+            let exit = self.block_exit(p0, d, t);
+            let end = (s + 1).max(((exit - t0) / step).ceil().max(0.0) as usize).min(samples);
+            runs.push((self.blocks[block].1, s, end));
+            s = end;
+        }
+        runs.sort_by(|a, b| b.0.total_cmp(&a.0));
+        let (mut best, mut found) = (f64::NEG_INFINITY, false);
+        for (most, start, end) in runs {
+            if found && f64::from(most) <= best {
+                break;
+            }
+            for v in (start..end).map(&at).filter(|v| !v.is_nan()) {
+                best = best.max(v);
+                found = true;
+            }
+        }
+        found.then_some(best)
     }
 
     /// One value (`Mip`, `Average`) or premultiplied colour (`Composite`) per pixel of a
