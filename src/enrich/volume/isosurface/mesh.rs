@@ -205,7 +205,9 @@ impl<'a> Builder<'a> {
             return Err(IsoError::TooManyTriangles { limit: MAX_TRIANGLES });
         }
         triangles.push(t);
-        if triangles.len() % BATCH == 0 && self.added.fetch_add(BATCH, Ordering::Relaxed) + BATCH > MAX_TRIANGLES {
+        if triangles.len().is_multiple_of(BATCH)
+            && self.added.fetch_add(BATCH, Ordering::Relaxed) + BATCH > MAX_TRIANGLES
+        {
             return Err(IsoError::TooManyTriangles { limit: MAX_TRIANGLES });
         }
         Ok(())

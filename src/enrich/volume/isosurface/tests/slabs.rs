@@ -8,8 +8,11 @@ use super::*;
 /// One slab: the serial extraction.
 const ONE: Split = Split { slabs: 1, min_cells: 1 };
 
+/// Positions, normals and triangles with every number as its bits.
+type Bits<'m> = (Vec<[u64; 3]>, Vec<[u64; 3]>, &'m [[u32; 3]]);
+
 /// The mesh with every number as its bits, so `==` is bitwise (and `-0.0 ≠ 0.0`).
-fn bits(mesh: &IsoMesh) -> (Vec<[u64; 3]>, Vec<[u64; 3]>, &[[u32; 3]]) {
+fn bits(mesh: &IsoMesh) -> Bits<'_> {
     let b = |v: &[[f64; 3]]| v.iter().map(|p| p.map(f64::to_bits)).collect();
     (b(&mesh.positions), b(&mesh.normals), &mesh.triangles)
 }
