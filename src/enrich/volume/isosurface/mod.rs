@@ -35,6 +35,13 @@
 //!   `(k·(ny−1) + j)·(nx−1) + i`. [`active_cells`] lists the cells whose corner range holds
 //!   `iso`; [`extract`] works through those or through a list it is given (a span-space index
 //!   built elsewhere), sorted and without repeats first.
+//! - **Threads.** [`active_cells`] scans the z layers of cells on rayon's threads. [`extract`]
+//!   cuts its sorted cells into slabs of whole z layers (about four a thread, none under 4096
+//!   cells; one on one thread), marches each slab on its own and joins them: a vertex on the
+//!   voxel plane two slabs share is found again by its key in the slab below, triangles keep the
+//!   order of their cells, and vertices are numbered in the order the triangles first use them.
+//!   The mesh is therefore the same, bit for bit, as one pass over the cells gives, whatever the
+//!   number of threads.
 //!
 //! # Marching cubes: the case analysis
 //!
@@ -71,7 +78,7 @@
 //!    least area that does not cut itself.
 //!
 //! The result per configuration key (sign pattern, face decisions, which loops are joined) is
-//! memoised during an extraction, so it acts as a generated table (tubes keep their two loops
+//! memoised during an extraction (per slab), so it acts as a generated table (tubes keep their two loops
 //! in it and are stitched per cell). The tests check every one of the 256 sign patterns, with
 //! random corner values covering the face decisions and interior outcomes, against a
 //! brute-force count of components, boundary loops and Euler characteristic on a fine lattice.
@@ -88,6 +95,10 @@ mod tests;
 mod tetra;
 
 use std::fmt;
+use std::ops::Range;
+use std::sync::atomic::AtomicUsize;
+
+use rayon::prelude::*;
 
 use crate::data::volume::Volume;
 use crate::enrich::volume::sample::invert;
@@ -177,30 +188,47 @@ fn cell_dims(volume: &Volume) -> [usize; 3] {
 }
 
 /// The cells whose corners are all present and whose corner minimum `≤ iso ≤` maximum, in
-/// increasing order: a brute-force scan of the volume. Cells where the surface can pass; a
-/// cell whose corners are all `≥ iso` with one exactly at `iso` is listed but gets no
-/// triangles. Empty when `iso` is not finite or the volume is one voxel thick.
+/// increasing order: a brute-force scan of the volume, its z layers of cells shared among
+/// rayon's threads. Cells where the surface can pass; a cell whose corners are all `≥ iso` with
+/// one exactly at `iso` is listed but gets no triangles. Empty when `iso` is not finite or the
+/// volume is one voxel thick.
+///
+/// Each voxel is compared with `iso` once per plane of cells it touches (below, above, missing)
+/// and a cell's corners are combined from those bits: minimum `≤ iso` is some corner `≤ iso`,
+/// maximum `≥ iso` some corner `≥ iso`, the rule of `corner_range` without its eight reads a
+/// cell.
 pub fn active_cells(volume: &Volume, iso: f64) -> Vec<u32> {
     let [cx, cy, cz] = cell_dims(volume);
-    let mut out = Vec::new();
     if !iso.is_finite() || cx == 0 || cy == 0 || cz == 0 {
-        return out;
+        return Vec::new();
     }
     let [nx, ny, _] = volume.dims();
-    let offsets = corner_offsets(volume);
-    let mut id: u32 = 0;
-    for k in 0..cz {
-        for j in 0..cy {
-            let row = (k * ny + j) * nx;
-            for i in 0..cx {
-                if corner_range(volume, row + i, &offsets).is_some_and(|(lo, hi)| lo <= iso && iso <= hi) {
-                    out.push(id);
+    let plane = nx * ny;
+    // Bit 0: the value is `≤ iso`; bit 1: `≥ iso`; bit 2: missing. A cell is active when its
+    // corners' bits together are exactly 0b011.
+    let bits = |n: usize| {
+        let v = volume.get(n);
+        if v.is_nan() { 4 } else { u8::from(v <= iso) | u8::from(v >= iso) << 1 }
+    };
+    let layers: Vec<Vec<u32>> = (0..cz)
+        .into_par_iter()
+        .map(|k| {
+            // The bits of each voxel column (i, j) over the layer's two voxel planes.
+            let columns: Vec<u8> = (k * plane..(k + 1) * plane).map(|n| bits(n) | bits(n + plane)).collect();
+            let mut out = Vec::new();
+            let mut id = (k * cy * cx) as u32;
+            for (near, far) in columns.chunks_exact(nx).zip(columns.chunks_exact(nx).skip(1)) {
+                for (a, b) in near.windows(2).zip(far.windows(2)) {
+                    if a[0] | a[1] | b[0] | b[1] == 0b011 {
+                        out.push(id);
+                    }
+                    id = id.wrapping_add(1);
                 }
-                id = id.wrapping_add(1);
             }
-        }
-    }
-    out
+            out
+        })
+        .collect();
+    layers.concat()
 }
 
 /// The corner offsets (voxel numbers relative to a cell's first corner) of a cell, bit 0 of the
@@ -212,7 +240,7 @@ pub(crate) fn corner_offsets(volume: &Volume) -> [usize; 8] {
 
 /// The corner minimum and maximum of the cell whose first corner is voxel `base`, or `None` if
 /// a corner is missing: the rule of [`active_cells`] (a cell is active when `lo ≤ iso ≤ hi`),
-/// which the span-space index shares.
+/// which the span-space index shares (and the tests check against [`active_cells`]).
 #[inline]
 pub(crate) fn corner_range(volume: &Volume, base: usize, offsets: &[usize; 8]) -> Option<(f64, f64)> {
     let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
@@ -229,12 +257,67 @@ pub(crate) fn corner_range(volume: &Volume, base: usize, offsets: &[usize; 8]) -
 /// The isosurface `f = iso` of `volume` by `method`, with normals by `normals`, from the cells
 /// listed in `cells` (cell numbers as in the module docs; any order, repeats ignored) or, when
 /// `None`, from [`active_cells`]. Cells the surface does not cross add nothing.
+///
+/// The sorted cells are cut into slabs of whole z layers, marched on rayon's threads and joined
+/// into one mesh (see the module docs): the same mesh, bit for bit, whatever the number of
+/// threads.
 pub fn extract(
     volume: &Volume,
     iso: f64,
     method: Method,
     normals: NormalRule,
     cells: Option<&[u32]>,
+) -> Result<IsoMesh, IsoError> {
+    extract_split(volume, iso, method, normals, cells, Split::for_threads(rayon::current_num_threads()))
+}
+
+/// How [`extract`] cuts its cells into slabs.
+#[derive(Clone, Copy, Debug)]
+struct Split {
+    /// About how many slabs.
+    slabs: usize,
+    /// Fewest cells in a slab (fewer cells stay in one slab).
+    min_cells: usize,
+}
+
+impl Split {
+    /// Four slabs a thread (so threads that finish early take over the rest), none under 4096
+    /// cells; one slab on one thread.
+    fn for_threads(threads: usize) -> Split {
+        Split { slabs: if threads > 1 { 4 * threads } else { 1 }, min_cells: 4096 }
+    }
+
+    /// The slabs of the sorted cell list `list` with `layer` cells in each z layer, as ranges of
+    /// the list: about equal numbers of cells, each cut between two z layers.
+    fn ranges(self, list: &[u32], layer: usize) -> Vec<Range<usize>> {
+        let slabs = self.slabs.min(list.len() / self.min_cells.max(1)).max(1);
+        let z = |n: usize| list.get(n).map(|&c| c as usize / layer.max(1));
+        let mut ranges = Vec::with_capacity(slabs);
+        let mut start = 0;
+        for s in 1..slabs {
+            let mut cut = (s * list.len() / slabs).max(start + 1);
+            while cut < list.len() && z(cut) == z(cut - 1) {
+                cut += 1;
+            }
+            if cut >= list.len() {
+                break;
+            }
+            ranges.push(start..cut);
+            start = cut;
+        }
+        ranges.push(start..list.len());
+        ranges
+    }
+}
+
+/// [`extract`] with the cells cut into slabs by `split`.
+fn extract_split(
+    volume: &Volume,
+    iso: f64,
+    method: Method,
+    normals: NormalRule,
+    cells: Option<&[u32]>,
+    split: Split,
 ) -> Result<IsoMesh, IsoError> {
     if !iso.is_finite() {
         return Err(IsoError::IsoNotFinite(iso));
@@ -257,21 +340,36 @@ pub fn extract(
     };
     let [cx, cy, cz] = cell_dims(volume);
     let count = cx * cy * cz;
-    let [nx, ny, _] = volume.dims();
-    let mut builder = mesh::Builder::new(volume, iso, normals == NormalRule::Gradient);
-    let mut cache = cell::Cache::default();
-    let tables = (method == Method::Tetrahedra).then(tetra::Tables::new);
-    for &id in list {
-        let n = id as usize;
-        if n >= count {
-            return Err(IsoError::CellOutOfRange { cell: id, cells: count });
-        }
-        let cell = [n % cx, n / cx % cy, n / (cx * cy)];
-        let base = (cell[2] * ny + cell[1]) * nx + cell[0];
-        match &tables {
-            Some(t) => tetra::march(&mut builder, t, cell, base)?,
-            None => cell::march(&mut builder, &mut cache, cell, base)?,
-        }
+    let inside = list.partition_point(|&c| (c as usize) < count);
+    if let Some(&cell) = list.get(inside) {
+        return Err(IsoError::CellOutOfRange { cell, cells: count });
     }
-    Ok(builder.finish(normals, inverse))
+    let [nx, ny, _] = volume.dims();
+    let tables = (method == Method::Tetrahedra).then(tetra::Tables::new);
+    let added = AtomicUsize::new(0);
+    let ranges = split.ranges(list, cx * cy);
+    let parts: Vec<mesh::Part> = ranges
+        .par_iter()
+        .map(|range| {
+            let mut builder = mesh::Builder::new(volume, iso, normals == NormalRule::Gradient, &added);
+            let mut cache = cell::Cache::default();
+            for &id in list.get(range.clone()).unwrap_or_default() {
+                let n = id as usize;
+                let cell = [n % cx, n / cx % cy, n / (cx * cy)];
+                let base = (cell[2] * ny + cell[1]) * nx + cell[0];
+                match &tables {
+                    Some(t) => tetra::march(&mut builder, t, cell, base)?,
+                    None => cell::march(&mut builder, &mut cache, cell, base)?,
+                }
+            }
+            Ok(builder.into_part())
+        })
+        .collect::<Result<_, IsoError>>()?;
+    if parts.iter().map(mesh::Part::triangle_count).sum::<usize>() > MAX_TRIANGLES {
+        return Err(IsoError::TooManyTriangles { limit: MAX_TRIANGLES });
+    }
+    let bottoms: Vec<usize> =
+        ranges.iter().map(|r| list.get(r.start).map_or(0, |&c| c as usize / (cx * cy).max(1))).collect();
+    let joined = mesh::join(parts, &bottoms, nx * ny);
+    Ok(mesh::finish(volume, joined, normals, inverse))
 }

@@ -6,6 +6,8 @@
 //! [`NormalRule::Faces`](super::NormalRule::Faces): the area-weighted mean of the normals of the
 //! triangles around the vertex.
 
+use rayon::prelude::*;
+
 use super::cube::{corner_position, cross, norm, scale, sub};
 use crate::data::volume::Volume;
 
@@ -57,13 +59,27 @@ fn unit(v: [f64; 3]) -> Option<[f64; 3]> {
 
 /// Unit world normals for `positions` (world) and `triangles`: from the index-space gradients
 /// `grads` (negated, through the inverse transpose of `inverse`'s map) when given, else — and
-/// wherever a gradient has no direction — the area-weighted mean of the triangle normals.
+/// wherever a gradient has no direction — the area-weighted mean of the triangle normals (summed
+/// only when some vertex needs it).
 pub(super) fn world_normals(
     positions: &[[f64; 3]],
     triangles: &[[u32; 3]],
     grads: &[[f64; 3]],
     inverse: [[f64; 4]; 3],
 ) -> Vec<[f64; 3]> {
+    let from_gradients: Vec<Option<[f64; 3]>> = (0..positions.len())
+        .into_par_iter()
+        .map(|v| {
+            grads.get(v).and_then(|g| {
+                // ∇_world f = Rᵀ ∇_index f, R the 3 × 3 part of the world-to-index map.
+                let w: [f64; 3] = std::array::from_fn(|x| -(0..3).map(|a| inverse[a][x] * g[a]).sum::<f64>());
+                unit(w)
+            })
+        })
+        .collect();
+    if from_gradients.iter().all(Option::is_some) {
+        return from_gradients.into_iter().map(|n| n.unwrap_or([0.0, 0.0, 1.0])).collect();
+    }
     let mut faces = vec![[0.0; 3]; positions.len()];
     for t in triangles {
         let p = t.map(|v| positions.get(v as usize).copied().unwrap_or([0.0; 3]));
@@ -75,17 +91,10 @@ pub(super) fn world_normals(
             }
         }
     }
-    faces
-        .iter()
-        .enumerate()
-        .map(|(v, face)| {
-            let from_gradient = grads.get(v).and_then(|g| {
-                // ∇_world f = Rᵀ ∇_index f, R the 3 × 3 part of the world-to-index map.
-                let w: [f64; 3] = std::array::from_fn(|x| -(0..3).map(|a| inverse[a][x] * g[a]).sum::<f64>());
-                unit(w)
-            });
-            from_gradient.or_else(|| unit(*face)).unwrap_or([0.0, 0.0, 1.0])
-        })
+    from_gradients
+        .into_iter()
+        .zip(&faces)
+        .map(|(gradient, face)| gradient.or_else(|| unit(*face)).unwrap_or([0.0, 0.0, 1.0]))
         .collect()
 }
 

@@ -1,10 +1,12 @@
 //! Tests of the isosurface extraction: every cell configuration against a brute-force reference
-//! ([`cases`]), whole volumes (watertight, oriented, known shapes; [`shapes`]) and the cell
-//! list, ties and errors ([`volumes`]).
+//! ([`cases`]), whole volumes (watertight, oriented, known shapes; [`shapes`]), the cell
+//! list, ties and errors ([`volumes`]), and extraction in slabs on several threads against one
+//! pass ([`slabs`]).
 
 mod cases;
 mod reference;
 mod shapes;
+mod slabs;
 mod volumes;
 
 use std::collections::HashMap;

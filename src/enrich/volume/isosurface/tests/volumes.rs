@@ -63,6 +63,38 @@ fn active_cells_are_the_cells_that_give_triangles() {
 }
 
 #[test]
+fn active_cells_follow_the_corner_range_rule() {
+    let mut rng = Rng::new(11);
+    for dims in [[2, 2, 2], [5, 3, 4], [9, 7, 6], [1, 4, 4]] {
+        let n: usize = dims.iter().product();
+        // Small integers (voxels at the level), a few missing and infinite voxels.
+        let values: Vec<f64> = (0..n)
+            .map(|_| match rng.next() {
+                r if r < 0.05 => f64::NAN,
+                r if r < 0.08 => f64::INFINITY,
+                r if r < 0.1 => f64::NEG_INFINITY,
+                r => (r * 4.0).floor(),
+            })
+            .collect();
+        let vol = volume(dims, values);
+        let offsets = corner_offsets(&vol);
+        let [nx, ny, _] = dims;
+        let cells = dims.map(|d| d.saturating_sub(1));
+        for iso in [0.0, 0.5, 1.0, 2.0, 3.0, 3.5] {
+            let mut expected = Vec::new();
+            for (id, c) in (0..cells.iter().product::<usize>()).enumerate() {
+                let (i, j, k) = (c % cells[0], c / cells[0] % cells[1], c / (cells[0] * cells[1]));
+                let range = corner_range(&vol, (k * ny + j) * nx + i, &offsets);
+                if range.is_some_and(|(lo, hi)| lo <= iso && iso <= hi) {
+                    expected.push(id as u32);
+                }
+            }
+            assert_eq!(active_cells(&vol, iso), expected, "dims {dims:?} iso {iso}");
+        }
+    }
+}
+
+#[test]
 fn voxels_at_the_level_make_no_degenerate_triangles_or_duplicate_vertices() {
     for seed in 1..=5u64 {
         let mut rng = Rng::new(100 + seed);
