@@ -421,7 +421,12 @@ pub fn run() -> ExitCode {
                         errln!("warning: {w}");
                     }
                     let files: Vec<String> = r.files.iter().map(|f| f.display().to_string()).collect();
-                    errln!("wrote {}{}", files.join(", "), defaults_note(&loaded, &r.name));
+                    if files.is_empty() {
+                        // E.g. `--format glb` for a chart with no surface.
+                        errln!("wrote nothing for chart \"{}\": it has nothing in the formats asked for", r.name);
+                    } else {
+                        errln!("wrote {}{}", files.join(", "), defaults_note(&loaded, &r.name));
+                    }
                     errln!("lint {}", r.lint.summary_line());
                 }
             }

@@ -123,6 +123,13 @@ fn surfaces_are_written_as_glb_ply_and_obj() {
     let json_len = u32::from_le_bytes([glb[12], glb[13], glb[14], glb[15]]) as usize;
     let doc: serde_json::Value = serde_json::from_slice(&glb[20..20 + json_len]).expect("JSON chunk");
     assert_eq!(doc["meshes"].as_array().map(Vec::len), Some(2));
+    // Levels outside the data: no surface, no glb file, and the command says it wrote nothing.
+    let none = Fixture::new(&spec("levels = [99]\n", [1.0; 3]), &[("field.npy", &npy)]);
+    let out = run_dataink(none.dir.path(), &["render", "spec.toml", "--out", "out", "--format", "glb"], 120)
+        .expect("finished");
+    let said = String::from_utf8_lossy(&out.stderr);
+    assert!(said.contains("wrote nothing for chart \"iso\": it has nothing in the formats asked for"), "{said}");
+    assert!(!none.dir.path().join("out/iso.glb").exists());
     let csv = std::fs::read_to_string(dir.join("iso.csv")).expect("csv");
     let vertices: Vec<usize> = csv
         .lines()

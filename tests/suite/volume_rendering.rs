@@ -108,7 +108,10 @@ fn bad_volume_specs_give_their_documented_errors() {
         ("labels = [{ value = 1 }, { value = 1 }]", "label 1 is listed twice"),
         ("labels = [{ value = 1, color = \"nope\" }]", "`nope` is not a colour"),
         ("labels = [{ value = 1, opacity = 3 }]", "label 1 has opacity 3"),
-        ("renderer = \"shear-warp\"\nprojection = \"perspective\"", "`projection` does not go with renderer = \"shear-warp\""),
+        (
+            "renderer = \"shear-warp\"\nprojection = \"perspective\"",
+            "`projection` does not go with renderer = \"shear-warp\"",
+        ),
         ("renderer = \"shear-warp\"\nclassify = \"after\"", "`classify` does not go with renderer = \"shear-warp\""),
         ("renderer = \"shear-warp\"\nstep = 0.25", "`step` does not go with renderer = \"shear-warp\""),
         ("mode = \"mip\"\nrenderer = \"shear-warp\"", "`renderer` applies to mode = \"composite\""),
