@@ -98,6 +98,35 @@ pub struct Settings {
     pub gradient_opacity: Option<f64>,
 }
 
+impl Settings {
+    /// A sample's opacity scaled by its gradient's magnitude (with `gradient_opacity`) and the
+    /// light it gets (with `shading`; 1 without), from `alpha` and its world gradient (asked
+    /// for only when needed); `None` when the scaling leaves it transparent.
+    pub(super) fn lit(&self, alpha: f64, gradient: impl FnOnce() -> [f64; 3]) -> Option<(f64, f64)> {
+        if self.shading.is_none() && self.gradient_opacity.is_none() {
+            return Some((alpha, 1.0));
+        }
+        let n = gradient();
+        let len = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+        let alpha = match self.gradient_opacity {
+            Some(full) => alpha * (len / full).min(1.0),
+            None => alpha,
+        };
+        if !(alpha > 0.0) {
+            return None;
+        }
+        let light = self.shading.map_or(1.0, |s| {
+            let cos = if len > 1e-12 {
+                ((n[0] * s.light[0] + n[1] * s.light[1] + n[2] * s.light[2]) / len).abs()
+            } else {
+                0.5
+            };
+            (s.ambient + s.diffuse * cos).min(1.0)
+        });
+        Some((alpha, light))
+    }
+}
+
 /// Colour and opacity as piecewise-linear functions of the value, tabulated over a domain.
 #[derive(Clone, Debug, PartialEq)]
 pub struct TransferFunction {
@@ -490,32 +519,12 @@ impl<'v> RayCaster<'v> {
                 continue;
             }
             n += 1;
-            let Some([r, g, b, mut alpha]) = self.classified(p, tf, settings.classify) else { continue };
+            let Some([r, g, b, alpha]) = self.classified(p, tf, settings.classify) else { continue };
             if alpha <= 0.0 {
                 continue;
             }
-            let gradient = (settings.shading.is_some() || settings.gradient_opacity.is_some()).then(|| {
-                let n = self.gradient(p);
-                (n, (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt())
-            });
-            if let (Some(full), Some((_, len))) = (settings.gradient_opacity, gradient) {
-                alpha *= (len / full).min(1.0);
-                if !(alpha > 0.0) {
-                    continue;
-                }
-            }
+            let Some((alpha, light)) = settings.lit(alpha, || self.gradient(p)) else { continue };
             let a = if corrected { alpha } else { 1.0 - (1.0 - alpha.min(1.0)).powf(exponent) };
-            let light = match (settings.shading, gradient) {
-                (Some(s), Some((n, len))) => {
-                    let cos = if len > 1e-12 {
-                        ((n[0] * s.light[0] + n[1] * s.light[1] + n[2] * s.light[2]) / len).abs()
-                    } else {
-                        0.5
-                    };
-                    (s.ambient + s.diffuse * cos).min(1.0)
-                }
-                _ => 1.0,
-            };
             let w = (1.0 - acc[3]) * a;
             acc[0] += w * r * light;
             acc[1] += w * g * light;

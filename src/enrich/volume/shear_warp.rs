@@ -254,32 +254,12 @@ fn classify_slice<C: Fn([usize; 3]) -> bool + Sync>(
                 if value.is_nan() {
                     continue;
                 }
-                let [r, g, bl, mut alpha] = tf.at(f64::from(value));
+                let [r, g, bl, alpha] = tf.at(f64::from(value));
                 if alpha <= 0.0 {
                     continue;
                 }
-                let gradient = (settings.shading.is_some() || settings.gradient_opacity.is_some()).then(|| {
-                    let n = caster.voxel_gradient(p);
-                    (n, (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt())
-                });
-                if let (Some(full), Some((_, len))) = (settings.gradient_opacity, gradient) {
-                    alpha *= (len / full).min(1.0);
-                    if !(alpha > 0.0) {
-                        continue;
-                    }
-                }
+                let Some((alpha, light)) = settings.lit(alpha, || caster.voxel_gradient(p)) else { continue };
                 let corrected = 1.0 - (1.0 - alpha.min(1.0)).powf(exponent);
-                let light = match (settings.shading, gradient) {
-                    (Some(s), Some((n, len))) => {
-                        let cos = if len > 1e-12 {
-                            ((n[0] * s.light[0] + n[1] * s.light[1] + n[2] * s.light[2]) / len).abs()
-                        } else {
-                            0.5
-                        };
-                        (s.ambient + s.diffuse * cos).min(1.0)
-                    }
-                    _ => 1.0,
-                };
                 let weight = corrected * light;
                 // `ub` has moved on: this voxel is column `ub` of the bordered row.
                 cells[ub] = [(r * weight) as f32, (g * weight) as f32, (bl * weight) as f32, corrected as f32];
