@@ -719,10 +719,15 @@ fn trilinear(c: &[f64; 8], t: [f64; 3]) -> f64 {
 }
 
 #[cfg(test)]
-mod tests {
+pub(super) mod tests {
     use super::*;
 
-    fn volume(n: [usize; 3], spacing: [f64; 3], mut f: impl FnMut(f64, f64, f64) -> f64) -> Volume {
+    /// A volume of `f(i, j, k)` at each voxel, x fastest (shared with the shear-warp tests).
+    pub(in crate::enrich::volume) fn volume(
+        n: [usize; 3],
+        spacing: [f64; 3],
+        mut f: impl FnMut(f64, f64, f64) -> f64,
+    ) -> Volume {
         let mut v = Vec::new();
         for k in 0..n[2] {
             for j in 0..n[1] {

@@ -275,20 +275,8 @@ fn classify_slice<C: Fn([usize; 3]) -> bool + Sync>(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::data::volume::{Volume, Voxels};
+    use crate::enrich::volume::raycast::tests::volume;
     use crate::enrich::volume::raycast::{Classify, Job, Shading};
-
-    fn volume(n: [usize; 3], spacing: [f64; 3], f: impl Fn(f64, f64, f64) -> f64) -> Volume {
-        let mut v = Vec::new();
-        for k in 0..n[2] {
-            for j in 0..n[1] {
-                for i in 0..n[0] {
-                    v.push(f(i as f64, j as f64, k as f64) as f32);
-                }
-            }
-        }
-        Volume::new(n, Voxels::F32(v), spacing).expect("volume")
-    }
 
     fn settings(shading: Option<Shading>) -> Settings {
         Settings {
