@@ -154,9 +154,7 @@ impl Legend {
 
     fn color_bar_scale(&self, theme: &Theme, available_height: f64) -> Option<Scale> {
         let Legend::ColorBar { domain, .. } = self else { return None };
-        let length = color_bar_length(available_height - self.title_height(theme));
-        let target = ((length / (theme.font_size * 3.0)).floor() as usize).clamp(2, 8);
-        LinearScale::new(*domain, (length, 0.0), false, target).ok().map(Scale::Linear)
+        value_scale(*domain, color_bar_length(available_height - self.title_height(theme)), theme)
     }
 
     /// Draw the legend with its top-left corner at `at`.
@@ -314,8 +312,15 @@ fn step_labels(edges: &[f64]) -> Vec<String> {
     labels
 }
 
+/// The value scale along a bar `length` tall, bottom to top, with about one tick per three
+/// lines of text (2 to 8).
+pub(super) fn value_scale(domain: (f64, f64), length: f64, theme: &Theme) -> Option<Scale> {
+    let target = ((length / (theme.font_size * 3.0)).floor() as usize).clamp(2, 8);
+    LinearScale::new(domain, (length, 0.0), false, target).ok().map(Scale::Linear)
+}
+
 /// A tick mark on the right of a colour bar at height `y`, and its label.
-fn bar_tick(ticks: &mut Vec<PathCmd>, items: &mut Vec<Item>, bar: Rect, y: f64, label: &str, theme: &Theme) {
+pub(super) fn bar_tick(ticks: &mut Vec<PathCmd>, items: &mut Vec<Item>, bar: Rect, y: f64, label: &str, theme: &Theme) {
     ticks.push(PathCmd::MoveTo(Point::new(bar.right(), y)));
     ticks.push(PathCmd::LineTo(Point::new(bar.right() + theme.tick_length, y)));
     items.push(Item::text(

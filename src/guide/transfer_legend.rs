@@ -8,7 +8,8 @@ use std::sync::Arc;
 
 use super::Theme;
 use super::color::ContinuousMap;
-use super::scale::{LinearScale, Scale};
+use super::legend::{bar_tick, value_scale};
+use super::scale::Scale;
 use crate::scene::{Anchor, Baseline, Color, Item, PathCmd, Point, Raster, Rect, Role, Shape, Style, Text};
 use crate::text::measure;
 
@@ -40,8 +41,7 @@ impl TransferLegend {
 
     /// The value scale along a panel `length` tall.
     pub fn scale(&self, theme: &Theme, length: f64) -> Option<Scale> {
-        let target = ((length / (theme.font_size * 3.0)).floor() as usize).clamp(2, 8);
-        LinearScale::new(self.domain, (length, 0.0), false, target).ok().map(Scale::Linear)
+        value_scale(self.domain, length, theme)
     }
 
     /// Width and height of the drawing under the title, for a panel `length` tall.
@@ -91,15 +91,7 @@ impl TransferLegend {
         if let Some(scale) = self.scale(theme, length) {
             let mut ticks = Vec::new();
             for t in scale.ticks() {
-                let y = panel.y + t.position;
-                ticks.push(PathCmd::MoveTo(Point::new(panel.right(), y)));
-                ticks.push(PathCmd::LineTo(Point::new(panel.right() + theme.tick_length, y)));
-                items.push(label(
-                    Point::new(panel.right() + theme.tick_length + 3.0, y),
-                    &t.label,
-                    Anchor::Start,
-                    theme,
-                ));
+                bar_tick(&mut ticks, &mut items, panel, panel.y + t.position, &t.label, theme);
             }
             items.push(Item::new(Role::Legend, Shape::Path(ticks), Style::stroke(theme.axis, 1.0)));
         }

@@ -73,7 +73,7 @@ fn iso_outside_range(s: &Subject<'_>) -> Vec<Issue> {
             format_value(lo),
             format_value(hi)
         ),
-        "choose levels between the volume's smallest and largest values (`dataink data` lists them)",
+        "choose levels between the volume's smallest and largest values (`dataink data SPEC SOURCE` shows them)",
     )]
 }
 
