@@ -128,8 +128,11 @@ fn disk(t: &mut Template, lp: &[u8]) {
 /// steps with distinct rungs; cut where a step along `b` is followed by one along `a`, it is a
 /// walk from rung `(a[i0], c[k0])` that starts along `a`, ends along `b` and never stands on
 /// rung `(a[i0], c[k0])` in between (which would pinch the band shut). Every start is tried and
-/// a dynamic programme over the walks finds the least total area.
-pub(super) fn stitch(a: &[u8], b: &[u8], pos: &dyn Fn(u8) -> [f64; 3]) -> Vec<[u8; 3]> {
+/// a dynamic programme over the walks finds the least total area. No rung joins two crossings
+/// on one cube face: the neighbouring cell may join them too, and the edge would have four
+/// triangles. Empty when there is no such band, or (with `clean_only`) none that does not cut
+/// itself.
+pub(super) fn stitch(a: &[u8], b: &[u8], pos: &dyn Fn(u8) -> [f64; 3], clean_only: bool) -> Vec<[u8; 3]> {
     let c: Vec<u8> = b.iter().rev().copied().collect();
     let (m, n) = (a.len(), c.len());
     if m == 0 || n == 0 {
@@ -140,6 +143,9 @@ pub(super) fn stitch(a: &[u8], b: &[u8], pos: &dyn Fn(u8) -> [f64; 3]) -> Vec<[u
     for (i0, k0) in (0..m).flat_map(|i| (0..n).map(move |k| (i, k))) {
         let at = |i: usize| a[(i0 + i) % m];
         let ct = |k: usize| c[(k0 + k) % n];
+        if on_face(at(0), ct(0)) {
+            continue;
+        }
         // cost[i][k]: least area reaching rung (i, k); step[i][k]: whether it came along `a`.
         let width = n + 1;
         let mut cost = vec![f64::INFINITY; (m + 1) * width];
@@ -150,7 +156,8 @@ pub(super) fn stitch(a: &[u8], b: &[u8], pos: &dyn Fn(u8) -> [f64; 3]) -> Vec<[u
                 let here = i * width + k;
                 // The first step goes along `a`, the last along `b`, and rung (m, 0) is the
                 // start again.
-                let forbidden = (i == m && k == 0) || (i == 0 && k > 0);
+                // A rung on a cube face would be an edge the neighbouring cell may use too.
+                let forbidden = (i == m && k == 0) || (i == 0 && k > 0) || on_face(at(i), ct(k));
                 if here == 0 || forbidden {
                     continue;
                 }
@@ -190,13 +197,20 @@ pub(super) fn stitch(a: &[u8], b: &[u8], pos: &dyn Fn(u8) -> [f64; 3]) -> Vec<[u
         tris.reverse();
         bands.push((total, tris));
     }
-    // The least area among the bands that do not cut themselves, else the least area.
+    // The least area among the bands that do not cut themselves, else (unless `clean_only`)
+    // the least area.
     bands.sort_by(|x, y| x.0.total_cmp(&y.0));
     let clean = bands.iter().position(|(_, tris)| !self_crossing(tris, pos));
-    match clean.or(if bands.is_empty() { None } else { Some(0) }) {
+    let least = if bands.is_empty() || clean_only { None } else { Some(0) };
+    match clean.or(least) {
         Some(n) => bands.swap_remove(n).1,
         None => Vec::new(),
     }
+}
+
+/// Whether local vertices `a` and `b` are crossings on a common cube face.
+fn on_face(a: u8, b: u8) -> bool {
+    a < CENTRE && b < CENTRE && edge_faces(a as usize) & edge_faces(b as usize) != 0
 }
 
 /// Whether two of `tris` that share no vertex meet (separating axis test over the triangles'
@@ -270,6 +284,66 @@ fn project(g: &[f64; 8], p: [f64; 3], reach: f64) -> [f64; 3] {
     if better && inside && norm(sub(q, p)) <= reach { q } else { p }
 }
 
+/// A tube between loops `a` and `c` through a waist: loop `a` (one waist vertex per distinct
+/// vertex of it, numbered from `first`) shrunk towards the middle of the tube and moved onto
+/// the level set, and the bands from `a` to the waist and from the waist to `c`. Used when every
+/// direct band would put a rung on a cube face or cut itself; of a few waists, the first whose
+/// bands do not cut themselves, else the first. Returns the waist's positions and the triangles.
+fn through_waist(
+    g: &[f64; 8],
+    a: &[u8],
+    c: &[u8],
+    first: u8,
+    point: &dyn Fn(u8) -> [f64; 3],
+) -> (Vec<[f64; 3]>, Vec<[u8; 3]>) {
+    let ends: Vec<[f64; 3]> = a.iter().chain(c).map(|&v| point(v)).collect();
+    let (middle, _) = spread(&ends);
+    let mut distinct: Vec<u8> = Vec::with_capacity(a.len());
+    let waist: Vec<u8> = a
+        .iter()
+        .map(|&v| {
+            let k = distinct.iter().position(|&d| d == v).unwrap_or_else(|| {
+                distinct.push(v);
+                distinct.len() - 1
+            });
+            first + k as u8
+        })
+        .collect();
+    let backwards: Vec<u8> = waist.iter().rev().copied().collect();
+    let mut fallback = None;
+    for shrink in [0.5, 0.35, 0.65, 0.2, 0.8] {
+        for onto_level in [true, false] {
+            let positions: Vec<[f64; 3]> = distinct
+                .iter()
+                .map(|&v| {
+                    let q = point(v);
+                    let p = add(q, scale(sub(middle, q), shrink));
+                    if onto_level { project(g, p, 0.5 * shrink * norm(sub(middle, q))) } else { p }
+                })
+                .collect();
+            let pos = |v: u8| match v.checked_sub(first) {
+                Some(k) => positions.get(k as usize).copied().unwrap_or([0.5; 3]),
+                None => point(v),
+            };
+            let mut band = stitch(a, &backwards, &pos, false);
+            band.extend(stitch(&waist, c, &pos, false));
+            band.retain(|t| t[0] != t[1] && t[1] != t[2] && t[0] != t[2]);
+            if !self_crossing(&band, &pos) {
+                return (positions, band);
+            }
+            fallback.get_or_insert((positions, band));
+        }
+    }
+    fallback.unwrap_or_default()
+}
+
+/// The mean of `points` and their mean distance from it.
+fn spread(points: &[[f64; 3]]) -> ([f64; 3], f64) {
+    let n = points.len().max(1) as f64;
+    let mean = scale(points.iter().fold([0.0; 3], |s, p| add(s, *p)), 1.0 / n);
+    (mean, points.iter().map(|p| norm(sub(*p, mean))).sum::<f64>() / n)
+}
+
 /// Adds the triangles of the cell with lower corner `cell` (voxel number `base`).
 pub(super) fn march(b: &mut Builder, cache: &mut Cache, cell: [usize; 3], base: usize) -> Result<(), IsoError> {
     let Some(g) = b.corner_values(base) else { return Ok(()) };
@@ -285,20 +359,44 @@ pub(super) fn march(b: &mut Builder, cache: &mut Cache, cell: [usize; 3], base: 
         let (inside, outside) = if g[lo] >= 0.0 { (lo, hi) } else { (hi, lo) };
         (ids[e], local[e]) = b.crossing(cell, base, inside, outside, g[inside], g[outside]);
     }
-    let at = |e: u8| local.get(e as usize).copied().unwrap_or([0.5; 3]);
-    let mut centre_ids = Vec::with_capacity(template.centres.len());
+    // Local vertices 0..12 are the crossings; from CENTRE on come the centres, then the waists
+    // of tubes (`more`: their positions and mesh vertices; no allocation for most cells).
+    let mut more: (Vec<[f64; 3]>, Vec<u32>) = (Vec::new(), Vec::new());
     for edges in &template.centres {
-        let points: Vec<[f64; 3]> = edges.iter().map(|&e| at(e)).collect();
-        let mean = scale(points.iter().fold([0.0; 3], |s, p| add(s, *p)), 1.0 / points.len().max(1) as f64);
-        let spread = points.iter().map(|p| norm(sub(*p, mean))).sum::<f64>() / points.len().max(1) as f64;
-        let p = project(&g, mean, 0.5 * spread);
-        centre_ids.push(b.centre(cell, p));
+        let loop_points: Vec<[f64; 3]> = edges.iter().map(|&e| local[e as usize % 12]).collect();
+        let (mean, radius) = spread(&loop_points);
+        let p = project(&g, mean, 0.5 * radius);
+        more.0.push(p);
+        more.1.push(b.centre(cell, p));
     }
-    let stitched: Vec<[u8; 3]> = template.tubes.iter().flat_map(|[a, c]| stitch(a, c, &at)).collect();
+    let point = |more: &[[f64; 3]], v: u8| {
+        let v = v as usize;
+        local.get(v).or_else(|| more.get(v - CENTRE as usize)).copied().unwrap_or([0.5; 3])
+    };
+    // Crossings snapped onto one lattice point are one vertex: name each by its first edge.
+    let same: [u8; 12] =
+        std::array::from_fn(|e| (0..e).find(|&d| ids[d] == ids[e] && ids[e] != u32::MAX).unwrap_or(e) as u8);
+    let canonical = |lp: &[u8]| -> Vec<u8> { lp.iter().map(|&v| same.get(v as usize).copied().unwrap_or(v)).collect() };
+    let mut stitched: Vec<[u8; 3]> = Vec::new();
+    for [a, c] in &template.tubes {
+        let (a, c) = (canonical(a), canonical(c));
+        let band = stitch(&a, &c, &|v| point(&more.0, v), true);
+        if !band.is_empty() {
+            stitched.extend(band);
+            continue;
+        }
+        let first = CENTRE + more.0.len() as u8;
+        let (positions, band) = through_waist(&g, &a, &c, first, &|v| point(&more.0, v));
+        for p in positions {
+            more.0.push(p);
+            more.1.push(b.centre(cell, p));
+        }
+        stitched.extend(band);
+    }
     for tri in template.triangles.iter().chain(&stitched) {
         let mut out = [0u32; 3];
         for (slot, &v) in out.iter_mut().zip(tri) {
-            let id = if v >= CENTRE { centre_ids.get((v - CENTRE) as usize) } else { ids.get(v as usize) };
+            let id = if v >= CENTRE { more.1.get((v - CENTRE) as usize) } else { ids.get(v as usize) };
             match id {
                 Some(&id) if id != u32::MAX => *slot = id,
                 _ => return Ok(()),

@@ -75,7 +75,10 @@
 //!    are fanned around an interior vertex (the loop's centroid moved onto the trilinear level
 //!    set by a few Newton steps when that stays close); a tube is a band between its two loops,
 //!    one triangle per crossing, chosen per cell from the real crossing positions: the band of
-//!    least area that does not cut itself.
+//!    least area that does not cut itself and has no rung (edge between the loops) lying on a
+//!    cube face, where the neighbouring cell could use the same edge. When no such band exists,
+//!    the tube goes through a waist of interior vertices (one loop shrunk towards the tube's
+//!    middle and moved onto the level set) and is two bands.
 //!
 //! The result per configuration key (sign pattern, face decisions, which loops are joined) is
 //! memoised during an extraction (per slab), so it acts as a generated table (tubes keep their two loops
