@@ -1,9 +1,10 @@
 //! Tests of the isosurface extraction: every cell configuration against a brute-force reference
-//! ([`cases`]), whole volumes (watertight, oriented, known shapes; [`shapes`]), the cell
+//! ([`cases`], [`reference`]) and a million random cells against a cheaper one ([`lines`]), whole volumes (watertight, oriented, known shapes; [`shapes`]), the cell
 //! list, ties and errors ([`volumes`]), and extraction in slabs on several threads against one
 //! pass ([`slabs`]).
 
 mod cases;
+mod lines;
 mod reference;
 mod shapes;
 mod slabs;
