@@ -7,7 +7,9 @@
 //! parallel-coordinates axis brushes a range; with shift the brush adds rows, with alt it
 //! removes them; a click or Escape clears. Scroll zooms, right- or middle-drag pans, a
 //! double-click resets the view. In a hyperbolic tree, drag moves the focus and a click brings
-//! a node to the centre.
+//! a node to the centre. A 3-D chart (isosurface, volume rendering) turns with a drag (a volume
+//! rendering is drawn with fewer rays until the button is released), an isosurface's slider
+//! moves its first surface's value, and a double-click brings back the spec's view.
 
 use std::path::PathBuf;
 
@@ -186,7 +188,8 @@ impl ExploreApp {
         });
         ui.weak(
             "drag: brush · shift+drag: add · alt+drag: remove · Esc or click: clear · scroll: zoom · \
-             right-drag: pan · double-click: reset · tree: drag moves the focus, click centres a node",
+             right-drag: pan · double-click: reset · tree: drag moves the focus, click centres a node · \
+             3-D: drag turns",
         );
     }
 
@@ -228,6 +231,15 @@ impl ExploreApp {
             v.name.clone()
         };
         ui.label(header);
+        if let Some((level, [lo, hi])) = self.session.level(i) {
+            let mut value = level;
+            let slider =
+                egui::Slider::new(&mut value, lo..=hi).text("iso value").clamping(egui::SliderClamping::Always);
+            if ui.add(slider).changed() {
+                self.session.set_level(i, value);
+            }
+        }
+        let Some(v) = self.session.charts.get(i) else { return };
         if let Some(e) = &v.error {
             ui.colored_label(SUBTRACT, e);
             return;
@@ -298,6 +310,7 @@ impl ExploreApp {
         {
             let now = to_canvas(p);
             match d.target {
+                Some(Target::Scene) => self.session.turn(i, d.last, now),
                 Some(Target::Disk) if !d.pan => self.session.hyper_drag(i, d.last, now),
                 Some(_) if d.pan => self.session.pan(i, d.last, now),
                 Some(t) => self.session.brush(i, t, d.start, now, d.mode),
@@ -308,10 +321,12 @@ impl ExploreApp {
         }
         if response.drag_stopped()
             && let Some(d) = self.drag.take()
-            && !d.pan
-            && matches!(d.target, Some(Target::Plot(_) | Target::Axis(_)))
         {
-            self.session.end_brush(i);
+            match d.target {
+                Some(Target::Scene) => self.session.end_turn(i),
+                Some(Target::Plot(_) | Target::Axis(_)) if !d.pan => self.session.end_brush(i),
+                _ => {}
+            }
         }
         if response.clicked()
             && let Some(p) = pointer
@@ -322,6 +337,7 @@ impl ExploreApp {
                     self.session.hyper_focus(i, at, None);
                     ui.ctx().request_repaint();
                 }
+                Some(Target::Scene) => {}
                 Some(_) if !mods.shift && !mods.alt => {
                     if let Some(data) = self.session.charts.get(i).map(|v| v.data.clone()) {
                         self.session.clear(&data);

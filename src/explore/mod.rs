@@ -11,6 +11,7 @@
 //! - [`view`]: what is under the pointer (plot, axis, nearest row, tree node), the hover text,
 //!   and zoom and pan as new axis domains;
 //! - [`hyper`]: dragging and click-to-focus in a hyperbolic tree, with its animation;
+//! - [`orbit`]: turning a 3-D chart (isosurface, volume rendering) and moving its iso value;
 //! - [`session`]: the whole state — every chart drawn into raster tiles
 //!   ([`crate::render::tiles`]), the shared row sets, and the actions as methods.
 //!
@@ -23,6 +24,7 @@ pub mod brush;
 pub mod counts;
 pub mod hyper;
 pub mod light;
+pub mod orbit;
 pub mod session;
 pub mod view;
 

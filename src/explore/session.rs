@@ -11,6 +11,7 @@ use super::brush::{self, Brush, Mode, RowSet};
 use super::counts::CountedTile;
 use super::hyper::{FOCUS_SECONDS, FocusView};
 use super::light;
+use super::orbit::{self, Orbit};
 use super::view;
 use crate::data::Table;
 use crate::mark::geometry::Geometry;
@@ -33,6 +34,8 @@ pub enum Target {
     Axis(usize),
     /// A hyperbolic tree's disk.
     Disk,
+    /// A 3-D chart's drawing, turned by dragging.
+    Scene,
 }
 
 /// One chart as shown: its drawing, tiles, geometry and view state.
@@ -58,6 +61,8 @@ pub struct ChartView {
     pub domains: BTreeMap<String, [f64; 2]>,
     /// Hyperbolic tree view.
     pub focus: FocusView,
+    /// Camera and iso value of a 3-D chart, as turned and moved.
+    pub orbit: Orbit,
     /// Lit and drawn rows (equal when nothing is selected).
     pub lit: (usize, usize),
     /// Bumped whenever `tiles` change.
@@ -123,6 +128,7 @@ impl Session {
                 tiles: None,
                 domains: BTreeMap::new(),
                 focus: FocusView::default(),
+                orbit: Orbit::default(),
                 lit: (0, 0),
                 generation: 0,
                 counted: Vec::new(),
@@ -169,6 +175,10 @@ impl Session {
     /// What a drag starting at `p` on chart `chart` would act on.
     pub fn target_at(&self, chart: usize, p: Point) -> Option<Target> {
         let v = self.charts.get(chart)?;
+        if self.loaded.spec.chart.get(v.index).is_some_and(orbit::turns) {
+            let inside = p.x >= 0.0 && p.y >= 0.0 && p.x <= v.size[0] && p.y <= v.size[1];
+            return (inside && v.output.is_some()).then_some(Target::Scene);
+        }
         if let Some(disk) = &v.geometry.disk {
             let d = disk.to_disk(p);
             return (d[0].hypot(d[1]) < 1.0).then_some(Target::Disk);
@@ -182,7 +192,7 @@ impl Session {
         match target {
             Target::Plot(i) => Some(brush::brush_in_plot(g.plots.get(i)?, a, b)),
             Target::Axis(i) => Some(brush::brush_on_axis(g.axes.get(i)?, a.y, b.y)),
-            Target::Disk => None,
+            Target::Disk | Target::Scene => None,
         }
     }
 
@@ -324,6 +334,7 @@ impl Session {
         let Some(v) = self.charts.get_mut(chart) else { return };
         v.domains.clear();
         v.focus.reset();
+        v.orbit = Orbit::default();
         self.draw(&[chart]);
     }
 
@@ -333,6 +344,44 @@ impl Session {
         let Some(disk) = &v.geometry.disk else { return };
         let (a, b) = (disk.to_disk(from), disk.to_disk(to));
         v.focus.drag(a, b);
+        self.draw(&[chart]);
+    }
+
+    /// Turn a 3-D chart's camera for a drag from `from` to `to`, drawing it as a quick preview
+    /// (fewer rays for a volume rendering) until [`Session::end_turn`].
+    pub fn turn(&mut self, chart: usize, from: Point, to: Point) {
+        let Some(v) = self.charts.get_mut(chart) else { return };
+        let Some(spec) = self.loaded.spec.chart.get(v.index).filter(|c| orbit::turns(c)) else { return };
+        v.orbit.turn(spec, to.x - from.x, to.y - from.y);
+        v.orbit.preview = true;
+        self.draw(&[chart]);
+    }
+
+    /// End a turn: draw the chart at full resolution.
+    pub fn end_turn(&mut self, chart: usize) {
+        let Some(v) = self.charts.get_mut(chart) else { return };
+        if std::mem::take(&mut v.orbit.preview) {
+            self.draw(&[chart]);
+        }
+    }
+
+    /// The value of an isosurface chart's first surface as drawn, and the range of its
+    /// volume's values (what a slider moves it over); `None` for other charts.
+    pub fn level(&self, chart: usize) -> Option<(f64, [f64; 2])> {
+        let v = self.charts.get(chart)?;
+        let spec = self.loaded.spec.chart.get(v.index)?;
+        let level = v.orbit.level(spec)?;
+        let (lo, hi) = self.loaded.volumes.get(&spec.data)?.range().0?;
+        Some((level, [lo, hi]))
+    }
+
+    /// Move an isosurface chart's first surface to `value` and draw it again.
+    pub fn set_level(&mut self, chart: usize, value: f64) {
+        let Some(v) = self.charts.get_mut(chart) else { return };
+        if !value.is_finite() || self.loaded.spec.chart.get(v.index).is_none_or(|c| c.kind.name() != "isosurface") {
+            return;
+        }
+        v.orbit.level = Some(value);
         self.draw(&[chart]);
     }
 
@@ -417,8 +466,8 @@ impl Session {
     /// (with the brushed ranges when one brush makes it).
     pub fn saved_output(&self, v: &ChartView) -> Option<ChartOutput> {
         let chart = self.loaded.spec.chart.get(v.index)?;
-        let table = self.loaded.tables.get(&chart.data)?;
-        let chart = view::with_domains(chart, &v.domains);
+        let table = table_of(&self.loaded, &chart.data)?;
+        let chart = Orbit { preview: false, ..v.orbit }.apply(&view::with_domains(chart, &v.domains));
         let highlight = self.sets.get(&v.data).and_then(|set| {
             let mask = set.mask()?;
             let brushes = set.brushes();
@@ -452,20 +501,28 @@ fn is_distribution(item: &Item) -> bool {
 }
 
 /// Chart view `v` bound to its table, node table and hyperbolic view.
+/// The table of data source `data`: its own, or no rows for a volume (read from the context's
+/// volume instead).
+fn table_of<'a>(loaded: &'a Loaded, data: &str) -> Option<&'a Table> {
+    static NO_ROWS: std::sync::OnceLock<Table> = std::sync::OnceLock::new();
+    loaded.tables.get(data).or_else(|| loaded.volumes.contains_key(data).then(|| NO_ROWS.get_or_init(Table::default)))
+}
+
 fn view_context<'a>(loaded: &'a Loaded, v: &'a ChartView, chart: &Chart, table: &'a Table) -> ChartContext<'a> {
     ChartContext::new(chart, v.index, table)
         .with_nodes(crate::pipeline::node_table(loaded, chart))
         .with_view(Some(&v.focus.transform))
+        .with_volume(loaded.volumes.get(&chart.data))
 }
 
 /// Draw chart view `v` for its view state and relight it for `mask`.
 fn draw_view(loaded: &Loaded, v: &mut ChartView, mask: Option<&[bool]>, scale: f64) {
     let Some(chart) = loaded.spec.chart.get(v.index) else { return };
-    let Some(table) = loaded.tables.get(&chart.data) else {
+    let Some(table) = table_of(loaded, &chart.data) else {
         v.error = Some(format!("data \"{}\" was not loaded", chart.data));
         return;
     };
-    let chart = view::with_domains(chart, &v.domains);
+    let chart = v.orbit.apply(&view::with_domains(chart, &v.domains));
     let base = draws_selection(&chart).then(|| light::all_lit(&chart.data, table.rows));
     match crate::mark::draw_in(&view_context(loaded, v, &chart, table).with_highlight(base.as_ref())) {
         Ok(mut output) => {

@@ -240,3 +240,103 @@ fn clicking_a_hyperbolic_tree_node_brings_it_to_the_centre() {
     let root = back.nodes.iter().position(|n| n.label == "root").expect("root");
     assert!(back.nodes[root].position[0].hypot(back.nodes[root].position[1]) < 1e-9);
 }
+
+/// The distance from the centre of a 24³ lattice of unit voxels: its isosurface at `r` is a
+/// sphere of radius `r` (area 4πr²).
+fn ball_npy() -> Vec<u8> {
+    let n = 24;
+    let c = (n as f64 - 1.0) / 2.0;
+    let mut data = Vec::new();
+    for k in 0..n {
+        for j in 0..n {
+            for i in 0..n {
+                let d = ((i as f64 - c).powi(2) + (j as f64 - c).powi(2) + (k as f64 - c).powi(2)).sqrt();
+                data.extend_from_slice(&d.to_le_bytes());
+            }
+        }
+    }
+    crate::common::npy("<f8", "(24, 24, 24)", &data)
+}
+
+const TURNING: &str = r#"
+[data.ball]
+path = "ball.npy"
+
+[[chart]]
+name = "surface"
+kind = "isosurface"
+data = "ball"
+size = [420, 380]
+levels = [6]
+
+[[chart]]
+name = "rendering"
+kind = "volume"
+data = "ball"
+size = [420, 380]
+opacity = [[0, 0.4], [8, 0.1], [9, 0]]
+"#;
+
+/// The surface's area as drawn (the chart's derived table).
+fn area(session: &Session) -> f64 {
+    crate::common::numbers(session.charts[0].output.as_ref().expect("drawn"), "area")[0]
+}
+
+#[test]
+fn a_3d_chart_turns_and_its_iso_value_moves() {
+    let fx = Fixture::new(TURNING, &[("ball.npy", &ball_npy())]);
+    let mut s = Session::new(fx.load().expect("the spec loads"), 1.0);
+    assert!(s.charts.iter().all(|v| v.error.is_none()), "{:?}", s.charts.iter().map(|v| &v.error).collect::<Vec<_>>());
+    let middle = dataink::scene::Point::new(210.0, 190.0);
+    assert_eq!(s.target_at(0, middle), Some(Target::Scene));
+    assert_eq!(s.target_at(1, middle), Some(Target::Scene));
+
+    // The slider's range is the volume's, the surface a sphere of radius 6, then 9.
+    let (level, [lo, hi]) = s.level(0).expect("an isosurface has a level");
+    assert_eq!(level, 6.0);
+    assert!(lo.abs() < 1.0 && (hi - 11.5 * 3f64.sqrt()).abs() < 1e-9, "[{lo}, {hi}]");
+    assert!(s.level(1).is_none(), "a volume rendering has no iso value");
+    let sphere = |r: f64| 4.0 * std::f64::consts::PI * r * r;
+    assert!((area(&s) / sphere(6.0) - 1.0).abs() < 0.02, "area {} at 6", area(&s));
+    s.set_level(0, 9.0);
+    assert_eq!(s.level(0).map(|l| l.0), Some(9.0));
+    assert!((area(&s) / sphere(9.0) - 1.0).abs() < 0.02, "area {} at 9", area(&s));
+
+    // A drag turns the camera (half a degree per unit) and draws the rendering with fewer rays
+    // until it ends; the full drawing then equals the chart drawn with that camera.
+    let (_, _, before) = s.charts[1].tiles.as_ref().expect("tiles").composite();
+    s.turn(1, middle, dataink::scene::Point::new(250.0, 170.0));
+    let spec = s.loaded.spec.chart[1].clone();
+    assert_eq!(s.charts[1].orbit.camera(&spec), [-80.0, 15.0]);
+    assert!(s.charts[1].orbit.preview);
+    let (_, _, preview) = s.charts[1].tiles.as_ref().expect("tiles").composite();
+    s.end_turn(1);
+    assert!(!s.charts[1].orbit.preview);
+    let (_, _, after) = s.charts[1].tiles.as_ref().expect("tiles").composite();
+    assert!(after != before, "the turned rendering differs");
+    assert!(preview != after, "the preview is coarser than the full rendering");
+    let turned = TURNING.replace("name = \"rendering\"\n", "name = \"rendering\"\nazimuth = -80\nelevation = 15\n");
+    let direct = Fixture::new(&turned, &[("ball.npy", &ball_npy())]);
+    let fresh = Session::new(direct.load().expect("the turned spec loads"), 1.0);
+    let (_, _, want) = fresh.charts[1].tiles.as_ref().expect("tiles").composite();
+    assert!(after == want, "the turned view is the chart drawn with that camera");
+
+    // A double-click's reset brings back the spec's view and value.
+    s.reset_view(0);
+    assert_eq!(s.level(0).map(|l| l.0), Some(6.0));
+}
+
+#[test]
+fn in_the_window_a_drag_turns_an_isosurface() {
+    let fx = Fixture::new(TURNING, &[("ball.npy", &ball_npy())]);
+    let session = Session::new(fx.load().expect("the spec loads"), 1.0);
+    let mut h = harness(ExploreApp::new(session, fx.dir.path().join("saved")));
+    assert!(h.query_all_by_label_contains("iso value").next().is_some(), "the iso value slider is shown");
+    let (from, to) = (screen(&h, 0, 200.0, 190.0), screen(&h, 0, 260.0, 190.0));
+    drag(&mut h, from, to, Modifiers::NONE);
+    let v = &h.state().session.charts[0];
+    let [azimuth, elevation] = v.orbit.camera(&h.state().session.loaded.spec.chart[0]);
+    assert!((azimuth + 90.0).abs() < 3.0, "dragged 60 units right: azimuth {azimuth}, not −90");
+    assert_eq!(elevation, 25.0);
+    assert!(!v.orbit.preview, "released: drawn in full");
+}
