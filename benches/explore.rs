@@ -13,6 +13,18 @@
 //! - `explore/draw_both`: drawing both charts from scratch (what zoom and pan cost).
 //! - `explore/window_frame`: a whole window frame during a drag, headless (egui_kittest): input,
 //!   layout, the brush, both charts relit, the changed tiles handed to egui as textures.
+//!
+//! The 256³ field of four Gaussian blobs (`common::blobs`) as an isosurface (640 × 560) and a
+//! volume rendering (640 × 560, 512 rays across):
+//!
+//! - `explore_volume/level_frame`: the iso value slider moved (0.5 and 0.45 in turn): the
+//!   active cells from the span-space index, marching cubes, shading and the chart's tiles.
+//! - `explore_volume/level_frame_scan`: the same surfaces found by scanning every cell (what
+//!   the index avoids).
+//! - `explore_volume/turn_surface`, `explore_volume/turn_volume_preview`: a drag turning the
+//!   camera by a degree: the isosurface drawn again, and the volume rendering cast with 128
+//!   rays across; `explore_volume/volume_full`: such a preview and then the rendering at full
+//!   resolution (a drag of one frame and its release).
 
 mod common;
 
@@ -148,5 +160,80 @@ fn triangle(frame: usize, period: usize) -> f64 {
     if p <= 1.0 { p } else { 2.0 - p }
 }
 
-criterion_group!(benches, bench);
+/// A session over the 256³ blobs: an isosurface at 0.5 and a volume rendering. The spec names
+/// a one-voxel-thick raw file, replaced by the field before the charts are drawn.
+fn volume_session(dir: &std::path::Path) -> Session {
+    std::fs::write(dir.join("stub.raw"), [0u8; 32]).expect("raw");
+    let spec = r#"
+[data.blobs]
+path = "stub.raw"
+format = "raw"
+dims = [2, 2, 2]
+dtype = "f32"
+
+[[chart]]
+name = "surface"
+kind = "isosurface"
+data = "blobs"
+size = [640, 560]
+levels = [0.5]
+
+[[chart]]
+name = "rendering"
+kind = "volume"
+data = "blobs"
+size = [640, 560]
+opacity = [[0.2, 0], [0.5, 0.3], [1, 0.8]]
+resolution = 512
+"#;
+    std::fs::write(dir.join("spec.toml"), spec).expect("spec");
+    let mut loaded = dataink::pipeline::load(&dir.join("spec.toml"), PathPolicy::InsideSpecFolder).expect("spec loads");
+    loaded.volumes.insert("blobs".into(), common::blobs(256));
+    Session::new(loaded, 1.0)
+}
+
+fn bench_volume(c: &mut Criterion) {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let mut s = volume_session(dir.path());
+    assert!(s.charts.iter().all(|v| v.error.is_none()), "the charts draw");
+    let mut group = c.benchmark_group("explore_volume");
+    group.sample_size(10);
+    let mut frame = 0usize;
+    group.bench_function("level_frame_scan", |b| {
+        b.iter(|| {
+            frame += 1;
+            // The spec's value changes, so the chart is drawn from a full scan each time.
+            let level = if frame % 2 == 0 { 0.5 } else { 0.45 };
+            s.loaded.spec.chart[0] = {
+                let mut chart = s.loaded.spec.chart[0].clone();
+                let mut value = serde_json::to_value(&chart).expect("json");
+                value["levels"] = serde_json::json!([level]);
+                chart = serde_json::from_value(value).expect("chart");
+                chart
+            };
+            s.draw(&[0]);
+            black_box(s.charts[0].generation)
+        })
+    });
+    s.set_level(0, 0.45);
+    group.bench_function("level_frame", |b| {
+        b.iter(|| {
+            frame += 1;
+            s.set_level(0, if frame % 2 == 0 { 0.5 } else { 0.45 });
+            black_box(s.charts[0].generation)
+        })
+    });
+    let (a, b) = (Point::new(300.0, 280.0), Point::new(302.0, 280.0));
+    group.bench_function("turn_surface", |bench| bench.iter(|| s.turn(0, a, b)));
+    group.bench_function("turn_volume_preview", |bench| bench.iter(|| s.turn(1, a, b)));
+    group.bench_function("volume_full", |bench| {
+        bench.iter(|| {
+            s.turn(1, a, b);
+            s.end_turn(1)
+        })
+    });
+    group.finish();
+}
+
+criterion_group!(benches, bench, bench_volume);
 criterion_main!(benches);

@@ -14,6 +14,7 @@ use super::light;
 use super::orbit::{self, Orbit};
 use super::view;
 use crate::data::Table;
+use crate::enrich::volume::SpanSpace;
 use crate::mark::geometry::Geometry;
 use crate::mark::{ChartContext, ChartOutput};
 use crate::pipeline::Loaded;
@@ -91,6 +92,8 @@ pub struct Session {
     pub sets: BTreeMap<String, RowSet>,
     /// Device pixels per canvas unit of the tiles.
     pub scale: f64,
+    /// Span-space indexes of the volumes whose iso value was moved, by data source.
+    indexes: BTreeMap<String, SpanSpace>,
 }
 
 /// Whether a chart kind draws a selection (`highlight`).
@@ -135,7 +138,8 @@ impl Session {
                 counted_mask: None,
             })
             .collect();
-        let mut session = Session { loaded, charts, sets, scale: if scale > 0.0 { scale } else { 1.0 } };
+        let mut session =
+            Session { loaded, charts, sets, scale: if scale > 0.0 { scale } else { 1.0 }, indexes: BTreeMap::new() };
         let all: Vec<usize> = (0..session.charts.len()).collect();
         session.draw(&all);
         session
@@ -155,12 +159,12 @@ impl Session {
     /// Draw charts `which` again (after a view change), in parallel.
     pub fn draw(&mut self, which: &[usize]) {
         let masks: BTreeMap<String, Option<Vec<bool>>> = self.sets.iter().map(|(k, s)| (k.clone(), s.mask())).collect();
-        let (loaded, scale) = (&self.loaded, self.scale);
+        let (loaded, scale, indexes) = (&self.loaded, self.scale, &self.indexes);
         let jobs: Vec<&mut ChartView> =
             self.charts.iter_mut().enumerate().filter(|(i, _)| which.contains(i)).map(|(_, v)| v).collect();
         jobs.into_par_iter().for_each(|v| {
             let mask = masks.get(&v.data).and_then(|m| m.as_deref());
-            draw_view(loaded, v, mask, scale);
+            draw_view(loaded, indexes.get(&v.data), v, mask, scale);
         });
     }
 
@@ -375,13 +379,18 @@ impl Session {
         Some((level, [lo, hi]))
     }
 
-    /// Move an isosurface chart's first surface to `value` and draw it again.
+    /// Move an isosurface chart's first surface to `value` and draw it again. The first move
+    /// builds a span-space index of the chart's volume, which finds the cells of every later
+    /// value without scanning them all.
     pub fn set_level(&mut self, chart: usize, value: f64) {
         let Some(v) = self.charts.get_mut(chart) else { return };
         if !value.is_finite() || self.loaded.spec.chart.get(v.index).is_none_or(|c| c.kind.name() != "isosurface") {
             return;
         }
         v.orbit.level = Some(value);
+        if let Some(volume) = self.loaded.volumes.get(&v.data) {
+            self.indexes.entry(v.data.clone()).or_insert_with(|| SpanSpace::build(volume));
+        }
         self.draw(&[chart]);
     }
 
@@ -478,7 +487,9 @@ impl Session {
             Some(Highlight { name: Session::selection_name(&v.data), selection, selected: mask })
         });
         let highlight = highlight.filter(|_| draws_selection(&chart));
-        crate::mark::draw_in(&view_context(&self.loaded, v, &chart, table).with_highlight(highlight.as_ref())).ok()
+        let index = self.indexes.get(&v.data);
+        crate::mark::draw_in(&view_context(&self.loaded, index, v, &chart, table).with_highlight(highlight.as_ref()))
+            .ok()
     }
 }
 
@@ -508,15 +519,22 @@ fn table_of<'a>(loaded: &'a Loaded, data: &str) -> Option<&'a Table> {
     loaded.tables.get(data).or_else(|| loaded.volumes.contains_key(data).then(|| NO_ROWS.get_or_init(Table::default)))
 }
 
-fn view_context<'a>(loaded: &'a Loaded, v: &'a ChartView, chart: &Chart, table: &'a Table) -> ChartContext<'a> {
+fn view_context<'a>(
+    loaded: &'a Loaded,
+    index: Option<&'a SpanSpace>,
+    v: &'a ChartView,
+    chart: &Chart,
+    table: &'a Table,
+) -> ChartContext<'a> {
     ChartContext::new(chart, v.index, table)
         .with_nodes(crate::pipeline::node_table(loaded, chart))
         .with_view(Some(&v.focus.transform))
         .with_volume(loaded.volumes.get(&chart.data))
+        .with_span_space(index)
 }
 
 /// Draw chart view `v` for its view state and relight it for `mask`.
-fn draw_view(loaded: &Loaded, v: &mut ChartView, mask: Option<&[bool]>, scale: f64) {
+fn draw_view(loaded: &Loaded, index: Option<&SpanSpace>, v: &mut ChartView, mask: Option<&[bool]>, scale: f64) {
     let Some(chart) = loaded.spec.chart.get(v.index) else { return };
     let Some(table) = table_of(loaded, &chart.data) else {
         v.error = Some(format!("data \"{}\" was not loaded", chart.data));
@@ -524,7 +542,7 @@ fn draw_view(loaded: &Loaded, v: &mut ChartView, mask: Option<&[bool]>, scale: f
     };
     let chart = v.orbit.apply(&view::with_domains(chart, &v.domains));
     let base = draws_selection(&chart).then(|| light::all_lit(&chart.data, table.rows));
-    match crate::mark::draw_in(&view_context(loaded, v, &chart, table).with_highlight(base.as_ref())) {
+    match crate::mark::draw_in(&view_context(loaded, index, v, &chart, table).with_highlight(base.as_ref())) {
         Ok(mut output) => {
             let geometry = std::mem::take(&mut output.geometry);
             let selectable = base.is_some();

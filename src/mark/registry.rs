@@ -12,6 +12,7 @@ use std::borrow::Cow;
 
 use crate::data::Table;
 use crate::data::volume::Volume;
+use crate::enrich::volume::SpanSpace;
 use crate::layout::hyperbolic::Mobius;
 use crate::selection::Highlight;
 use crate::spec::defaults::Convention;
@@ -184,6 +185,9 @@ pub struct ChartContext<'a> {
     pub view: Option<&'a Mobius>,
     /// The volume of its `data`, when that source is a volume (its `table` is then empty).
     pub volume: Option<&'a Volume>,
+    /// A span-space index of that volume, kept by a caller that extracts isosurfaces of it
+    /// again and again (the explorer's iso value slider).
+    pub span_space: Option<&'a SpanSpace>,
 }
 
 impl<'a> ChartContext<'a> {
@@ -197,6 +201,7 @@ impl<'a> ChartContext<'a> {
             nodes: None,
             view: None,
             volume: None,
+            span_space: None,
         }
     }
 
@@ -221,6 +226,13 @@ impl<'a> ChartContext<'a> {
     /// The same chart reading the volume `volume` (its data source is one).
     pub fn with_volume(mut self, volume: Option<&'a Volume>) -> ChartContext<'a> {
         self.volume = volume;
+        self
+    }
+
+    /// The same chart finding its isosurfaces' cells through `index`, a span-space index of
+    /// its volume.
+    pub fn with_span_space(mut self, index: Option<&'a SpanSpace>) -> ChartContext<'a> {
+        self.span_space = index;
         self
     }
 

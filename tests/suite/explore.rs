@@ -301,6 +301,10 @@ fn a_3d_chart_turns_and_its_iso_value_moves() {
     s.set_level(0, 9.0);
     assert_eq!(s.level(0).map(|l| l.0), Some(9.0));
     assert!((area(&s) / sphere(9.0) - 1.0).abs() < 0.02, "area {} at 9", area(&s));
+    // Found through the span-space index the move built: the very surface the spec draws at 9.
+    let at_nine = Fixture::new(&TURNING.replace("levels = [6]", "levels = [9]"), &[("ball.npy", &ball_npy())]);
+    let spec_drawn = Session::new(at_nine.load().expect("the spec loads"), 1.0);
+    assert_eq!(area(&s).to_bits(), area(&spec_drawn).to_bits());
 
     // A drag turns the camera (half a degree per unit) and draws the rendering with fewer rays
     // until it ends; the full drawing then equals the chart drawn with that camera.

@@ -32,11 +32,10 @@ const MISSING: u16 = u16::MAX;
 /// About how many cells are sampled to place the bucket boundaries.
 const SAMPLE: usize = 1 << 16;
 
-/// A span-space index of the cells of one volume (see the module docs), borrowing the volume to
-/// check cells at the edge of a query exactly.
+/// A span-space index of the cells of one volume (see the module docs). It does not hold the
+/// volume: queries are given it again, to check cells at the edge of a query exactly.
 #[derive(Clone, Debug)]
-pub struct SpanSpace<'v> {
-    volume: &'v Volume,
+pub struct SpanSpace {
     /// Cells along x, y and z.
     cells: [usize; 3],
     /// Boundaries of the buckets of cell minima: bucket `b` holds `edges[b − 1] ≤ min < edges[b]`.
@@ -113,10 +112,10 @@ impl Tally {
     }
 }
 
-impl<'v> SpanSpace<'v> {
+impl SpanSpace {
     /// The index of the cells of `volume` (cell numbers as in
     /// [`isosurface`](super::isosurface)); in parallel over z-slabs of cells.
-    pub fn build(volume: &'v Volume) -> SpanSpace<'v> {
+    pub fn build(volume: &Volume) -> SpanSpace {
         let cells = volume.dims().map(|n| n.saturating_sub(1));
         let [cx, cy, cz] = cells;
         let count = cx * cy * cz;
@@ -194,7 +193,6 @@ impl<'v> SpanSpace<'v> {
             }
         }
         SpanSpace {
-            volume,
             cells,
             lo_edges,
             hi_edges,
@@ -205,17 +203,21 @@ impl<'v> SpanSpace<'v> {
         }
     }
 
-    /// The cells whose corners are all present and whose corner minimum `≤ iso ≤` maximum, in
-    /// increasing order: exactly [`active_cells`](super::isosurface::active_cells)`(volume, iso)`.
-    /// Empty when `iso` is not finite.
-    pub fn active_cells(&self, iso: f64) -> Vec<u32> {
+    /// The cells of `volume` (the one the index was built from) whose corners are all present
+    /// and whose corner minimum `≤ iso ≤` maximum, in increasing order: exactly
+    /// [`active_cells`](super::isosurface::active_cells)`(volume, iso)`, which it falls back to
+    /// for a volume of other dimensions. Empty when `iso` is not finite.
+    pub fn active_cells(&self, volume: &Volume, iso: f64) -> Vec<u32> {
+        if volume.dims().map(|n| n.saturating_sub(1)) != self.cells {
+            return super::isosurface::active_cells(volume, iso);
+        }
         let Some(plan) = self.plan(iso) else {
             return Vec::new();
         };
         // Many cells: mark them in a bitmap of all cells and read it out in order; few: collect
         // and sort (the runs from whole buckets are already increasing).
         let bitmap = plan.estimate > self.cell_count() / 256;
-        self.collect(iso, &plan, bitmap)
+        self.collect(volume, iso, &plan, bitmap)
     }
 
     /// The number of cells indexed (those without a missing corner).
@@ -280,7 +282,7 @@ impl<'v> SpanSpace<'v> {
     }
 
     /// The cells of `plan` for `iso`, in increasing order, gathered in a bitmap or a sorted list.
-    fn collect(&self, iso: f64, plan: &Plan, bitmap: bool) -> Vec<u32> {
+    fn collect(&self, volume: &Volume, iso: f64, plan: &Plan, bitmap: bool) -> Vec<u32> {
         let mut out = Vec::with_capacity(if bitmap { 0 } else { plan.estimate });
         let mut bits = if bitmap { vec![0u64; self.cell_count().div_ceil(64)] } else { Vec::new() };
         let mut take = |id: u32| {
@@ -291,8 +293,8 @@ impl<'v> SpanSpace<'v> {
             }
         };
         let [cx, cy, _] = self.cells;
-        let [nx, ny, _] = self.volume.dims();
-        let offsets = corner_offsets(self.volume);
+        let [nx, ny, _] = volume.dims();
+        let offsets = corner_offsets(volume);
         let columns = self.hi_range.len();
         for r in 0..=plan.row {
             let row_edge = if r == plan.row { plan.row_check } else { Edge::Whole };
@@ -313,7 +315,7 @@ impl<'v> SpanSpace<'v> {
                 for &id in cells {
                     let n = id as usize;
                     let base = ((n / (cx * cy)) * ny + n / cx % cy) * nx + n % cx;
-                    if let Some((lo, hi)) = corner_range(self.volume, base, &offsets)
+                    if let Some((lo, hi)) = corner_range(volume, base, &offsets)
                         && lo <= iso
                         && iso <= hi
                     {
@@ -427,16 +429,16 @@ mod tests {
         let mut found = 0;
         for iso in isos {
             let expected = active_cells(vol, iso);
-            assert_eq!(index.active_cells(iso), expected, "iso {iso} dims {:?}", vol.dims());
+            assert_eq!(index.active_cells(vol, iso), expected, "iso {iso} dims {:?}", vol.dims());
             if let Some(plan) = index.plan(iso) {
                 for bitmap in [false, true] {
-                    assert_eq!(index.collect(iso, &plan, bitmap), expected, "iso {iso}, bitmap {bitmap}");
+                    assert_eq!(index.collect(vol, iso, &plan, bitmap), expected, "iso {iso}, bitmap {bitmap}");
                 }
             }
             found += usize::from(!expected.is_empty());
         }
         for iso in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
-            assert!(index.active_cells(iso).is_empty(), "iso {iso}");
+            assert!(index.active_cells(vol, iso).is_empty(), "iso {iso}");
         }
         found
     }
@@ -468,9 +470,9 @@ mod tests {
         let vol = volume([6, 5, 4], Voxels::F64(vec![3.0; 120]));
         agrees(&vol, &[3.0], 1);
         let index = SpanSpace::build(&vol);
-        assert_eq!(index.active_cells(3.0).len(), 5 * 4 * 3, "every flat cell holds its value");
-        assert!(index.active_cells(3.0f64.next_up()).is_empty());
-        assert!(index.active_cells(3.0f64.next_down()).is_empty());
+        assert_eq!(index.active_cells(&vol, 3.0).len(), 5 * 4 * 3, "every flat cell holds its value");
+        assert!(index.active_cells(&vol, 3.0f64.next_up()).is_empty());
+        assert!(index.active_cells(&vol, 3.0f64.next_down()).is_empty());
     }
 
     #[test]
@@ -492,7 +494,11 @@ mod tests {
         let vol = volume([4, 4, 4], Voxels::F32(vec![f32::NAN; 64]));
         let index = SpanSpace::build(&vol);
         assert!(index.is_empty());
-        assert!(index.active_cells(0.0).is_empty());
+        assert!(index.active_cells(&vol, 0.0).is_empty());
+        // Another volume's query is its full scan.
+        let other = blobs([9, 8, 7]);
+        assert_eq!(index.active_cells(&other, 0.5), active_cells(&other, 0.5));
+        assert!(!active_cells(&other, 0.5).is_empty());
     }
 
     #[test]

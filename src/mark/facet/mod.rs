@@ -127,6 +127,7 @@ impl<'a> Parts<'a> {
             nodes: self.cx.nodes,
             view: None,
             volume: None,
+            span_space: None,
         };
         match technique(&cx.chart.kind).draw(&cx) {
             Ok(output) => Ok((Some(output), handle.seen())),

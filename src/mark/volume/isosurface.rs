@@ -145,7 +145,9 @@ pub fn draw(cx: &ChartContext<'_>, options: &IsosurfaceOptions) -> Result<ChartO
                 format_value(hi)
             )));
         }
-        let mesh = isosurface::extract(&volume, iso, method, normals, None)
+        // The cells from the caller's index of the source's volume, when it keeps one.
+        let indexed = cx.span_space.filter(|_| cx.volume.is_some()).map(|index| index.active_cells(&volume, iso));
+        let mesh = isosurface::extract(&volume, iso, method, normals, indexed.as_deref())
             .map_err(|e| MarkError::at(&["levels"], format!("{e}"), "choose another value or crop the volume"))?;
         surfaces.push(Surface { iso, bounds: bounding_box(&mesh), mesh, color: colors[k], opacity: opacities[k] });
     }
