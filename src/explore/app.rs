@@ -9,7 +9,8 @@
 //! double-click resets the view. In a hyperbolic tree, drag moves the focus and a click brings
 //! a node to the centre. A 3-D chart (isosurface, volume rendering) turns with a drag (a volume
 //! rendering is drawn with fewer rays until the button is released), an isosurface's slider
-//! moves its first surface's value, and a double-click brings back the spec's view.
+//! moves its first surface's value, a one-plane slice's slider moves its plane along its axis,
+//! and a double-click brings back the spec's view.
 
 use std::path::PathBuf;
 
@@ -237,6 +238,14 @@ impl ExploreApp {
                 egui::Slider::new(&mut value, lo..=hi).text("iso value").clamping(egui::SliderClamping::Always);
             if ui.add(slider).changed() {
                 self.session.set_level(i, value);
+            }
+        }
+        if let Some((at, [lo, hi], axis)) = self.session.plane(i) {
+            let mut value = at;
+            let text = format!("plane {}", ["x", "y", "z"][axis % 3]);
+            let slider = egui::Slider::new(&mut value, lo..=hi).text(text).clamping(egui::SliderClamping::Always);
+            if ui.add(slider).changed() {
+                self.session.set_plane(i, value);
             }
         }
         let Some(v) = self.session.charts.get(i) else { return };

@@ -1,7 +1,8 @@
 //! Turning a 3-D chart (`isosurface`, `volume`) in the explorer: drag turns the camera about
 //! the volume's centre, a slider moves an isosurface's value, and direct volume rendering is
-//! drawn with fewer rays while the pointer is down and at full resolution on release. The
-//! view is kept as overrides of the chart's own keys, which the chart is redrawn with.
+//! drawn with fewer rays while the pointer is down and at full resolution on release. A slider
+//! moves a one-plane `slice` chart's plane along its axis. The view is kept as overrides of the
+//! chart's own keys, which the chart is redrawn with.
 
 use serde_json::Value;
 
@@ -26,6 +27,8 @@ pub struct Orbit {
     pub elevation: Option<f64>,
     /// The value of the first isosurface, when moved.
     pub level: Option<f64>,
+    /// Where a slice chart's one axis-aligned plane crosses its axis, when moved.
+    pub plane: Option<f64>,
     /// Drawn as a quick preview (a drag is under way).
     pub preview: bool,
 }
@@ -33,6 +36,26 @@ pub struct Orbit {
 /// Whether the explorer turns chart `chart` by dragging.
 pub fn turns(chart: &Chart) -> bool {
     matches!(chart.kind.name(), "isosurface" | "volume")
+}
+
+/// The world axis (0, 1, 2 for x, y, z) of a `slice` chart drawing one axis-aligned plane,
+/// whose plane a slider can move; `None` for lightboxes, oblique planes and other kinds.
+pub fn sliding_axis(chart: &Chart) -> Option<usize> {
+    if chart.kind.name() != "slice" {
+        return None;
+    }
+    let value = serde_json::to_value(chart).ok()?;
+    let present = |key: &str| value.get(key).is_some_and(|v| !v.is_null());
+    let one_at = value.get("at").and_then(Value::as_array).is_none_or(|at| at.len() <= 1);
+    let one_count = value.get("count").and_then(Value::as_u64).is_none_or(|n| n <= 1);
+    if present("planes") || !one_at || !one_count {
+        return None;
+    }
+    match value.get("axis").and_then(Value::as_str).unwrap_or("z") {
+        "x" => Some(0),
+        "y" => Some(1),
+        _ => Some(2),
+    }
 }
 
 fn number(value: &Value, key: &str) -> Option<f64> {
@@ -74,11 +97,18 @@ impl Orbit {
     /// Chart `chart` with this view's camera, level and resolution in place of its own (the
     /// chart unchanged when it is not a 3-D chart or nothing is overridden).
     pub fn apply(&self, chart: &Chart) -> Chart {
-        if !turns(chart) || *self == Orbit::default() {
+        let slides = self.plane.is_some() && sliding_axis(chart).is_some();
+        if !(turns(chart) || slides) || *self == Orbit::default() {
             return chart.clone();
         }
         let Ok(mut value) = serde_json::to_value(chart) else { return chart.clone() };
         let Some(map) = value.as_object_mut() else { return chart.clone() };
+        if let (Some(at), true) = (self.plane, slides) {
+            map.insert("at".into(), Value::Array(vec![at.into()]));
+            map.remove("count");
+            map.remove("between");
+            return serde_json::from_value(value).unwrap_or_else(|_| chart.clone());
+        }
         if let Some(a) = self.azimuth {
             map.insert("azimuth".into(), a.into());
         }
@@ -149,6 +179,16 @@ mod tests {
         let small = chart(json!({ "kind": "volume", "resolution": 64 }));
         assert_eq!(serde_json::to_value(preview.apply(&small)).expect("json")["resolution"], 64);
         assert_eq!(o.level(&dvr), None);
+        let slice = chart(json!({ "kind": "slice", "axis": "y", "count": 1 }));
+        assert_eq!(sliding_axis(&slice), Some(1));
+        let moved = Orbit { plane: Some(4.5), ..Orbit::default() }.apply(&slice);
+        let v = serde_json::to_value(&moved).expect("json");
+        assert_eq!((v["at"].clone(), v.get("count").cloned()), (json!([4.5]), Some(Value::Null)));
+        assert_eq!(sliding_axis(&chart(json!({ "kind": "slice" }))), Some(2));
+        assert_eq!(sliding_axis(&chart(json!({ "kind": "slice", "count": 4 }))), None, "a lightbox");
+        assert_eq!(sliding_axis(&chart(json!({ "kind": "slice", "at": [1, 2] }))), None);
+        let oblique = json!({ "kind": "slice", "planes": [{ "point": [0, 0, 0], "normal": [1, 1, 0] }] });
+        assert_eq!(sliding_axis(&chart(oblique)), None);
         let table = chart(json!({ "kind": "scatter", "x": "a", "y": "b" }));
         assert!(!turns(&table));
         assert_eq!(Orbit { azimuth: Some(3.0), ..Orbit::default() }.apply(&table), table);

@@ -379,6 +379,38 @@ impl Session {
         Some((level, [lo, hi]))
     }
 
+    /// Where a one-plane slice chart's plane crosses its axis as drawn, the world range of the
+    /// volume along that axis, and the axis (0, 1, 2 for x, y, z); `None` for other charts.
+    pub fn plane(&self, chart: usize) -> Option<(f64, [f64; 2], usize)> {
+        let v = self.charts.get(chart)?;
+        let spec = self.loaded.spec.chart.get(v.index)?;
+        let axis = orbit::sliding_axis(spec)?;
+        let volume = self.loaded.volumes.get(&spec.data)?;
+        let [nx, ny, nz] = volume.dims().map(|n| n.saturating_sub(1) as f64);
+        let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+        for c in 0..8 {
+            let bit = |b: usize, n: f64| if c >> b & 1 == 1 { n } else { 0.0 };
+            let w = volume.world(bit(0, nx), bit(1, ny), bit(2, nz))[axis];
+            (lo, hi) = (lo.min(w), hi.max(w));
+        }
+        let name = ["point_x", "point_y", "point_z"][axis];
+        let drawn = v.output.as_ref().and_then(|o| match o.derived.column(name) {
+            Some(crate::mark::derived::DerivedColumn::Number(at)) => at.first().copied(),
+            _ => None,
+        });
+        Some((v.orbit.plane.or(drawn).unwrap_or(0.5 * (lo + hi)), [lo, hi], axis))
+    }
+
+    /// Move a one-plane slice chart's plane to `at` along its axis and draw it again.
+    pub fn set_plane(&mut self, chart: usize, at: f64) {
+        let Some(v) = self.charts.get_mut(chart) else { return };
+        if !at.is_finite() || self.loaded.spec.chart.get(v.index).and_then(orbit::sliding_axis).is_none() {
+            return;
+        }
+        v.orbit.plane = Some(at);
+        self.draw(&[chart]);
+    }
+
     /// Move an isosurface chart's first surface to `value` and draw it again. The first move
     /// builds a span-space index of the chart's volume, which finds the cells of every later
     /// value without scanning them all.

@@ -275,6 +275,12 @@ kind = "volume"
 data = "ball"
 size = [420, 380]
 opacity = [[0, 0.4], [8, 0.1], [9, 0]]
+
+[[chart]]
+name = "plane"
+kind = "slice"
+data = "ball"
+axis = "y"
 "#;
 
 /// The surface's area as drawn (the chart's derived table).
@@ -328,6 +334,17 @@ fn a_3d_chart_turns_and_its_iso_value_moves() {
     // A double-click's reset brings back the spec's view and value.
     s.reset_view(0);
     assert_eq!(s.level(0).map(|l| l.0), Some(6.0));
+
+    // The slice's plane slides along y over the volume (0 to 23), from the voxel plane
+    // nearest the middle; at y = 5 the nearest value is the distance from the centre's row.
+    assert!(s.level(2).is_none() && s.plane(0).is_none());
+    assert_eq!(s.plane(2), Some((12.0, [0.0, 23.0], 1)));
+    s.set_plane(2, 5.0);
+    assert_eq!(s.plane(2).map(|p| p.0), Some(5.0));
+    let out = s.charts[2].output.as_ref().expect("drawn");
+    assert_eq!(crate::common::numbers(out, "point_y"), vec![5.0]);
+    let nearest = (6.5f64 * 6.5 + 2.0 * 0.25).sqrt();
+    assert!((crate::common::numbers(out, "min")[0] - nearest).abs() < 1e-9);
 }
 
 #[test]

@@ -52,6 +52,11 @@ impl Derived {
         self.columns.push((name.to_string(), column));
     }
 
+    /// The column named `name`, if there is one.
+    pub fn column(&self, name: &str) -> Option<&DerivedColumn> {
+        self.columns.iter().find(|(n, _)| n == name).map(|(_, c)| c)
+    }
+
     /// Number of output rows: one per source row, or for purely computed tables (no source
     /// rows) the length of the longest computed column.
     pub fn len(&self) -> usize {
