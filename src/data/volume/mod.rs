@@ -221,6 +221,15 @@ impl Volume {
         }
     }
 
+    /// The values of voxels `start..start + out.len()` into `out` (scaled; NaN when missing or
+    /// outside): [`Volume::get`] for a run, without its per-voxel dispatch on the stored type.
+    pub fn read_run(&self, start: usize, out: &mut [f64]) {
+        self.voxels.read_run(start, out);
+        if let Some(Scale { slope, inter }) = self.scale {
+            out.iter_mut().for_each(|v| *v = *v * slope + inter);
+        }
+    }
+
     /// The value of voxel `(i, j, k)` (scaled; NaN when missing or outside).
     pub fn value(&self, i: usize, j: usize, k: usize) -> f64 {
         self.index(i, j, k).map_or(f64::NAN, |n| self.get(n))
@@ -295,6 +304,13 @@ mod tests {
         assert_eq!(scaled.range(), (Some((6.5, 10.0)), 0));
         assert_eq!(scaled.values().take(2).collect::<Vec<_>>(), vec![10.0, 9.5]);
         assert_eq!(scaled.voxels().memory_bytes(), 16, "stored as i16, not converted");
+        // A run reads what `get` reads, NaN past the end.
+        let mut run = [0.0; 4];
+        scaled.read_run(6, &mut run);
+        assert_eq!(run[..2], [scaled.get(6), scaled.get(7)]);
+        assert!(run[2].is_nan() && run[3].is_nan());
+        scaled.read_run(100, &mut run);
+        assert!(run.iter().all(|v| v.is_nan()));
         let flipped =
             scaled.with_affine([[-1.0, 0.0, 0.0, 5.0], [0.0, 0.0, 2.0, 0.0], [0.0, -3.0, 0.0, 0.0]]).expect("finite");
         assert_eq!(flipped.orientation(), "LIA");

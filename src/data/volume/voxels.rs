@@ -120,6 +120,17 @@ impl Voxels {
         each_type!(self, v => v.get(index).map_or(f64::NAN, |x| x.to_f64()))
     }
 
+    /// The stored values of voxels `start..start + out.len()` as numbers into `out` (NaN
+    /// where missing or outside): one conversion loop per type, no branch on it per voxel.
+    pub fn read_run(&self, start: usize, out: &mut [f64]) {
+        each_type!(self, v => {
+            let run = v.get(start..).unwrap_or_default();
+            for (slot, x) in out.iter_mut().zip(run.iter().copied().map(Sample::to_f64).chain(std::iter::repeat(f64::NAN))) {
+                *slot = x;
+            }
+        })
+    }
+
     /// The bytes the voxels take in memory.
     pub fn memory_bytes(&self) -> usize {
         self.len() * type_size(self.voxel_type())

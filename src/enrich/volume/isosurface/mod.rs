@@ -198,10 +198,12 @@ fn cell_dims(volume: &Volume) -> [usize; 3] {
 /// one exactly at `iso` is listed but gets no triangles. Empty when `iso` is not finite or the
 /// volume is one voxel thick.
 ///
-/// Each voxel is compared with `iso` once per plane of cells it touches (below, above, missing)
-/// and a cell's corners are combined from those bits: minimum `≤ iso` is some corner `≤ iso`,
-/// maximum `≥ iso` some corner `≥ iso`, the rule of `corner_range` without its eight reads a
-/// cell.
+/// Per z layer of cells, its two voxel planes are read as runs and each voxel column `(i, j)`
+/// becomes three bits (some value of the two `≤ iso`, some `≥ iso`, one missing), packed 64
+/// to a word along each row; a cell's bits are those of its four columns, two rows ORed and
+/// each bit ORed with its right neighbour, so 64 cells are decided in a few word operations:
+/// minimum `≤ iso` is some corner `≤ iso`, maximum `≥ iso` some corner `≥ iso`, the rule of
+/// `corner_range` without its eight reads a cell.
 pub fn active_cells(volume: &Volume, iso: f64) -> Vec<u32> {
     let [cx, cy, cz] = cell_dims(volume);
     if !iso.is_finite() || cx == 0 || cy == 0 || cz == 0 {
@@ -209,29 +211,57 @@ pub fn active_cells(volume: &Volume, iso: f64) -> Vec<u32> {
     }
     let [nx, ny, _] = volume.dims();
     let plane = nx * ny;
-    // Bit 0: the value is `≤ iso`; bit 1: `≥ iso`; bit 2: missing. A cell is active when its
-    // corners' bits together are exactly 0b011.
-    let bits = |n: usize| {
-        let v = volume.get(n);
-        if v.is_nan() { 4 } else { u8::from(v <= iso) | u8::from(v >= iso) << 1 }
-    };
+    let words = nx.div_ceil(64);
     let layers: Vec<Vec<u32>> = (0..cz)
         .into_par_iter()
-        .map(|k| {
-            // The bits of each voxel column (i, j) over the layer's two voxel planes.
-            let columns: Vec<u8> = (k * plane..(k + 1) * plane).map(|n| bits(n) | bits(n + plane)).collect();
-            let mut out = Vec::new();
-            let mut id = (k * cy * cx) as u32;
-            for (near, far) in columns.chunks_exact(nx).zip(columns.chunks_exact(nx).skip(1)) {
-                for (a, b) in near.windows(2).zip(far.windows(2)) {
-                    if a[0] | a[1] | b[0] | b[1] == 0b011 {
-                        out.push(id);
+        .map_init(
+            || (vec![0.0; plane], vec![0.0; plane], vec![[0u64; 3]; words * ny]),
+            |(near, far, masks), k| {
+                volume.read_run(k * plane, near);
+                volume.read_run((k + 1) * plane, far);
+                // masks[j · words + w]: bits of voxel columns 64w.. of row j: [≤ iso, ≥ iso, missing].
+                let runs = near.chunks_exact(nx).zip(far.chunks_exact(nx));
+                for (row, (ra, rb)) in masks.chunks_exact_mut(words).zip(runs) {
+                    for (m, (ca, cb)) in row.iter_mut().zip(ra.chunks(64).zip(rb.chunks(64))) {
+                        *m = [0; 3];
+                        for (i, (&a, &b)) in ca.iter().zip(cb).enumerate() {
+                            let bit = 1u64 << i;
+                            m[0] |= if a <= iso || b <= iso { bit } else { 0 };
+                            m[1] |= if a >= iso || b >= iso { bit } else { 0 };
+                            m[2] |= if a.is_nan() || b.is_nan() { bit } else { 0 };
+                        }
                     }
-                    id = id.wrapping_add(1);
                 }
-            }
-            out
-        })
+                let mut out = Vec::new();
+                for j in 0..cy {
+                    let id_row = ((k * cy + j) * cx) as u32;
+                    for w in 0..words {
+                        // Columns of rows j and j + 1, then each cell i with its column i + 1.
+                        let col = |w: usize, b: usize| {
+                            let (r0, r1) = (masks.get(j * words + w), masks.get((j + 1) * words + w));
+                            r0.map_or(0, |m| m[b]) | r1.map_or(0, |m| m[b])
+                        };
+                        let cell = |b: usize| {
+                            let here = col(w, b);
+                            let next = if w + 1 < words { col(w + 1, b) << 63 } else { 0 };
+                            here | (here >> 1) | next
+                        };
+                        let mut active = cell(0) & cell(1) & !cell(2);
+                        // Only cells 0..cx of the row.
+                        let first = 64 * w;
+                        if first + 64 > cx {
+                            active &= if cx > first { (1u64 << (cx - first)) - 1 } else { 0 };
+                        }
+                        while active != 0 {
+                            let i = first + active.trailing_zeros() as usize;
+                            out.push(id_row + i as u32);
+                            active &= active - 1;
+                        }
+                    }
+                }
+                out
+            },
+        )
         .collect();
     layers.concat()
 }

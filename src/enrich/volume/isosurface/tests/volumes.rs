@@ -65,7 +65,8 @@ fn active_cells_are_the_cells_that_give_triangles() {
 #[test]
 fn active_cells_follow_the_corner_range_rule() {
     let mut rng = Rng::new(11);
-    for dims in [[2, 2, 2], [5, 3, 4], [9, 7, 6], [1, 4, 4]] {
+    // Rows of 64 cells and more cross the 64-cell words the scan packs.
+    for dims in [[2, 2, 2], [5, 3, 4], [9, 7, 6], [1, 4, 4], [64, 3, 2], [65, 2, 3], [130, 3, 3], [129, 2, 2]] {
         let n: usize = dims.iter().product();
         // Small integers (voxels at the level), a few missing and infinite voxels.
         let values: Vec<f64> = (0..n)
