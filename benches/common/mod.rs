@@ -1,4 +1,5 @@
-//! Helpers shared by the benchmarks.
+//! Helpers shared by the benchmarks; each benchmark uses some of them.
+#![allow(dead_code)]
 
 /// A fixed-seed xorshift generator of uniform numbers in [0, 1), so every run and every machine
 /// benchmarks the same data.
@@ -14,7 +15,6 @@ pub fn uniform(seed: u64) -> impl FnMut() -> f64 {
 
 /// f = Σ exp(−|p − cᵢ|² / 0.02) over four centres, p the voxel's position in [0, 1]³, stored as
 /// `f32`; `n` voxels a side. `benches/make_blobs.py` writes the same field.
-#[allow(dead_code)] // used by the volume benchmarks only
 pub fn blobs(n: usize) -> dataink::data::volume::Volume {
     let centres = [[0.3, 0.3, 0.3], [0.7, 0.35, 0.6], [0.4, 0.7, 0.45], [0.65, 0.7, 0.25]];
     let axis: Vec<f64> = (0..n).map(|i| i as f64 / (n - 1) as f64).collect();
