@@ -174,6 +174,9 @@ impl ExploreApp {
         let line = match self.session.sets.get(&data) {
             Some(set) if set.is_active() => format!("{data}: {} of {} rows selected", set.count(), set.rows()),
             Some(set) => format!("{data}: no selection, all {} rows lit", set.rows()),
+            None if self.session.loaded.volumes.contains_key(&data) => {
+                format!("{data}: a volume; drag turns a 3-D chart, the sliders move a value or a plane")
+            }
             None => format!("{data}: nothing to brush here"),
         };
         ui.horizontal(|ui| {

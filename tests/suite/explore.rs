@@ -353,6 +353,7 @@ fn in_the_window_a_drag_turns_an_isosurface() {
     let session = Session::new(fx.load().expect("the spec loads"), 1.0);
     let mut h = harness(ExploreApp::new(session, fx.dir.path().join("saved")));
     assert!(h.query_all_by_label_contains("iso value").next().is_some(), "the iso value slider is shown");
+    h.get_by_label_contains("ball: a volume; drag turns a 3-D chart");
     let (from, to) = (screen(&h, 0, 200.0, 190.0), screen(&h, 0, 260.0, 190.0));
     drag(&mut h, from, to, Modifiers::NONE);
     let v = &h.state().session.charts[0];
