@@ -73,7 +73,7 @@ fn check(s: &Subject<'_>) -> Vec<Issue> {
 
 /// Whether the derived table holds an arrow of non-zero speed.
 fn moving_arrows(s: &Subject<'_>) -> bool {
-    let column = |name: &str| s.output.derived.columns.iter().find(|(n, _)| n == name).map(|(_, c)| c);
+    let column = |name: &str| s.output.derived.column(name);
     let (Some(DerivedColumn::Text(element)), Some(DerivedColumn::Number(speed))) = (column("element"), column("param"))
     else {
         return false;

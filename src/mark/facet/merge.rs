@@ -160,7 +160,7 @@ pub fn concat_derived(outputs: &[ChartOutput], split: &Split, table_rows: usize)
             }
         }
         for name in &names {
-            let own = o.derived.columns.iter().find(|(c, _)| c == name).map(|(_, c)| c);
+            let own = o.derived.column(name);
             let at = match columns.iter().position(|(c, _)| c == name) {
                 Some(at) => at,
                 None => {

@@ -373,10 +373,12 @@ pub(super) fn march(b: &mut Builder, cache: &mut Cache, cell: [usize; 3], base: 
         let v = v as usize;
         local.get(v).or_else(|| more.get(v - CENTRE as usize)).copied().unwrap_or([0.5; 3])
     };
-    // Crossings snapped onto one lattice point are one vertex: name each by its first edge.
-    let same: [u8; 12] =
-        std::array::from_fn(|e| (0..e).find(|&d| ids[d] == ids[e] && ids[e] != u32::MAX).unwrap_or(e) as u8);
-    let canonical = |lp: &[u8]| -> Vec<u8> { lp.iter().map(|&v| same.get(v as usize).copied().unwrap_or(v)).collect() };
+    // Crossings snapped onto one lattice point are one vertex: name each by its first edge
+    // (looked up only in the few cells with a tube).
+    let canonical = |lp: &[u8]| -> Vec<u8> {
+        let same = |e: usize| (0..e).find(|&d| ids[d] == ids[e] && ids[e] != u32::MAX).unwrap_or(e) as u8;
+        lp.iter().map(|&v| if (v as usize) < ids.len() { same(v as usize) } else { v }).collect()
+    };
     let mut stitched: Vec<[u8; 3]> = Vec::new();
     for [a, c] in &template.tubes {
         let (a, c) = (canonical(a), canonical(c));
