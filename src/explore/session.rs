@@ -16,6 +16,7 @@ use super::view;
 use crate::data::Table;
 use crate::enrich::volume::SpanSpace;
 use crate::mark::geometry::Geometry;
+use crate::mark::volume::isosurface::SurfaceCache;
 use crate::mark::{ChartContext, ChartOutput};
 use crate::pipeline::Loaded;
 use crate::render::tiles::Tiles;
@@ -64,6 +65,8 @@ pub struct ChartView {
     pub focus: FocusView,
     /// Camera and iso value of a 3-D chart, as turned and moved.
     pub orbit: Orbit,
+    /// An isosurface chart's surfaces, kept so a turn draws them without extracting them.
+    pub surfaces: SurfaceCache,
     /// Lit and drawn rows (equal when nothing is selected).
     pub lit: (usize, usize),
     /// Bumped whenever `tiles` change.
@@ -132,6 +135,7 @@ impl Session {
                 domains: BTreeMap::new(),
                 focus: FocusView::default(),
                 orbit: Orbit::default(),
+                surfaces: SurfaceCache::default(),
                 lit: (0, 0),
                 generation: 0,
                 counted: Vec::new(),
@@ -563,6 +567,7 @@ fn view_context<'a>(
         .with_view(Some(&v.focus.transform))
         .with_volume(loaded.volumes.get(&chart.data))
         .with_span_space(index)
+        .with_surfaces(Some(&v.surfaces))
 }
 
 /// Draw chart view `v` for its view state and relight it for `mask`.

@@ -7,6 +7,7 @@
 //! `aspect` or draw annotations, what lint reads of the encodings, the node table of network kinds, the explorer's
 //! interactive geometry — is read from here.
 
+use super::volume::isosurface::SurfaceCache;
 use super::{ChartOutput, MarkError};
 use std::borrow::Cow;
 
@@ -188,6 +189,9 @@ pub struct ChartContext<'a> {
     /// A span-space index of that volume, kept by a caller that extracts isosurfaces of it
     /// again and again (the explorer's iso value slider).
     pub span_space: Option<&'a SpanSpace>,
+    /// Surfaces kept from the chart's earlier draws, by a caller that draws it again and again
+    /// (the explorer turning the camera).
+    pub surfaces: Option<&'a SurfaceCache>,
 }
 
 impl<'a> ChartContext<'a> {
@@ -202,6 +206,7 @@ impl<'a> ChartContext<'a> {
             view: None,
             volume: None,
             span_space: None,
+            surfaces: None,
         }
     }
 
@@ -233,6 +238,12 @@ impl<'a> ChartContext<'a> {
     /// its volume.
     pub fn with_span_space(mut self, index: Option<&'a SpanSpace>) -> ChartContext<'a> {
         self.span_space = index;
+        self
+    }
+
+    /// The same chart keeping its extracted isosurfaces in `cache` for its next draws.
+    pub fn with_surfaces(mut self, cache: Option<&'a SurfaceCache>) -> ChartContext<'a> {
+        self.surfaces = cache;
         self
     }
 

@@ -12,8 +12,10 @@
 //! Work is bounded: the samples a mesh may visit (its triangles' bounding boxes, clipped to what
 //! is visible) are capped at [`MAX_MESH_SAMPLES`]. Supersampling is lowered to stay under it,
 //! and past it (a mesh of millions of large overlapping triangles) the remaining triangles are
-//! left out. Memory is bounded by drawing in bands of at most [`BAND_SAMPLES`] samples.
+//! left out. Memory is bounded by drawing in bands of at most [`BAND_SAMPLES`] samples, bands
+//! in parallel.
 
+use rayon::prelude::*;
 use tiny_skia::Pixmap;
 
 use crate::scene::{Color, Mesh};
@@ -27,8 +29,8 @@ pub const SUPERSAMPLE: u32 = 3;
 /// samples); about a second of work.
 pub const MAX_MESH_SAMPLES: u64 = 200_000_000;
 
-/// Most samples held at once (depth and colour, 8 bytes each): larger areas are drawn in bands.
-pub const BAND_SAMPLES: u64 = 4_000_000;
+/// Most samples of one band (depth and colour, 20 bytes each; one band per thread at a time).
+pub const BAND_SAMPLES: u64 = 1 << 18;
 
 /// One triangle in device pixels, oriented with positive area.
 struct Tri {
@@ -40,7 +42,8 @@ struct Tri {
     bbox: [f64; 4],
 }
 
-/// Draws `mesh` at `scale` device pixels per canvas unit inside `clip`.
+/// Draws `mesh` at `scale` device pixels per canvas unit inside `clip`: bands of rows in
+/// parallel, each with its own depth and colour buffers.
 pub(crate) fn draw_mesh(pixmap: &mut Pixmap, mesh: &Mesh, scale: f64, clip: &Clip) {
     let Some((cx0, cy0, cx1, cy1)) = clip.device_bounds(pixmap, scale) else { return };
     let mut tris = Vec::with_capacity(mesh.indices.len());
@@ -63,33 +66,46 @@ pub(crate) fn draw_mesh(pixmap: &mut Pixmap, mesh: &Mesh, scale: f64, clip: &Cli
     if x0 >= x1 || y0 >= y1 {
         return;
     }
-    let work: f64 = tris.iter().map(|t| ((t.bbox[2] - t.bbox[0]) + 1.0) * ((t.bbox[3] - t.bbox[1]) + 1.0)).sum();
+    let box_samples = |t: &Tri, s: f64| ((t.bbox[2] - t.bbox[0]) * s + 1.0) * ((t.bbox[3] - t.bbox[1]) * s + 1.0);
+    let work: f64 = tris.iter().map(|t| box_samples(t, 1.0)).sum();
     let ss = (1..=SUPERSAMPLE).rev().find(|s| work * f64::from(s * s) <= MAX_MESH_SAMPLES as f64).unwrap_or(1);
     let ssf = f64::from(ss);
-    let width = (x1 - x0) as u64 * u64::from(ss);
+    // Past the budget, the remaining triangles (in the mesh's order) are left out.
+    let mut spent = 0.0;
+    let kept = tris
+        .iter()
+        .position(|t| {
+            spent += box_samples(t, ssf);
+            spent > MAX_MESH_SAMPLES as f64
+        })
+        .unwrap_or(tris.len());
+    tris.truncate(kept);
+    let width = (x1 - x0) as usize * ss as usize;
     // Rows of pixels per band.
-    let band_rows = (BAND_SAMPLES / (width * u64::from(ss)).max(1)).max(1) as i64;
-    let mut budget = MAX_MESH_SAMPLES;
-    let mut band = Band { depth: Vec::new(), colour: Vec::new(), width: width as usize };
-    let mut top = y0;
-    while top < y1 {
-        let bottom = (top + band_rows).min(y1);
-        let rows = ((bottom - top) as u64 * u64::from(ss)) as usize;
-        band.depth.clear();
-        band.depth.resize(band.width * rows, f32::NEG_INFINITY);
-        band.colour.clear();
-        band.colour.resize(band.width * rows, [0.0; 4]);
-        for t in &tris {
-            if t.bbox[3] < top as f64 || t.bbox[1] > bottom as f64 {
-                continue;
+    let band_rows = (BAND_SAMPLES / (width as u64 * u64::from(ss)).max(1)).max(1) as usize;
+    let mask = clip.device_mask(scale);
+    let pixmap_width = i64::from(pixmap.width());
+    let row_bytes = pixmap_width as usize * 4;
+    let rows = &mut pixmap.data_mut()[y0 as usize * row_bytes..y1 as usize * row_bytes];
+    rows.par_chunks_mut(band_rows * row_bytes).enumerate().for_each_init(
+        || Band { depth: Vec::new(), colour: Vec::new(), width },
+        |band, (b, pixels)| {
+            let top = y0 + (b * band_rows) as i64;
+            let bottom = (top + band_rows as i64).min(y1);
+            let samples = (bottom - top) as usize * ss as usize;
+            band.depth.clear();
+            band.depth.resize(band.width * samples, f32::NEG_INFINITY);
+            band.colour.clear();
+            band.colour.resize(band.width * samples, [0.0; 4]);
+            for t in &tris {
+                if t.bbox[3] < top as f64 || t.bbox[1] > bottom as f64 {
+                    continue;
+                }
+                fill(band, t, (x0 as f64, top as f64), ssf, samples);
             }
-            if !fill(&mut band, t, (x0 as f64, top as f64), ssf, rows, &mut budget) {
-                break;
-            }
-        }
-        composite(pixmap, &band, (x0, top), (x1, bottom), ss, clip.device_mask(scale));
-        top = bottom;
-    }
+            composite(pixels, band, (x0, top), (x1, bottom), ss, (mask, pixmap_width));
+        },
+    );
 }
 
 /// Depth and straight-alpha colour of every sample of one band of rows.
@@ -105,7 +121,7 @@ fn device_triangle(p: [[f32; 3]; 3], colours: [Color; 3], scale: f64, region: [f
     let mut d = p.map(|q| [f64::from(q[0]) * scale, f64::from(q[1]) * scale]);
     let mut z = p.map(|q| f64::from(q[2]));
     let mut c = colours.map(|c| [f64::from(c.r), f64::from(c.g), f64::from(c.b), f64::from(c.a)]);
-    let mut area = edge(d[0], d[1], d[2]);
+    let mut area = Edge::new(d[0], d[1]).at(d[2]);
     if area < 0.0 {
         d.swap(1, 2);
         z.swap(1, 2);
@@ -121,16 +137,37 @@ fn device_triangle(p: [[f32; 3]; 3], colours: [Color; 3], scale: f64, region: [f
     (bbox[0] <= bbox[2] && bbox[1] <= bbox[3]).then_some(Tri { p: d, z, c, area, bbox })
 }
 
-/// Twice the signed area of `(a, b, p)`, computed from the endpoints in a fixed order so that
-/// the two triangles sharing an edge get exactly opposite values (no sample falls between them).
-fn edge(a: [f64; 2], b: [f64; 2], p: [f64; 2]) -> f64 {
-    let raw = |u: [f64; 2], v: [f64; 2]| (v[0] - u[0]) * (p[1] - u[1]) - (v[1] - u[1]) * (p[0] - u[0]);
-    if (a[0], a[1]) <= (b[0], b[1]) { raw(a, b) } else { -raw(b, a) }
+/// The edge from `a` to `b` as its endpoints in a fixed order, so that the two triangles sharing
+/// an edge get exactly opposite values at every sample (no sample falls between them).
+#[derive(Clone, Copy)]
+struct Edge {
+    from: [f64; 2],
+    to: [f64; 2],
+    /// Whether the endpoints were swapped (the value is negated).
+    flipped: bool,
+}
+
+impl Edge {
+    fn new(a: [f64; 2], b: [f64; 2]) -> Edge {
+        if (a[0], a[1]) <= (b[0], b[1]) {
+            Edge { from: a, to: b, flipped: false }
+        } else {
+            Edge { from: b, to: a, flipped: true }
+        }
+    }
+
+    /// Twice the signed area of `(a, b, p)`.
+    #[inline]
+    fn at(&self, p: [f64; 2]) -> f64 {
+        let (u, v) = (self.from, self.to);
+        let raw = (v[0] - u[0]) * (p[1] - u[1]) - (v[1] - u[1]) * (p[0] - u[0]);
+        if self.flipped { -raw } else { raw }
+    }
 }
 
 /// Depth-tests and fills the samples of `t` in the band whose top-left pixel corner is
-/// `origin`; `false` once the sample budget is spent.
-fn fill(band: &mut Band, t: &Tri, origin: (f64, f64), ss: f64, rows: usize, budget: &mut u64) -> bool {
+/// `origin`.
+fn fill(band: &mut Band, t: &Tri, origin: (f64, f64), ss: f64, rows: usize) {
     // Sample (i, j) sits at device (origin.0 + (i + 0.5) / ss, origin.1 + (j + 0.5) / ss).
     let index = |v: f64, o: f64, n: usize, up: bool| {
         let s = (v - o) * ss - 0.5;
@@ -140,20 +177,16 @@ fn fill(band: &mut Band, t: &Tri, origin: (f64, f64), ss: f64, rows: usize, budg
     let (i0, i1) = (index(t.bbox[0], origin.0, band.width, false), index(t.bbox[2], origin.0, band.width, true));
     let (j0, j1) = (index(t.bbox[1], origin.1, rows, false), index(t.bbox[3], origin.1, rows, true));
     if i0 >= i1 || j0 >= j1 {
-        return true;
+        return;
     }
-    let visits = ((i1 - i0) * (j1 - j0)) as u64;
-    if visits > *budget {
-        return false;
-    }
-    *budget -= visits;
     let [a, b, c] = t.p;
+    let edges = [Edge::new(b, c), Edge::new(c, a), Edge::new(a, b)];
     for j in j0..j1 {
         let y = origin.1 + (j as f64 + 0.5) / ss;
         for i in i0..i1 {
             let x = origin.0 + (i as f64 + 0.5) / ss;
             let q = [x, y];
-            let (w0, w1, w2) = (edge(b, c, q), edge(c, a, q), edge(a, b, q));
+            let (w0, w1, w2) = (edges[0].at(q), edges[1].at(q), edges[2].at(q));
             if w0 < 0.0 || w1 < 0.0 || w2 < 0.0 {
                 continue;
             }
@@ -170,22 +203,20 @@ fn fill(band: &mut Band, t: &Tri, origin: (f64, f64), ss: f64, rows: usize, budg
             }
         }
     }
-    true
 }
 
-/// Averages each pixel's samples and paints them over the pixmap (source over, through `mask`).
+/// Averages each pixel's samples of the band's rows `y0..y1` and paints them over `pixels` (those
+/// rows of the pixmap, `pw` pixels wide), source over, through `mask` (of the whole pixmap).
 fn composite(
-    pixmap: &mut Pixmap,
+    pixels: &mut [u8],
     band: &Band,
     (x0, y0): (i64, i64),
     (x1, y1): (i64, i64),
     ss: u32,
-    mask: Option<&[u8]>,
+    (mask, pw): (Option<&[u8]>, i64),
 ) {
-    let pw = i64::from(pixmap.width());
     let n = (ss * ss) as f32;
     let ss = ss as usize;
-    let data = pixmap.data_mut();
     for py in y0..y1 {
         for px in x0..x1 {
             let (mut r, mut g, mut b, mut a) = (0f32, 0f32, 0f32, 0f32);
@@ -201,10 +232,10 @@ fn composite(
             if a <= 0.0 {
                 continue;
             }
-            let at = (py * pw + px) as usize;
-            let m = mask.map_or(1.0, |m| f32::from(m.get(at).copied().unwrap_or(0)) / 255.0);
+            let m = mask.map_or(1.0, |m| f32::from(m.get((py * pw + px) as usize).copied().unwrap_or(0)) / 255.0);
             let (r, g, b, a) = (r / n * m, g / n * m, b / n * m, a / n * m);
-            let Some(dst) = data.get_mut(at * 4..at * 4 + 4) else { continue };
+            let at = ((py - y0) * pw + px) as usize;
+            let Some(dst) = pixels.get_mut(at * 4..at * 4 + 4) else { continue };
             let keep = 1.0 - a / 255.0;
             for (d, s) in dst.iter_mut().zip([r, g, b, a]) {
                 *d = (s + f32::from(*d) * keep).round().clamp(0.0, 255.0) as u8;

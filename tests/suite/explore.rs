@@ -283,6 +283,11 @@ data = "ball"
 axis = "y"
 "#;
 
+/// [`TURNING`] with the isosurface at 9.
+fn at_nine_spec() -> String {
+    TURNING.replace("levels = [6]", "levels = [9]")
+}
+
 /// The surface's area as drawn (the chart's derived table).
 fn area(session: &Session) -> f64 {
     crate::common::numbers(session.charts[0].output.as_ref().expect("drawn"), "area")[0]
@@ -308,9 +313,21 @@ fn a_3d_chart_turns_and_its_iso_value_moves() {
     assert_eq!(s.level(0).map(|l| l.0), Some(9.0));
     assert!((area(&s) / sphere(9.0) - 1.0).abs() < 0.02, "area {} at 9", area(&s));
     // Found through the span-space index the move built: the very surface the spec draws at 9.
-    let at_nine = Fixture::new(&TURNING.replace("levels = [6]", "levels = [9]"), &[("ball.npy", &ball_npy())]);
+    let at_nine = Fixture::new(&at_nine_spec(), &[("ball.npy", &ball_npy())]);
     let spec_drawn = Session::new(at_nine.load().expect("the spec loads"), 1.0);
     assert_eq!(area(&s).to_bits(), area(&spec_drawn).to_bits());
+
+    // A turn of the isosurface draws the surface kept from the last draw (the one at 9; the one
+    // at 6 is kept too), and the picture is the chart drawn at 9 with that camera.
+    assert_eq!(s.charts[0].surfaces.len(), 2, "the surfaces at 6 and 9 are kept");
+    s.turn(0, middle, dataink::scene::Point::new(250.0, 170.0));
+    s.end_turn(0);
+    assert_eq!(s.charts[0].surfaces.len(), 2, "a turn extracts no surface");
+    let turned = at_nine_spec().replace("levels = [9]\n", "levels = [9]\nazimuth = -80\nelevation = 15\n");
+    let direct = Fixture::new(&turned, &[("ball.npy", &ball_npy())]);
+    let fresh = Session::new(direct.load().expect("the turned spec loads"), 1.0);
+    let picture = |s: &Session| s.charts[0].tiles.as_ref().expect("tiles").composite().2;
+    assert!(picture(&s) == picture(&fresh), "the turned surface is the chart drawn with that camera");
 
     // A drag turns the camera (half a degree per unit) and draws the rendering with fewer rays
     // until it ends; the full drawing then equals the chart drawn with that camera.

@@ -69,6 +69,19 @@ pub struct Volume {
     voxels: Voxels,
     scale: Option<Scale>,
     unit: Option<SpaceUnit>,
+    /// The stored voxels' range, found on first use.
+    stored_range: StoredRange,
+}
+
+/// A volume's stored range and missing count, computed once (the voxels never change after
+/// the volume is made). Two volumes compare by their voxels, not by whether this was filled.
+#[derive(Clone, Debug, Default)]
+struct StoredRange(std::sync::OnceLock<(Option<(f64, f64)>, usize)>);
+
+impl PartialEq for StoredRange {
+    fn eq(&self, _: &StoredRange) -> bool {
+        true
+    }
 }
 
 /// `Ok` when every spacing is a positive finite number, else a message saying the fix.
@@ -127,7 +140,7 @@ impl Volume {
         }
         let [sx, sy, sz] = spacing;
         let affine = [[sx, 0.0, 0.0, 0.0], [0.0, sy, 0.0, 0.0], [0.0, 0.0, sz, 0.0]];
-        Ok(Volume { dims, spacing, affine, voxels, scale: None, unit: None })
+        Ok(Volume { dims, spacing, affine, voxels, scale: None, unit: None, stored_range: StoredRange::default() })
     }
 
     /// The same volume placed in the world by `affine` (rows x, y, z of a 4 × 4 matrix whose last
@@ -246,9 +259,10 @@ impl Volume {
     }
 
     /// The smallest and largest values that are not missing (scaled), and how many are missing;
-    /// `None` for the range when every voxel is missing. One pass over the stored voxels.
+    /// `None` for the range when every voxel is missing. One pass over the stored voxels, the
+    /// first time.
     pub fn range(&self) -> (Option<(f64, f64)>, usize) {
-        let (stored, missing) = self.voxels.stored_range();
+        let (stored, missing) = *self.stored_range.0.get_or_init(|| self.voxels.stored_range());
         let range = stored.map(|(lo, hi)| match self.scale {
             Some(Scale { slope, inter }) => {
                 let (a, b) = (lo * slope + inter, hi * slope + inter);

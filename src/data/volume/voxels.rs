@@ -1,6 +1,8 @@
 //! Voxels kept in the type their file stores them in: a 512³ volume of `u16` takes 256 MB, not
 //! the 1 GB of `f64`. Reading a voxel converts it to `f64` on the way out.
 
+use rayon::prelude::*;
+
 use crate::spec::VoxelType;
 
 /// The voxels of a volume, one vector per stored type, x fastest, then y, then z. Float voxels
@@ -167,24 +169,20 @@ pub fn type_name(ty: VoxelType) -> &'static str {
     }
 }
 
-fn range_of<T: Sample>(values: &[T]) -> (Option<(f64, f64)>, usize) {
-    let mut lo: Option<T> = None;
-    let mut hi: Option<T> = None;
-    let mut missing = 0;
-    for &x in values {
-        // A float NaN compares false both ways: counted, never a bound.
-        if T::FLOAT && x.partial_cmp(&x).is_none() {
-            missing += 1;
-            continue;
-        }
-        if lo.is_none_or(|l| x < l) {
-            lo = Some(x);
-        }
-        if hi.is_none_or(|h| x > h) {
-            hi = Some(x);
-        }
-    }
-    (lo.zip(hi).map(|(l, h)| (l.to_f64(), h.to_f64())), missing)
+/// The range and missing count of `values`, in parallel over runs: as numbers, a float NaN is
+/// counted and never a bound (`f64::min` and `max` pass over it).
+fn range_of<T: Sample + Sync>(values: &[T]) -> (Option<(f64, f64)>, usize) {
+    let empty = (f64::INFINITY, f64::NEG_INFINITY, 0usize);
+    let (lo, hi, missing) = values
+        .par_chunks(1 << 18)
+        .map(|run| {
+            run.iter().fold(empty, |(lo, hi, missing), &x| {
+                let v = x.to_f64();
+                (lo.min(v), hi.max(v), missing + usize::from(v.is_nan()))
+            })
+        })
+        .reduce(|| empty, |a, b| (a.0.min(b.0), a.1.max(b.1), a.2 + b.2));
+    ((lo <= hi).then_some((lo, hi)), missing)
 }
 
 #[cfg(test)]

@@ -112,6 +112,101 @@ impl Tally {
     }
 }
 
+/// Bucket lookup for a row or column of the lattice: [`bucket`] through a table by the top 16
+/// bits of a value's order-preserving bit pattern (sign, exponent and 4 bits of mantissa): the
+/// table gives how many boundaries lie in lower parts of that order, and the few boundaries
+/// sharing the value's part are then compared one by one.
+struct Buckets {
+    /// The boundaries, `-0.0` as `+0.0` (they compare equal, so `≤` is unchanged).
+    edges: Vec<f64>,
+    /// For each top-16-bit part, the number of boundaries in lower parts.
+    below: Vec<u8>,
+}
+
+/// A `u64` whose order is the order of the non-NaN `v` (`-0.0` taken as `+0.0`).
+#[inline]
+fn ordered_bits(v: f64) -> u64 {
+    let bits = (v + 0.0).to_bits();
+    if bits >> 63 == 1 { !bits } else { bits | 1 << 63 }
+}
+
+impl Buckets {
+    fn new(edges: &[f64]) -> Buckets {
+        let edges: Vec<f64> = edges.iter().map(|e| e + 0.0).collect();
+        let mut below = vec![0u8; 1 << 16];
+        let mut count = 0;
+        for (part, slot) in below.iter_mut().enumerate() {
+            while count < edges.len() && ((ordered_bits(edges[count]) >> 48) as usize) < part {
+                count += 1;
+            }
+            *slot = count as u8;
+        }
+        Buckets { edges, below }
+    }
+
+    /// How many boundaries are `≤ v` (at most 254, so a `u8` holds the count); 0 for NaN.
+    #[inline]
+    fn of(&self, v: f64) -> usize {
+        if v.is_nan() {
+            return 0;
+        }
+        let mut at = self.below[(ordered_bits(v) >> 48) as usize] as usize;
+        while at < self.edges.len() && self.edges[at] <= v {
+            at += 1;
+        }
+        at
+    }
+}
+
+/// The corner minimum and maximum of each cell of one layer, and whether a corner is missing,
+/// found from two voxel planes: first the two planes' minimum and maximum per voxel column,
+/// then over each cell's four columns (the same values as [`corner_range`]).
+#[derive(Default)]
+struct LayerRanges {
+    near: Vec<f64>,
+    far: Vec<f64>,
+    column_missing: Vec<bool>,
+    lo: Vec<f64>,
+    hi: Vec<f64>,
+    missing: Vec<bool>,
+}
+
+impl LayerRanges {
+    /// The ranges of the cells of layer `k` (between voxel planes `k` and `k + 1`).
+    fn read(&mut self, volume: &Volume, k: usize) {
+        let [nx, ny, _] = volume.dims();
+        let (cx, cy) = (nx - 1, ny - 1);
+        let plane = nx * ny;
+        self.near.resize(plane, 0.0);
+        self.far.resize(plane, 0.0);
+        volume.read_run(k * plane, &mut self.near);
+        volume.read_run((k + 1) * plane, &mut self.far);
+        self.column_missing.resize(plane, false);
+        for ((a, b), m) in self.near.iter_mut().zip(self.far.iter_mut()).zip(self.column_missing.iter_mut()) {
+            *m = a.is_nan() || b.is_nan();
+            let (lo, hi) = (a.min(*b), a.max(*b));
+            (*a, *b) = (lo, hi);
+        }
+        self.lo.resize(cx * cy, 0.0);
+        self.hi.resize(cx * cy, 0.0);
+        self.missing.resize(cx * cy, false);
+        for j in 0..cy {
+            let (row, next) = (j * nx, (j + 1) * nx);
+            let cells = j * cx..(j + 1) * cx;
+            let (lo, hi, missing) =
+                (&mut self.lo[cells.clone()], &mut self.hi[cells.clone()], &mut self.missing[cells]);
+            let (lo0, lo1) = (&self.near[row..row + nx], &self.near[next..next + nx]);
+            let (hi0, hi1) = (&self.far[row..row + nx], &self.far[next..next + nx]);
+            let (m0, m1) = (&self.column_missing[row..row + nx], &self.column_missing[next..next + nx]);
+            for i in 0..cx {
+                lo[i] = lo0[i].min(lo0[i + 1]).min(lo1[i].min(lo1[i + 1]));
+                hi[i] = hi0[i].max(hi0[i + 1]).max(hi1[i].max(hi1[i + 1]));
+                missing[i] = m0[i] | m0[i + 1] | m1[i] | m1[i + 1];
+            }
+        }
+    }
+}
+
 impl SpanSpace {
     /// The index of the cells of `volume` (cell numbers as in
     /// [`isosurface`](super::isosurface)); in parallel over z-slabs of cells.
@@ -146,33 +241,36 @@ impl SpanSpace {
         let hi_edges = edges_of(&his, target);
         let (rows, columns) = (lo_edges.len() + 1, hi_edges.len() + 1);
 
-        // Each cell's bucket, in parallel over slabs of cells.
+        // Each cell's bucket, in parallel over layers of cells (their corner ranges read a
+        // voxel plane at a time).
+        let (find_lo, find_hi) = (Buckets::new(&lo_edges), Buckets::new(&hi_edges));
         let slab = (cx * cy).max(1);
         let mut keys = vec![MISSING; count];
         let tally = keys
             .par_chunks_mut(slab)
             .enumerate()
             .fold(
-                || Tally::new(rows, columns),
-                |mut tally, (k, chunk)| {
-                    for j in 0..cy {
-                        let row = (k * ny + j) * nx;
-                        for i in 0..cx {
-                            if let Some((lo, hi)) = corner_range(volume, row + i, &offsets) {
-                                let (r, c) = (bucket(&lo_edges, lo), bucket(&hi_edges, hi));
-                                let key = r * columns + c;
-                                chunk[j * cx + i] = key as u16;
-                                tally.counts[key] += 1;
-                                let lr = &mut tally.lo_range[r];
-                                *lr = (lr.0.min(lo), lr.1.max(lo));
-                                let hr = &mut tally.hi_range[c];
-                                *hr = (hr.0.min(hi), hr.1.max(hi));
-                            }
+                || (Tally::new(rows, columns), LayerRanges::default()),
+                |(mut tally, mut ranges), (k, chunk)| {
+                    ranges.read(volume, k);
+                    for (n, key) in chunk.iter_mut().enumerate() {
+                        if ranges.missing[n] {
+                            continue;
                         }
+                        let (lo, hi) = (ranges.lo[n], ranges.hi[n]);
+                        let (r, c) = (find_lo.of(lo), find_hi.of(hi));
+                        let at = r * columns + c;
+                        *key = at as u16;
+                        tally.counts[at] += 1;
+                        let lr = &mut tally.lo_range[r];
+                        *lr = (lr.0.min(lo), lr.1.max(lo));
+                        let hr = &mut tally.hi_range[c];
+                        *hr = (hr.0.min(hi), hr.1.max(hi));
                     }
-                    tally
+                    (tally, ranges)
                 },
             )
+            .map(|(tally, _)| tally)
             .reduce(|| Tally::new(rows, columns), Tally::merge);
 
         // Cell numbers grouped by bucket, increasing within each (a counting sort).
@@ -554,5 +652,27 @@ mod tests {
         // The background value has a bucket of its own: a level just above it reads none of it.
         let plan = index.plan(1e-9).expect("finite");
         assert!(plan.estimate < index.len() / 4, "{}", plan.estimate);
+    }
+
+    #[test]
+    fn the_table_bucket_search_counts_as_the_partition_point() {
+        let mut rng = Rng::new(3);
+        for n in [0, 1, 2, 7, 128, 200, MAX_BUCKETS - 1] {
+            // Values over many magnitudes and signs, some sharing a table part, and zero.
+            let mut edges: Vec<f64> = (0..n)
+                .map(|k| if k == 3 { 0.0 } else { (rng.next() * 2.0 - 1.0) * 10f64.powf(rng.next() * 12.0 - 6.0) })
+                .collect();
+            edges.sort_by(f64::total_cmp);
+            let search = Buckets::new(&edges);
+            edges.dedup();
+            let mut probes = vec![f64::NAN, f64::INFINITY, f64::NEG_INFINITY, 0.0, -0.0, 2.0, -2.0, 1e300, -1e-300];
+            probes.extend((0..200).map(|_| (rng.next() * 2.0 - 1.0) * 10f64.powf(rng.next() * 14.0 - 7.0)));
+            for &e in &edges {
+                probes.extend([e, e.next_up(), e.next_down()]);
+            }
+            for v in probes {
+                assert_eq!(search.of(v), bucket(&edges, v), "{n} boundaries, value {v}");
+            }
+        }
     }
 }

@@ -128,6 +128,7 @@ impl<'a> Parts<'a> {
             view: None,
             volume: None,
             span_space: None,
+            surfaces: None,
         };
         match technique(&cx.chart.kind).draw(&cx) {
             Ok(output) => Ok((Some(output), handle.seen())),

@@ -17,6 +17,7 @@ use crate::mark::{ChartOutput, MarkError, frame};
 use crate::scene::{Color, Item, Mesh, Point, Role, Shape, Style, WorldMesh};
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
+use std::sync::{Arc, Mutex};
 
 use super::VolumeFacts;
 use super::box_frame::{self, BoxView, ProjectionKind, ValueLabel};
@@ -111,11 +112,69 @@ pub const MAX_SURFACES: usize = 8;
 /// One extracted surface with how it is drawn.
 struct Surface {
     iso: f64,
-    mesh: IsoMesh,
+    mesh: Arc<IsoMesh>,
     /// The smallest box around the mesh's vertices (`None` when it is empty).
     bounds: Option<([f64; 3], [f64; 3])>,
     color: Color,
     opacity: f64,
+}
+
+/// The surfaces of an isosurface chart kept between its draws, so that drawing it again with
+/// another camera (the explorer's turns) does not extract them again: the last
+/// [`KEPT_SURFACES`] extracted, by volume shape, iso value, method and normals. One cache
+/// serves one chart (its data source does not change).
+#[derive(Debug, Default)]
+pub struct SurfaceCache {
+    kept: Mutex<Vec<(SurfaceKey, Arc<IsoMesh>)>>,
+}
+
+/// Most surfaces a [`SurfaceCache`] keeps (a chart draws at most [`MAX_SURFACES`]).
+pub const KEPT_SURFACES: usize = MAX_SURFACES;
+
+/// What a kept surface was extracted from.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct SurfaceKey {
+    dims: [usize; 3],
+    iso: u64,
+    method: Method,
+    normals: NormalRule,
+}
+
+impl SurfaceKey {
+    fn new(volume: &crate::data::volume::Volume, iso: f64, method: Method, normals: NormalRule) -> SurfaceKey {
+        SurfaceKey { dims: volume.dims(), iso: iso.to_bits(), method, normals }
+    }
+}
+
+impl SurfaceCache {
+    /// The kept surface for `key`, or the one `extract` makes (then kept, the oldest dropped).
+    fn get_or_extract(
+        &self,
+        key: SurfaceKey,
+        extract: impl FnOnce() -> Result<IsoMesh, MarkError>,
+    ) -> Result<Arc<IsoMesh>, MarkError> {
+        let lock = || self.kept.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
+        if let Some((_, mesh)) = lock().iter().find(|(k, _)| *k == key) {
+            return Ok(Arc::clone(mesh));
+        }
+        let mesh = Arc::new(extract()?);
+        let mut kept = lock();
+        kept.push((key, Arc::clone(&mesh)));
+        if kept.len() > KEPT_SURFACES {
+            kept.remove(0);
+        }
+        Ok(mesh)
+    }
+
+    /// How many surfaces are kept.
+    pub fn len(&self) -> usize {
+        self.kept.lock().map_or(0, |k| k.len())
+    }
+
+    /// Whether no surface is kept.
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
 }
 
 /// Draw an isosurface chart.
@@ -145,10 +204,16 @@ pub fn draw(cx: &ChartContext<'_>, options: &IsosurfaceOptions) -> Result<ChartO
                 format_value(hi)
             )));
         }
-        // The cells from the caller's index of the source's volume, when it keeps one.
-        let indexed = cx.span_space.filter(|_| cx.volume.is_some()).map(|index| index.active_cells(&volume, iso));
-        let mesh = isosurface::extract(&volume, iso, method, normals, indexed.as_deref())
-            .map_err(|e| MarkError::at(&["levels"], format!("{e}"), "choose another value or crop the volume"))?;
+        let extract = || {
+            // The cells from the caller's index of the source's volume, when it keeps one.
+            let indexed = cx.span_space.filter(|_| cx.volume.is_some()).map(|index| index.active_cells(&volume, iso));
+            isosurface::extract(&volume, iso, method, normals, indexed.as_deref())
+                .map_err(|e| MarkError::at(&["levels"], format!("{e}"), "choose another value or crop the volume"))
+        };
+        let mesh = match cx.surfaces {
+            Some(cache) => cache.get_or_extract(SurfaceKey::new(&volume, iso, method, normals), extract)?,
+            None => Arc::new(extract()?),
+        };
         surfaces.push(Surface { iso, bounds: bounding_box(&mesh), mesh, color: colors[k], opacity: opacities[k] });
     }
     if options.opacity.is_none() {

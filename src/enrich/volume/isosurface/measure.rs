@@ -1,7 +1,5 @@
 //! Measures of a mesh: area, enclosed volume, Euler characteristic and connected components.
 
-use std::collections::HashSet;
-
 use super::IsoMesh;
 use super::cube::{cross, dot, norm, sub};
 
@@ -39,16 +37,38 @@ impl IsoMesh {
     /// `V − E + F` over the vertices used by triangles, the distinct edges and the triangles:
     /// 2 for a sphere, 0 for a torus; each boundary loop of an open surface lowers it by one.
     pub fn euler_characteristic(&self) -> i64 {
-        let mut used = HashSet::new();
-        let mut edges = HashSet::new();
+        // Each edge listed under its smaller end (a counting sort), then the few edges of each
+        // vertex deduplicated on their own.
+        let n = self.triangles.iter().flatten().max().map_or(0, |&v| v as usize + 1);
+        let mut used = vec![false; n];
+        let mut starts = vec![0u32; n + 1];
+        for t in &self.triangles {
+            for i in 0..3 {
+                used[t[i] as usize] = true;
+                starts[t[i].min(t[(i + 1) % 3]) as usize + 1] += 1;
+            }
+        }
+        for v in 0..n {
+            starts[v + 1] += starts[v];
+        }
+        let mut cursor = starts.clone();
+        let mut far = vec![0u32; 3 * self.triangles.len()];
         for t in &self.triangles {
             for i in 0..3 {
                 let (a, b) = (t[i], t[(i + 1) % 3]);
-                used.insert(a);
-                edges.insert((a.min(b), a.max(b)));
+                let at = &mut cursor[a.min(b) as usize];
+                far[*at as usize] = a.max(b);
+                *at += 1;
             }
         }
-        used.len() as i64 - edges.len() as i64 + self.triangles.len() as i64
+        let mut edges = 0usize;
+        for v in 0..n {
+            let list = &mut far[starts[v] as usize..starts[v + 1] as usize];
+            list.sort_unstable();
+            edges += list.chunk_by(|a, b| a == b).count();
+        }
+        let vertices = used.iter().filter(|&&u| u).count();
+        vertices as i64 - edges as i64 + self.triangles.len() as i64
     }
 
     /// The number of connected pieces of the triangles (sharing a vertex joins two triangles).

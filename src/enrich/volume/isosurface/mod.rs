@@ -198,10 +198,10 @@ fn cell_dims(volume: &Volume) -> [usize; 3] {
 /// one exactly at `iso` is listed but gets no triangles. Empty when `iso` is not finite or the
 /// volume is one voxel thick.
 ///
-/// Per z layer of cells, its two voxel planes are read as runs and each voxel column `(i, j)`
-/// becomes three bits (some value of the two `≤ iso`, some `≥ iso`, one missing), packed 64
-/// to a word along each row; a cell's bits are those of its four columns, two rows ORed and
-/// each bit ORed with its right neighbour, so 64 cells are decided in a few word operations:
+/// Each voxel plane is read as runs and each voxel becomes three bits (`≤ iso`, `≥ iso`,
+/// missing), packed 64 to a word along each row; a cell's bits are those of its eight corners,
+/// two planes and two rows ORed and each bit ORed with its right neighbour, so 64 cells are
+/// decided in a few word operations:
 /// minimum `≤ iso` is some corner `≤ iso`, maximum `≥ iso` some corner `≥ iso`, the rule of
 /// `corner_range` without its eight reads a cell.
 pub fn active_cells(volume: &Volume, iso: f64) -> Vec<u32> {
@@ -215,31 +215,21 @@ pub fn active_cells(volume: &Volume, iso: f64) -> Vec<u32> {
     let layers: Vec<Vec<u32>> = (0..cz)
         .into_par_iter()
         .map_init(
-            || (vec![0.0; plane], vec![0.0; plane], vec![[0u64; 3]; words * ny]),
-            |(near, far, masks), k| {
-                volume.read_run(k * plane, near);
-                volume.read_run((k + 1) * plane, far);
-                // masks[j · words + w]: bits of voxel columns 64w.. of row j: [≤ iso, ≥ iso, missing].
-                let runs = near.chunks_exact(nx).zip(far.chunks_exact(nx));
-                for (row, (ra, rb)) in masks.chunks_exact_mut(words).zip(runs) {
-                    for (m, (ca, cb)) in row.iter_mut().zip(ra.chunks(64).zip(rb.chunks(64))) {
-                        *m = [0; 3];
-                        for (i, (&a, &b)) in ca.iter().zip(cb).enumerate() {
-                            let bit = 1u64 << i;
-                            m[0] |= if a <= iso || b <= iso { bit } else { 0 };
-                            m[1] |= if a >= iso || b >= iso { bit } else { 0 };
-                            m[2] |= if a.is_nan() || b.is_nan() { bit } else { 0 };
-                        }
-                    }
-                }
+            || PlaneMasks { values: vec![0.0; plane], near: Vec::new(), far: Vec::new(), far_plane: None },
+            |planes, k| {
+                planes.read(volume, k, iso);
+                let (near, far) = (&planes.near, &planes.far);
                 let mut out = Vec::new();
                 for j in 0..cy {
                     let id_row = ((k * cy + j) * cx) as u32;
                     for w in 0..words {
-                        // Columns of rows j and j + 1, then each cell i with its column i + 1.
+                        // Columns of rows j and j + 1 of both planes, then each cell i with its
+                        // column i + 1.
                         let col = |w: usize, b: usize| {
-                            let (r0, r1) = (masks.get(j * words + w), masks.get((j + 1) * words + w));
-                            r0.map_or(0, |m| m[b]) | r1.map_or(0, |m| m[b])
+                            let at = |r: usize| {
+                                near.get(r * words + w).map_or(0, |m| m[b]) | far.get(r * words + w).map_or(0, |m| m[b])
+                            };
+                            at(j) | at(j + 1)
                         };
                         let cell = |b: usize| {
                             let here = col(w, b);
@@ -264,6 +254,47 @@ pub fn active_cells(volume: &Volume, iso: f64) -> Vec<u32> {
         )
         .collect();
     layers.concat()
+}
+
+/// The bits of [`active_cells`] for the two voxel planes of one layer of cells: per row, 64
+/// voxels to a word, `[≤ iso, ≥ iso, missing]`. A thread going up the layers reads each plane
+/// once: the far plane of layer `k` is the near plane of layer `k + 1`.
+struct PlaneMasks {
+    values: Vec<f64>,
+    near: Vec<[u64; 3]>,
+    far: Vec<[u64; 3]>,
+    /// The plane `far` holds.
+    far_plane: Option<usize>,
+}
+
+impl PlaneMasks {
+    /// The masks of planes `k` (near) and `k + 1` (far) of `volume` at `iso`.
+    fn read(&mut self, volume: &Volume, k: usize, iso: f64) {
+        if self.far_plane == Some(k) {
+            std::mem::swap(&mut self.near, &mut self.far);
+        } else {
+            Self::plane(volume, k, iso, &mut self.values, &mut self.near);
+        }
+        Self::plane(volume, k + 1, iso, &mut self.values, &mut self.far);
+        self.far_plane = Some(k + 1);
+    }
+
+    fn plane(volume: &Volume, k: usize, iso: f64, values: &mut [f64], masks: &mut Vec<[u64; 3]>) {
+        let nx = volume.dims()[0];
+        volume.read_run(k * values.len(), values);
+        masks.clear();
+        for row in values.chunks_exact(nx) {
+            for run in row.chunks(64) {
+                let mut m = [0u64; 3];
+                for (i, &v) in run.iter().enumerate() {
+                    m[0] |= u64::from(v <= iso) << i;
+                    m[1] |= u64::from(v >= iso) << i;
+                    m[2] |= u64::from(v.is_nan()) << i;
+                }
+                masks.push(m);
+            }
+        }
+    }
 }
 
 /// The corner offsets (voxel numbers relative to a cell's first corner) of a cell, bit 0 of the
