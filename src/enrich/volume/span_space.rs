@@ -21,7 +21,7 @@ use rayon::prelude::*;
 
 use crate::data::volume::Volume;
 
-use super::isosurface::{corner_offsets, corner_range};
+use super::isosurface::{PlanePair, corner_offsets, corner_range};
 
 /// Most buckets along each axis of the lattice (so a bucket number fits in a `u16`).
 const MAX_BUCKETS: usize = 255;
@@ -159,12 +159,14 @@ impl Buckets {
 }
 
 /// The corner minimum and maximum of each cell of one layer, and whether a corner is missing,
-/// found from two voxel planes: first the two planes' minimum and maximum per voxel column,
-/// then over each cell's four columns (the same values as [`corner_range`]).
+/// found from its two voxel planes (each read once by a thread going up the layers): first the
+/// two planes' minimum and maximum per voxel column, then over each cell's four columns (the
+/// same values as [`corner_range`]).
 #[derive(Default)]
 struct LayerRanges {
-    near: Vec<f64>,
-    far: Vec<f64>,
+    planes: PlanePair<Vec<f64>>,
+    column_lo: Vec<f64>,
+    column_hi: Vec<f64>,
     column_missing: Vec<bool>,
     lo: Vec<f64>,
     hi: Vec<f64>,
@@ -177,15 +179,18 @@ impl LayerRanges {
         let [nx, ny, _] = volume.dims();
         let (cx, cy) = (nx - 1, ny - 1);
         let plane = nx * ny;
-        self.near.resize(plane, 0.0);
-        self.far.resize(plane, 0.0);
-        volume.read_run(k * plane, &mut self.near);
-        volume.read_run((k + 1) * plane, &mut self.far);
-        self.column_missing.resize(plane, false);
-        for ((a, b), m) in self.near.iter_mut().zip(self.far.iter_mut()).zip(self.column_missing.iter_mut()) {
-            *m = a.is_nan() || b.is_nan();
-            let (lo, hi) = (a.min(*b), a.max(*b));
-            (*a, *b) = (lo, hi);
+        self.planes.hold(k, |p, values| {
+            values.resize(plane, 0.0);
+            volume.read_run(p * plane, values);
+        });
+        let (near, far) = (&self.planes.near, &self.planes.far);
+        self.column_lo.clear();
+        self.column_hi.clear();
+        self.column_missing.clear();
+        for (&a, &b) in near.iter().zip(far) {
+            self.column_lo.push(a.min(b));
+            self.column_hi.push(a.max(b));
+            self.column_missing.push(a.is_nan() || b.is_nan());
         }
         self.lo.resize(cx * cy, 0.0);
         self.hi.resize(cx * cy, 0.0);
@@ -195,8 +200,8 @@ impl LayerRanges {
             let cells = j * cx..(j + 1) * cx;
             let (lo, hi, missing) =
                 (&mut self.lo[cells.clone()], &mut self.hi[cells.clone()], &mut self.missing[cells]);
-            let (lo0, lo1) = (&self.near[row..row + nx], &self.near[next..next + nx]);
-            let (hi0, hi1) = (&self.far[row..row + nx], &self.far[next..next + nx]);
+            let (lo0, lo1) = (&self.column_lo[row..row + nx], &self.column_lo[next..next + nx]);
+            let (hi0, hi1) = (&self.column_hi[row..row + nx], &self.column_hi[next..next + nx]);
             let (m0, m1) = (&self.column_missing[row..row + nx], &self.column_missing[next..next + nx]);
             for i in 0..cx {
                 lo[i] = lo0[i].min(lo0[i + 1]).min(lo1[i].min(lo1[i + 1]));

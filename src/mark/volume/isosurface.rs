@@ -153,12 +153,11 @@ impl SurfaceCache {
         key: SurfaceKey,
         extract: impl FnOnce() -> Result<IsoMesh, MarkError>,
     ) -> Result<Arc<IsoMesh>, MarkError> {
-        let lock = || self.kept.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
-        if let Some((_, mesh)) = lock().iter().find(|(k, _)| *k == key) {
+        if let Some((_, mesh)) = self.lock().iter().find(|(k, _)| *k == key) {
             return Ok(Arc::clone(mesh));
         }
         let mesh = Arc::new(extract()?);
-        let mut kept = lock();
+        let mut kept = self.lock();
         kept.push((key, Arc::clone(&mesh)));
         if kept.len() > KEPT_SURFACES {
             kept.remove(0);
@@ -168,7 +167,13 @@ impl SurfaceCache {
 
     /// How many surfaces are kept.
     pub fn len(&self) -> usize {
-        self.kept.lock().map_or(0, |k| k.len())
+        self.lock().len()
+    }
+
+    /// The kept surfaces (a draw that panicked while holding them left them whole: each entry
+    /// is pushed complete).
+    fn lock(&self) -> std::sync::MutexGuard<'_, Vec<(SurfaceKey, Arc<IsoMesh>)>> {
+        self.kept.lock().unwrap_or_else(std::sync::PoisonError::into_inner)
     }
 
     /// Whether no surface is kept.

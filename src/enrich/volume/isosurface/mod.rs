@@ -215,9 +215,9 @@ pub fn active_cells(volume: &Volume, iso: f64) -> Vec<u32> {
     let layers: Vec<Vec<u32>> = (0..cz)
         .into_par_iter()
         .map_init(
-            || PlaneMasks { values: vec![0.0; plane], near: Vec::new(), far: Vec::new(), far_plane: None },
-            |planes, k| {
-                planes.read(volume, k, iso);
+            || (vec![0.0; plane], PlanePair::<Vec<[u64; 3]>>::default()),
+            |(values, planes), k| {
+                planes.hold(k, |p, masks| plane_masks(volume, p, iso, values, masks));
                 let (near, far) = (&planes.near, &planes.far);
                 let mut out = Vec::new();
                 for j in 0..cy {
@@ -256,43 +256,47 @@ pub fn active_cells(volume: &Volume, iso: f64) -> Vec<u32> {
     layers.concat()
 }
 
-/// The bits of [`active_cells`] for the two voxel planes of one layer of cells: per row, 64
-/// voxels to a word, `[≤ iso, ≥ iso, missing]`. A thread going up the layers reads each plane
-/// once: the far plane of layer `k` is the near plane of layer `k + 1`.
-struct PlaneMasks {
-    values: Vec<f64>,
-    near: Vec<[u64; 3]>,
-    far: Vec<[u64; 3]>,
+/// What a thread going up the layers of cells keeps of the two voxel planes of each layer:
+/// the far plane of layer `k` is the near plane of layer `k + 1`, so each plane is made once.
+#[derive(Default)]
+pub(crate) struct PlanePair<T> {
+    /// What was made of plane `k`.
+    pub near: T,
+    /// What was made of plane `k + 1`.
+    pub far: T,
     /// The plane `far` holds.
     far_plane: Option<usize>,
 }
 
-impl PlaneMasks {
-    /// The masks of planes `k` (near) and `k + 1` (far) of `volume` at `iso`.
-    fn read(&mut self, volume: &Volume, k: usize, iso: f64) {
+impl<T> PlanePair<T> {
+    /// Hold planes `k` (near) and `k + 1` (far), `make` filling a plane's slot when it is not
+    /// already held.
+    pub fn hold(&mut self, k: usize, mut make: impl FnMut(usize, &mut T)) {
         if self.far_plane == Some(k) {
             std::mem::swap(&mut self.near, &mut self.far);
         } else {
-            Self::plane(volume, k, iso, &mut self.values, &mut self.near);
+            make(k, &mut self.near);
         }
-        Self::plane(volume, k + 1, iso, &mut self.values, &mut self.far);
+        make(k + 1, &mut self.far);
         self.far_plane = Some(k + 1);
     }
+}
 
-    fn plane(volume: &Volume, k: usize, iso: f64, values: &mut [f64], masks: &mut Vec<[u64; 3]>) {
-        let nx = volume.dims()[0];
-        volume.read_run(k * values.len(), values);
-        masks.clear();
-        for row in values.chunks_exact(nx) {
-            for run in row.chunks(64) {
-                let mut m = [0u64; 3];
-                for (i, &v) in run.iter().enumerate() {
-                    m[0] |= u64::from(v <= iso) << i;
-                    m[1] |= u64::from(v >= iso) << i;
-                    m[2] |= u64::from(v.is_nan()) << i;
-                }
-                masks.push(m);
+/// The bits of [`active_cells`] for voxel plane `k`: per row, 64 voxels to a word,
+/// `[≤ iso, ≥ iso, missing]`; `values` is a plane's worth of room.
+fn plane_masks(volume: &Volume, k: usize, iso: f64, values: &mut [f64], masks: &mut Vec<[u64; 3]>) {
+    let nx = volume.dims()[0];
+    volume.read_run(k * values.len(), values);
+    masks.clear();
+    for row in values.chunks_exact(nx) {
+        for run in row.chunks(64) {
+            let mut m = [0u64; 3];
+            for (i, &v) in run.iter().enumerate() {
+                m[0] |= u64::from(v <= iso) << i;
+                m[1] |= u64::from(v >= iso) << i;
+                m[2] |= u64::from(v.is_nan()) << i;
             }
+            masks.push(m);
         }
     }
 }
