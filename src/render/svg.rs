@@ -831,8 +831,21 @@ pub(crate) mod tests {
         let raster = lines(LineBatch::VECTOR_LIMIT + 2);
         assert_eq!((raster.matches("<path").count(), raster.matches("<image").count()), (0, 1));
         assert!(raster.contains("x=\"17\" y=\"27\" width=\"26\" height=\"26\""), "{}", &raster[..600]);
+        // The path goes once round the same box (a zig-zag of this many segments across a few
+        // pixels is the rasterizer's worst case, minutes in a debug build).
+        let around = |i: usize, n: usize| {
+            let t = 80.0 * i as f64 / (n - 1) as f64;
+            match t {
+                t if t < 20.0 => Point::new(20.0 + t, 30.0),
+                t if t < 40.0 => Point::new(40.0, 30.0 + (t - 20.0)),
+                t if t < 60.0 => Point::new(40.0 - (t - 40.0), 50.0),
+                t => Point::new(20.0, 50.0 - (t - 60.0)),
+            }
+        };
         let path = |n: usize| {
-            let cmds = (0..n).map(|i| if i == 0 { PathCmd::MoveTo(at(i)) } else { PathCmd::LineTo(at(i)) }).collect();
+            let cmds = (0..n)
+                .map(|i| if i == 0 { PathCmd::MoveTo(around(i, n)) } else { PathCmd::LineTo(around(i, n)) })
+                .collect();
             let style = Style::stroke(Color::BLACK, 2.0);
             to_svg(&scene(Item::new(Role::DataMark, Shape::Path(cmds), style)))
         };

@@ -243,6 +243,16 @@ impl Volume {
         }
     }
 
+    /// The values of runs of voxels into `out`, run after run, each `out.len() / starts.len()`
+    /// long (scaled; NaN when missing or outside): [`Volume::read_run`] for many short runs,
+    /// with one dispatch on the stored type.
+    pub fn read_runs(&self, starts: &[usize], out: &mut [f64]) {
+        self.voxels.read_runs(starts, out);
+        if let Some(Scale { slope, inter }) = self.scale {
+            out.iter_mut().for_each(|v| *v = *v * slope + inter);
+        }
+    }
+
     /// The value of voxel `(i, j, k)` (scaled; NaN when missing or outside).
     pub fn value(&self, i: usize, j: usize, k: usize) -> f64 {
         self.index(i, j, k).map_or(f64::NAN, |n| self.get(n))

@@ -133,6 +133,27 @@ impl Voxels {
         })
     }
 
+    /// The stored values of several runs of voxels as numbers into `out`, run after run: run
+    /// `r` is voxels `starts[r]..starts[r] + width` with `width = out.len() / starts.len()`
+    /// (NaN where missing or outside). One dispatch on the type for all of them, for reads of
+    /// many short runs (a small box of voxels).
+    pub fn read_runs(&self, starts: &[usize], out: &mut [f64]) {
+        let width = out.len() / starts.len().max(1);
+        if width == 0 {
+            return;
+        }
+        each_type!(self, v => {
+            for (&start, row) in starts.iter().zip(out.chunks_exact_mut(width)) {
+                match v.get(start..start + width) {
+                    Some(run) => row.iter_mut().zip(run).for_each(|(slot, x)| *slot = x.to_f64()),
+                    None => row.iter_mut().enumerate().for_each(|(i, slot)| {
+                        *slot = v.get(start + i).map_or(f64::NAN, |x| x.to_f64())
+                    }),
+                }
+            }
+        })
+    }
+
     /// The bytes the voxels take in memory.
     pub fn memory_bytes(&self) -> usize {
         self.len() * type_size(self.voxel_type())
@@ -203,5 +224,25 @@ mod tests {
         assert_eq!(1.5f32.swap_bytes().swap_bytes(), 1.5);
         assert_eq!(0x0102u16.swap_bytes(), 0x0201);
         assert!(f64::INFINITY.finite_or_nan().is_nan());
+    }
+
+    #[test]
+    fn runs_read_as_single_voxels_do() {
+        let v = Voxels::I16((0..20).map(|i| i * 3 - 30).collect());
+        // Three runs of four: inside, at the end (half outside), wholly outside.
+        let mut out = [0.0; 12];
+        v.read_runs(&[2, 18, 40], &mut out);
+        for (r, &start) in [2usize, 18, 40].iter().enumerate() {
+            for i in 0..4 {
+                let (got, want) = (out[r * 4 + i], v.get(start + i));
+                assert!(got == want || (got.is_nan() && want.is_nan()), "run {r} voxel {i}: {got} vs {want}");
+            }
+        }
+        assert_eq!(out[..4], [-24.0, -21.0, -18.0, -15.0]);
+        assert!(out[6].is_nan() && out[8..].iter().all(|x| x.is_nan()));
+        // No runs, or runs of no voxels: nothing written.
+        v.read_runs(&[], &mut out);
+        v.read_runs(&[1, 2, 3], &mut out[..2]);
+        assert_eq!(out[0], -24.0);
     }
 }

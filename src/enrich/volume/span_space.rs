@@ -2,53 +2,67 @@
 //! scanning every cell, built once and queried for any number of levels.
 //!
 //! The idea is that of Y. Livnat, H.-W. Shen and C. R. Johnson, *A near optimal isosurface
-//! extraction algorithm using the span space* (IEEE TVCG 2(1), 1996): each cell is the point
-//! `(min, max)` of its corner values, and the cells a level `iso` crosses are the points with
-//! `min ≤ iso ≤ max`, a quarter-plane of that space. Here the span space is cut into a lattice of
-//! buckets (up to 255 × 255), with bucket boundaries at quantiles of the cells' minima and of
-//! their maxima, so each row and each column of buckets holds about the same number of cells; a
-//! value that many cells share (a flat background) gets a bucket of its own. The cell numbers
-//! are stored grouped by bucket (offsets and one `u32` array, 4 bytes a cell, increasing within
-//! a bucket). A query takes the buckets strictly inside the quarter-plane whole and checks the
-//! cells of the one row and one column of buckets on its edges against their exact corner
-//! values, read from the volume with the same rule as
-//! [`active_cells`](super::isosurface::active_cells) — the answer is that function's, cell for
-//! cell, for every level.
+//! extraction algorithm using the span space* (IEEE TVCG 2(1), 1996): each element is the point
+//! `(min, max)` of its values, and the elements a level `iso` crosses are the points with
+//! `min ≤ iso ≤ max`, a quarter-plane of that space. The elements here are meta-cells (as in
+//! Y.-J. Chiang, C. T. Silva and W. J. Schroeder, *Interactive out-of-core isosurface extraction*,
+//! IEEE Visualization 1998): bricks of 4 × 4 × 4 cells, each the point of the smallest and
+//! largest present voxel among its 5 × 5 × 5, so the index is one pass over the voxels to build
+//! and about a sixtieth of the cells to store and search.
 //!
-//! Cells with a missing corner (NaN) are never active and are not stored.
+//! The span space is cut into a lattice of buckets (up to 255 × 255), with bucket boundaries at
+//! quantiles of the bricks' minima and of their maxima, so each row and each column of buckets
+//! holds about the same number of bricks; a value that many bricks share (a flat background)
+//! gets a bucket of its own. The brick numbers are stored grouped by bucket (offsets and one
+//! `u32` array, increasing within a bucket). A query takes the bricks of the buckets strictly
+//! inside the quarter-plane whole, checks those of the one row and one column of buckets on its
+//! edges against their stored ranges, and then decides the 64 cells of each brick it found
+//! exactly, from the brick's voxels with the rule of
+//! [`active_cells`](super::isosurface::active_cells) (as three bit sets of the 125 voxels) —
+//! the answer is that function's, cell for cell, for every level, in the same order.
+//!
+//! Cells with a missing corner (NaN) are never active; a brick whose voxels are all missing is
+//! not stored.
 
 use rayon::prelude::*;
 
 use crate::data::volume::Volume;
 
-use super::isosurface::{PlanePair, corner_offsets, corner_range};
-
 /// Most buckets along each axis of the lattice (so a bucket number fits in a `u16`).
 const MAX_BUCKETS: usize = 255;
 
-/// The bucket number of a cell with a missing corner.
-const MISSING: u16 = u16::MAX;
+/// Cells along each side of a brick (so a brick's cells fit the bits of a `u64`).
+const BRICK: usize = 4;
 
-/// About how many cells are sampled to place the bucket boundaries.
+/// Voxels along each side of a whole brick.
+const SIDE: usize = BRICK + 1;
+
+/// About how many bricks are sampled to place the bucket boundaries.
 const SAMPLE: usize = 1 << 16;
 
-/// A span-space index of the cells of one volume (see the module docs). It does not hold the
-/// volume: queries are given it again, to check cells at the edge of a query exactly.
+/// A span-space index of the bricks of cells of one volume (see the module docs). It does not
+/// hold the volume: queries are given it again, to decide the cells of the bricks they find.
 #[derive(Clone, Debug)]
 pub struct SpanSpace {
     /// Cells along x, y and z.
     cells: [usize; 3],
-    /// Boundaries of the buckets of cell minima: bucket `b` holds `edges[b − 1] ≤ min < edges[b]`.
+    /// Bricks along x, y and z (`⌈cells / 4⌉`).
+    bricks: [usize; 3],
+    /// The smallest present voxel of each brick (`∞` when none is present).
+    brick_lo: Vec<f64>,
+    /// The largest present voxel of each brick (`−∞` when none is present).
+    brick_hi: Vec<f64>,
+    /// Boundaries of the buckets of brick minima: bucket `b` holds `edges[b − 1] ≤ min < edges[b]`.
     lo_edges: Vec<f64>,
-    /// Boundaries of the buckets of cell maxima.
+    /// Boundaries of the buckets of brick maxima.
     hi_edges: Vec<f64>,
-    /// The smallest and largest cell minimum in each row (bucket of minima); `(∞, −∞)` if empty.
+    /// The smallest and largest brick minimum in each row (bucket of minima); `(∞, −∞)` if empty.
     lo_range: Vec<(f64, f64)>,
-    /// The smallest and largest cell maximum in each column (bucket of maxima).
+    /// The smallest and largest brick maximum in each column (bucket of maxima).
     hi_range: Vec<(f64, f64)>,
     /// Where each bucket `row · columns + column` starts in `ids`, and the end.
     offsets: Vec<u32>,
-    /// Cell numbers, bucket after bucket, increasing within each.
+    /// Brick numbers `(z · bricks_y + y) · bricks_x + x`, bucket after bucket, increasing within each.
     ids: Vec<u32>,
 }
 
@@ -90,7 +104,7 @@ fn edges_of(sample: &[f64], target: usize) -> Vec<f64> {
     }
 }
 
-/// Per-thread tallies of the build: cells per bucket and the value range of each row and column.
+/// Tallies of the build: bricks per bucket and the value range of each row and column.
 struct Tally {
     counts: Vec<u32>,
     lo_range: Vec<(f64, f64)>,
@@ -103,12 +117,13 @@ impl Tally {
         Tally { counts: vec![0; rows * columns], lo_range: vec![empty; rows], hi_range: vec![empty; columns] }
     }
 
-    fn merge(mut self, other: Tally) -> Tally {
-        self.counts.iter_mut().zip(&other.counts).for_each(|(a, b)| *a += b);
-        let widen = |a: &mut (f64, f64), b: &(f64, f64)| *a = (a.0.min(b.0), a.1.max(b.1));
-        self.lo_range.iter_mut().zip(&other.lo_range).for_each(|(a, b)| widen(a, b));
-        self.hi_range.iter_mut().zip(&other.hi_range).for_each(|(a, b)| widen(a, b));
-        self
+    /// Count a brick with range `(lo, hi)` in bucket `(r, c)`.
+    fn add(&mut self, r: usize, c: usize, lo: f64, hi: f64) {
+        self.counts[r * self.hi_range.len() + c] += 1;
+        let lr = &mut self.lo_range[r];
+        *lr = (lr.0.min(lo), lr.1.max(lo));
+        let hr = &mut self.hi_range[c];
+        *hr = (hr.0.min(hi), hr.1.max(hi));
     }
 }
 
@@ -158,127 +173,142 @@ impl Buckets {
     }
 }
 
-/// The corner minimum and maximum of each cell of one layer, and whether a corner is missing,
-/// found from its two voxel planes (each read once by a thread going up the layers): first the
-/// two planes' minimum and maximum per voxel column, then over each cell's four columns (the
-/// same values as [`corner_range`]).
-#[derive(Default)]
-struct LayerRanges {
-    planes: PlanePair<Vec<f64>>,
-    column_lo: Vec<f64>,
-    column_hi: Vec<f64>,
-    column_missing: Vec<bool>,
-    lo: Vec<f64>,
-    hi: Vec<f64>,
-    missing: Vec<bool>,
+/// The smallest and largest present voxel of every brick, brick layer by brick layer in
+/// parallel: per voxel column over the layer's planes, then per row over each brick's run of
+/// columns, then over each brick's rows.
+fn brick_ranges(volume: &Volume, cells: [usize; 3], bricks: [usize; 3]) -> (Vec<f64>, Vec<f64>) {
+    let [nx, ny, _] = volume.dims();
+    let [bx, by, bz] = bricks;
+    let layer = bx * by;
+    let (mut lo, mut hi) = (vec![f64::INFINITY; layer * bz], vec![f64::NEG_INFINITY; layer * bz]);
+    // Brick b of an axis with `c` cells covers voxels `BRICK·b ..= min(BRICK·(b + 1), c)`.
+    let span = |b: usize, c: usize| BRICK * b..=(BRICK * (b + 1)).min(c);
+    lo.par_chunks_mut(layer.max(1)).zip(hi.par_chunks_mut(layer.max(1))).enumerate().for_each_init(
+        || (vec![0.0; nx * ny], vec![0.0; nx * ny], vec![0.0; nx * ny], vec![0.0; ny * bx], vec![0.0; ny * bx]),
+        |(values, col_lo, col_hi, row_lo, row_hi), (z, (lo, hi))| {
+            col_lo.fill(f64::INFINITY);
+            col_hi.fill(f64::NEG_INFINITY);
+            for p in span(z, cells[2]) {
+                volume.read_run(p * nx * ny, values);
+                for ((v, l), h) in values.iter().zip(col_lo.iter_mut()).zip(col_hi.iter_mut()) {
+                    // `min` and `max` pass over NaN: missing voxels widen nothing.
+                    *l = l.min(*v);
+                    *h = h.max(*v);
+                }
+            }
+            for y in 0..ny {
+                let (l, h) = (&col_lo[y * nx..(y + 1) * nx], &col_hi[y * nx..(y + 1) * nx]);
+                for b in 0..bx {
+                    let xs = span(b, cells[0]);
+                    row_lo[y * bx + b] = l[xs.clone()].iter().fold(f64::INFINITY, |a, &v| a.min(v));
+                    row_hi[y * bx + b] = h[xs].iter().fold(f64::NEG_INFINITY, |a, &v| a.max(v));
+                }
+            }
+            for b_y in 0..by {
+                let (l, h) = (&mut lo[b_y * bx..(b_y + 1) * bx], &mut hi[b_y * bx..(b_y + 1) * bx]);
+                for y in span(b_y, cells[1]) {
+                    for b in 0..bx {
+                        l[b] = l[b].min(row_lo[y * bx + b]);
+                        h[b] = h[b].max(row_hi[y * bx + b]);
+                    }
+                }
+            }
+        },
+    );
+    (lo, hi)
 }
 
-impl LayerRanges {
-    /// The ranges of the cells of layer `k` (between voxel planes `k` and `k + 1`).
-    fn read(&mut self, volume: &Volume, k: usize) {
-        let [nx, ny, _] = volume.dims();
-        let (cx, cy) = (nx - 1, ny - 1);
-        let plane = nx * ny;
-        self.planes.hold(k, |p, values| {
-            values.resize(plane, 0.0);
-            volume.read_run(p * plane, values);
-        });
-        let (near, far) = (&self.planes.near, &self.planes.far);
-        self.column_lo.clear();
-        self.column_hi.clear();
-        self.column_missing.clear();
-        for (&a, &b) in near.iter().zip(far) {
-            self.column_lo.push(a.min(b));
-            self.column_hi.push(a.max(b));
-            self.column_missing.push(a.is_nan() || b.is_nan());
-        }
-        self.lo.resize(cx * cy, 0.0);
-        self.hi.resize(cx * cy, 0.0);
-        self.missing.resize(cx * cy, false);
-        for j in 0..cy {
-            let (row, next) = (j * nx, (j + 1) * nx);
-            let cells = j * cx..(j + 1) * cx;
-            let (lo, hi, missing) =
-                (&mut self.lo[cells.clone()], &mut self.hi[cells.clone()], &mut self.missing[cells]);
-            let (lo0, lo1) = (&self.column_lo[row..row + nx], &self.column_lo[next..next + nx]);
-            let (hi0, hi1) = (&self.column_hi[row..row + nx], &self.column_hi[next..next + nx]);
-            let (m0, m1) = (&self.column_missing[row..row + nx], &self.column_missing[next..next + nx]);
-            for i in 0..cx {
-                lo[i] = lo0[i].min(lo0[i + 1]).min(lo1[i].min(lo1[i + 1]));
-                hi[i] = hi0[i].max(hi0[i + 1]).max(hi1[i].max(hi1[i + 1]));
-                missing[i] = m0[i] | m0[i + 1] | m1[i] | m1[i + 1];
-            }
+/// The active cells of brick `brick` for `iso`, as bits `k·16 + j·4 + i` of its cells: those
+/// with some corner `≤ iso`, some corner `≥ iso` and none missing (the rule of
+/// [`active_cells`](super::isosurface::active_cells)). The brick's voxels, read as up to 25
+/// runs, become three bit sets (bit `(z·5 + y)·5 + x`), and a cell's bits are those of its eight
+/// corners ORed, by shifts.
+fn brick_mask(
+    volume: &Volume,
+    cells: [usize; 3],
+    brick: [usize; 3],
+    iso: f64,
+    values: &mut [f64; SIDE * SIDE * SIDE],
+) -> u64 {
+    let [nx, ny, _] = volume.dims();
+    let origin = brick.map(|b| b * BRICK);
+    let width: [usize; 3] = std::array::from_fn(|a| (cells[a] - origin[a]).min(BRICK));
+    let (run, rows) = (width[0] + 1, (width[1] + 1) * (width[2] + 1));
+    let mut starts = [0usize; SIDE * SIDE];
+    for z in 0..=width[2] {
+        for y in 0..=width[1] {
+            starts[z * (width[1] + 1) + y] = ((origin[2] + z) * ny + origin[1] + y) * nx + origin[0];
         }
     }
+    volume.read_runs(&starts[..rows], &mut values[..run * rows]);
+    let (mut le, mut ge, mut missing) = (0u128, 0u128, 0u128);
+    for (r, row) in values[..run * rows].chunks_exact(run).enumerate() {
+        let (mut l, mut g, mut m) = (0u32, 0u32, 0u32);
+        for (x, &v) in row.iter().enumerate() {
+            l |= u32::from(v <= iso) << x;
+            g |= u32::from(v >= iso) << x;
+            m |= u32::from(v.is_nan()) << x;
+        }
+        let at = (r / (width[1] + 1) * SIDE + r % (width[1] + 1)) * SIDE;
+        le |= u128::from(l) << at;
+        ge |= u128::from(g) << at;
+        missing |= u128::from(m) << at;
+    }
+    let corners = |s: u128| {
+        let x = s | s >> 1;
+        let xy = x | x >> SIDE;
+        xy | xy >> (SIDE * SIDE)
+    };
+    let active = corners(le) & corners(ge) & !corners(missing);
+    let run_bits = (1u128 << width[0]) - 1;
+    let mut mask = 0u64;
+    for k in 0..width[2] {
+        for j in 0..width[1] {
+            let bits = (active >> ((k * SIDE + j) * SIDE)) & run_bits;
+            mask |= (bits as u64) << (k * BRICK * BRICK + j * BRICK);
+        }
+    }
+    mask
 }
 
 impl SpanSpace {
     /// The index of the cells of `volume` (cell numbers as in
-    /// [`isosurface`](super::isosurface)); in parallel over z-slabs of cells.
+    /// [`isosurface`](super::isosurface)); the bricks' ranges in parallel over brick layers.
     pub fn build(volume: &Volume) -> SpanSpace {
         let cells = volume.dims().map(|n| n.saturating_sub(1));
-        let [cx, cy, cz] = cells;
-        let count = cx * cy * cz;
-        let [nx, ny, _] = volume.dims();
-        let offsets = corner_offsets(volume);
-        let base_of = |n: usize| ((n / (cx * cy)) * ny + n / cx % cy) * nx + n % cx;
+        let bricks = if cells.contains(&0) { [0; 3] } else { cells.map(|c| c.div_ceil(BRICK)) };
+        let count: usize = bricks.iter().product();
+        let (brick_lo, brick_hi) = brick_ranges(volume, cells, bricks);
 
-        // Bucket boundaries from a sample of cells, one at a jittered place in each stretch.
+        // Bucket boundaries from a sample of the bricks with a present voxel.
         let stride = count.div_ceil(SAMPLE).max(1);
-        let mut state = 0x9E37_79B9_7F4A_7C15u64;
-        let (mut los, mut his) = (Vec::new(), Vec::new());
-        for start in (0..count).step_by(stride) {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            let n = start + (state % stride as u64) as usize;
-            if let Some((lo, hi)) = corner_range(volume, base_of(n.min(count - 1)), &offsets) {
-                los.push(lo);
-                his.push(hi);
-            }
-        }
+        let (mut los, mut his): (Vec<f64>, Vec<f64>) = (0..count)
+            .step_by(stride)
+            .filter(|&b| brick_lo[b] <= brick_hi[b])
+            .map(|b| (brick_lo[b], brick_hi[b]))
+            .unzip();
         los.sort_by(f64::total_cmp);
         his.sort_by(f64::total_cmp);
-        // About ∛cells buckets a side: the boundary row and column then hold about as many cells
-        // as there are buckets to look at.
-        let target = (count as f64).cbrt().ceil() as usize;
+        // About ∛(2 · bricks) buckets a side: a query visits up to half the lattice's buckets and
+        // checks the bricks of one row and one column, and this balances the two.
+        let target = (2.0 * count as f64).cbrt().ceil() as usize;
         let lo_edges = edges_of(&los, target);
         let hi_edges = edges_of(&his, target);
         let (rows, columns) = (lo_edges.len() + 1, hi_edges.len() + 1);
 
-        // Each cell's bucket, in parallel over layers of cells (their corner ranges read a
-        // voxel plane at a time).
+        // Each brick's bucket, then the brick numbers grouped by bucket (a counting sort).
         let (find_lo, find_hi) = (Buckets::new(&lo_edges), Buckets::new(&hi_edges));
-        let slab = (cx * cy).max(1);
-        let mut keys = vec![MISSING; count];
-        let tally = keys
-            .par_chunks_mut(slab)
-            .enumerate()
-            .fold(
-                || (Tally::new(rows, columns), LayerRanges::default()),
-                |(mut tally, mut ranges), (k, chunk)| {
-                    ranges.read(volume, k);
-                    for (n, key) in chunk.iter_mut().enumerate() {
-                        if ranges.missing[n] {
-                            continue;
-                        }
-                        let (lo, hi) = (ranges.lo[n], ranges.hi[n]);
-                        let (r, c) = (find_lo.of(lo), find_hi.of(hi));
-                        let at = r * columns + c;
-                        *key = at as u16;
-                        tally.counts[at] += 1;
-                        let lr = &mut tally.lo_range[r];
-                        *lr = (lr.0.min(lo), lr.1.max(lo));
-                        let hr = &mut tally.hi_range[c];
-                        *hr = (hr.0.min(hi), hr.1.max(hi));
-                    }
-                    (tally, ranges)
-                },
-            )
-            .map(|(tally, _)| tally)
-            .reduce(|| Tally::new(rows, columns), Tally::merge);
-
-        // Cell numbers grouped by bucket, increasing within each (a counting sort).
+        let mut tally = Tally::new(rows, columns);
+        let keys: Vec<Option<u32>> = (0..count)
+            .map(|b| {
+                let (lo, hi) = (brick_lo[b], brick_hi[b]);
+                (lo <= hi).then(|| {
+                    let (r, c) = (find_lo.of(lo), find_hi.of(hi));
+                    tally.add(r, c, lo, hi);
+                    (r * columns + c) as u32
+                })
+            })
+            .collect();
         let mut starts = Vec::with_capacity(rows * columns + 1);
         let mut total = 0u32;
         starts.push(0);
@@ -288,15 +318,18 @@ impl SpanSpace {
         }
         let mut cursor = starts[..rows * columns].to_vec();
         let mut ids = vec![0u32; total as usize];
-        for (n, &key) in keys.iter().enumerate() {
-            if key != MISSING {
-                let at = &mut cursor[key as usize];
-                ids[*at as usize] = n as u32;
+        for (b, key) in keys.iter().enumerate() {
+            if let Some(key) = key {
+                let at = &mut cursor[*key as usize];
+                ids[*at as usize] = b as u32;
                 *at += 1;
             }
         }
         SpanSpace {
             cells,
+            bricks,
+            brick_lo,
+            brick_hi,
             lo_edges,
             hi_edges,
             lo_range: tally.lo_range,
@@ -317,18 +350,27 @@ impl SpanSpace {
         let Some(plan) = self.plan(iso) else {
             return Vec::new();
         };
-        // Many cells: mark them in a bitmap of all cells and read it out in order; few: collect
-        // and sort (the runs from whole buckets are already increasing).
-        let bitmap = plan.estimate > self.cell_count() / 256;
-        self.collect(volume, iso, &plan, bitmap)
+        let found = self.bricks_of(&plan, iso);
+        let [bx, by, _] = self.bricks;
+        let masks: Vec<u64> = found
+            .par_iter()
+            .map_init(
+                || [0.0; SIDE * SIDE * SIDE],
+                |values, &b| {
+                    let b = b as usize;
+                    brick_mask(volume, self.cells, [b % bx, b / bx % by, b / (bx * by)], iso, values)
+                },
+            )
+            .collect();
+        self.cells_in_order(&found, &masks)
     }
 
-    /// The number of cells indexed (those without a missing corner).
+    /// The number of bricks indexed (those with a present voxel).
     pub fn len(&self) -> usize {
         self.ids.len()
     }
 
-    /// Whether no cell is indexed (a volume one voxel thick, or every cell missing a corner).
+    /// Whether no brick is indexed (a volume one voxel thick, or every voxel missing).
     pub fn is_empty(&self) -> bool {
         self.ids.is_empty()
     }
@@ -336,7 +378,7 @@ impl SpanSpace {
     /// The bytes the index takes in memory (not counting the volume).
     pub fn memory_bytes(&self) -> usize {
         std::mem::size_of::<Self>()
-            + (self.lo_edges.len() + self.hi_edges.len()) * 8
+            + (self.lo_edges.len() + self.hi_edges.len() + self.brick_lo.len() + self.brick_hi.len()) * 8
             + (self.lo_range.len() + self.hi_range.len()) * 16
             + (self.offsets.len() + self.ids.len()) * 4
     }
@@ -344,10 +386,6 @@ impl SpanSpace {
     /// The lattice's size in buckets: rows (minima) and columns (maxima).
     pub fn buckets(&self) -> [usize; 2] {
         [self.lo_range.len(), self.hi_range.len()]
-    }
-
-    fn cell_count(&self) -> usize {
-        self.cells.iter().product()
     }
 
     /// Which buckets a query for `iso` reads and how, or `None` when it finds nothing.
@@ -384,20 +422,9 @@ impl SpanSpace {
         Some(Plan { row, column, row_check, column_check, estimate })
     }
 
-    /// The cells of `plan` for `iso`, in increasing order, gathered in a bitmap or a sorted list.
-    fn collect(&self, volume: &Volume, iso: f64, plan: &Plan, bitmap: bool) -> Vec<u32> {
-        let mut out = Vec::with_capacity(if bitmap { 0 } else { plan.estimate });
-        let mut bits = if bitmap { vec![0u64; self.cell_count().div_ceil(64)] } else { Vec::new() };
-        let mut take = |id: u32| {
-            if bitmap {
-                bits[id as usize >> 6] |= 1u64 << (id & 63);
-            } else {
-                out.push(id);
-            }
-        };
-        let [cx, cy, _] = self.cells;
-        let [nx, ny, _] = volume.dims();
-        let offsets = corner_offsets(volume);
+    /// The bricks of `plan` whose range holds `iso`, in increasing order.
+    fn bricks_of(&self, plan: &Plan, iso: f64) -> Vec<u32> {
+        let mut out = Vec::with_capacity(plan.estimate);
         let columns = self.hi_range.len();
         for r in 0..=plan.row {
             let row_edge = if r == plan.row { plan.row_check } else { Edge::Whole };
@@ -410,34 +437,56 @@ impl SpanSpace {
                     continue;
                 }
                 let key = r * columns + c;
-                let cells = &self.ids[self.offsets[key] as usize..self.offsets[key + 1] as usize];
+                let bricks = &self.ids[self.offsets[key] as usize..self.offsets[key + 1] as usize];
                 if row_edge == Edge::Whole && column_edge == Edge::Whole {
-                    cells.iter().for_each(|&id| take(id));
-                    continue;
-                }
-                for &id in cells {
-                    let n = id as usize;
-                    let base = ((n / (cx * cy)) * ny + n / cx % cy) * nx + n % cx;
-                    if let Some((lo, hi)) = corner_range(volume, base, &offsets)
-                        && lo <= iso
-                        && iso <= hi
-                    {
-                        take(id);
-                    }
+                    out.extend_from_slice(bricks);
+                } else {
+                    out.extend(
+                        bricks
+                            .iter()
+                            .filter(|&&b| self.brick_lo[b as usize] <= iso && iso <= self.brick_hi[b as usize]),
+                    );
                 }
             }
         }
-        if bitmap {
-            for (w, &word) in bits.iter().enumerate() {
-                let mut word = word;
-                while word != 0 {
-                    out.push((w * 64) as u32 + word.trailing_zeros());
-                    word &= word - 1;
+        out.sort_unstable();
+        out
+    }
+
+    /// The cells set in `masks` of the bricks `found` (increasing), in increasing cell number:
+    /// brick layer by brick layer, then cell layer, brick row, cell row, brick along x.
+    fn cells_in_order(&self, found: &[u32], masks: &[u64]) -> Vec<u32> {
+        let [cx, cy, cz] = self.cells;
+        let [bx, by, _] = self.bricks;
+        let count = masks.iter().map(|m| m.count_ones() as usize).sum();
+        let mut out = Vec::with_capacity(count);
+        let mut layer_start = 0;
+        while layer_start < found.len() {
+            let bz = found[layer_start] as usize / (bx * by);
+            let layer_end = layer_start + found[layer_start..].partition_point(|&b| b as usize / (bx * by) == bz);
+            for kl in 0..BRICK.min(cz - bz * BRICK) {
+                let k = bz * BRICK + kl;
+                let mut row_start = layer_start;
+                while row_start < layer_end {
+                    let b_y = found[row_start] as usize / bx % by;
+                    let row_end =
+                        row_start + found[row_start..layer_end].partition_point(|&b| b as usize / bx % by == b_y);
+                    for jl in 0..BRICK.min(cy - b_y * BRICK) {
+                        let j = b_y * BRICK + jl;
+                        let shift = kl * BRICK * BRICK + jl * BRICK;
+                        for t in row_start..row_end {
+                            let mut bits = (masks[t] >> shift) & ((1 << BRICK) - 1);
+                            let first = ((k * cy + j) * cx + found[t] as usize % bx * BRICK) as u32;
+                            while bits != 0 {
+                                out.push(first + bits.trailing_zeros());
+                                bits &= bits - 1;
+                            }
+                        }
+                    }
+                    row_start = row_end;
                 }
             }
-        } else {
-            // Stable sort: merges the increasing runs of whole buckets.
-            out.sort();
+            layer_start = layer_end;
         }
         out
     }
@@ -446,16 +495,16 @@ impl SpanSpace {
 /// How a query treats the edge row or column of its quarter-plane.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 enum Edge {
-    /// Every cell in it qualifies on this side.
+    /// Every brick in it qualifies on this side.
     Whole,
-    /// No cell in it qualifies.
+    /// No brick in it qualifies.
     Skip,
-    /// Its cells are checked one by one.
+    /// Its bricks are checked one by one.
     Check,
 }
 
 /// The buckets a query reads: rows `..= row`, columns `column ..`, how the edge row and column
-/// are treated, and how many cells those buckets hold.
+/// are treated, and how many bricks those buckets hold.
 struct Plan {
     row: usize,
     column: usize,
@@ -533,11 +582,6 @@ mod tests {
         for iso in isos {
             let expected = active_cells(vol, iso);
             assert_eq!(index.active_cells(vol, iso), expected, "iso {iso} dims {:?}", vol.dims());
-            if let Some(plan) = index.plan(iso) {
-                for bitmap in [false, true] {
-                    assert_eq!(index.collect(vol, iso, &plan, bitmap), expected, "iso {iso}, bitmap {bitmap}");
-                }
-            }
             found += usize::from(!expected.is_empty());
         }
         for iso in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
@@ -641,19 +685,40 @@ mod tests {
     }
 
     #[test]
-    fn a_larger_lattice_matches_the_scan_and_reads_few_cells() {
+    fn a_larger_lattice_matches_the_scan_and_reads_few_bricks() {
         let vol = blobs([48, 40, 36]);
         let found = agrees(&vol, &[0.5, 0.001, 1e-3f32 as f64, 0.9], 9);
         assert!(found > 10);
         let index = SpanSpace::build(&vol);
+        assert_eq!(index.len(), 12 * 10 * 9, "⌈47/4⌉ × ⌈39/4⌉ × ⌈35/4⌉ bricks");
+        assert!(index.memory_bytes() < 60_000, "{} bytes", index.memory_bytes());
+
+        let vol = blobs([97, 81, 73]);
+        let index = SpanSpace::build(&vol);
         let [rows, columns] = index.buckets();
-        assert!(rows > 8 && columns > 8, "lattice {rows} × {columns}");
-        assert_eq!(index.len(), 47 * 39 * 35);
-        assert!(index.memory_bytes() < index.len() * 4 + 300_000);
-        // At a level few cells cross, the query reads few more buckets' cells than it returns.
-        let plan = index.plan(0.9).expect("finite");
-        let active = active_cells(&vol, 0.9).len();
-        assert!(active > 0 && plan.estimate < active * 4 + index.len() / 8, "{} for {active}", plan.estimate);
+        assert!(rows > 12 && columns > 12, "lattice {rows} × {columns}");
+        // Without missing voxels a brick whose range holds the level has an active cell (a path of
+        // voxels from one ≤ iso to one ≥ iso crosses the level in some cell), so the bricks a
+        // query finds are exactly those holding an active cell.
+        let [bx, by, _] = index.bricks;
+        for iso in [0.9, 0.5, 0.05] {
+            let active = active_cells(&vol, iso);
+            let mut holding: Vec<u32> = active
+                .iter()
+                .map(|&n| {
+                    let [i, j, k] = [n as usize % 96, n as usize / 96 % 80, n as usize / (96 * 80)];
+                    ((k / BRICK * by + j / BRICK) * bx + i / BRICK) as u32
+                })
+                .collect();
+            holding.dedup();
+            holding.sort_unstable();
+            holding.dedup();
+            let plan = index.plan(iso).expect("finite");
+            assert_eq!(index.bricks_of(&plan, iso), holding, "iso {iso}");
+            // The buckets it reads hold few more bricks than it finds.
+            assert!(plan.estimate < holding.len() * 4 + index.len() / 8, "{} for {}", plan.estimate, holding.len());
+            assert_eq!(index.active_cells(&vol, iso), active, "iso {iso}");
+        }
         // The background value has a bucket of its own: a level just above it reads none of it.
         let plan = index.plan(1e-9).expect("finite");
         assert!(plan.estimate < index.len() / 4, "{}", plan.estimate);

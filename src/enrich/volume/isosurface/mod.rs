@@ -303,6 +303,7 @@ fn plane_masks(volume: &Volume, k: usize, iso: f64, values: &mut [f64], masks: &
 
 /// The corner offsets (voxel numbers relative to a cell's first corner) of a cell, bit 0 of the
 /// corner number picking +x, bit 1 +y, bit 2 +z.
+#[cfg(test)]
 pub(crate) fn corner_offsets(volume: &Volume) -> [usize; 8] {
     let [nx, ny, _] = volume.dims();
     std::array::from_fn(|c| (c & 1) + (c >> 1 & 1) * nx + (c >> 2 & 1) * nx * ny)
@@ -310,8 +311,8 @@ pub(crate) fn corner_offsets(volume: &Volume) -> [usize; 8] {
 
 /// The corner minimum and maximum of the cell whose first corner is voxel `base`, or `None` if
 /// a corner is missing: the rule of [`active_cells`] (a cell is active when `lo ≤ iso ≤ hi`),
-/// which the span-space index shares (and the tests check against [`active_cells`]).
-#[inline]
+/// written plainly, for the tests to check [`active_cells`] against.
+#[cfg(test)]
 pub(crate) fn corner_range(volume: &Volume, base: usize, offsets: &[usize; 8]) -> Option<(f64, f64)> {
     let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
     let mut missing = false;

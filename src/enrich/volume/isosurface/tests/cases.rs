@@ -438,13 +438,13 @@ fn a_million_random_cells_have_the_trilinear_topology() {
                 Counts { pieces: 0, euler: 0 }
             } else {
                 let joined = face_decisions(&g, signs);
-                let Some(b) = boundaries.entry((signs, joined)).or_insert_with(|| boundary(signs, joined)).clone()
+                let Some(b) = boundaries.entry((signs, joined)).or_insert_with(|| boundary(signs, joined)).as_ref()
                 else {
                     bad.push(format!("signs {signs:08b} joined {joined:06b}: loops do not close"));
                     continue;
                 };
                 several_loops += usize::from(b.loops.len() > 1);
-                let j = joins(&b, &g);
+                let j = joins(b, &g);
                 let pieces = j.iter().enumerate().filter(|&(l, &p)| p as usize == l).count();
                 let tubes = b.loops.len() - pieces;
                 Counts { pieces, euler: (pieces - tubes) as i64 }

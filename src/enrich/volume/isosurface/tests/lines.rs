@@ -15,11 +15,16 @@ pub struct Counts {
     pub euler: i64,
 }
 
-/// Reused storage for [`counts`].
+/// Reused storage for [`counts`]. Written as plain loops over flat arrays: the million-cell
+/// test runs it in debug builds, where iterator adaptors and small calls cost several times the
+/// arithmetic.
 #[derive(Default)]
 pub struct Lines {
-    /// Per line and set (inside 0, outside 1): the interval `[lo, hi]`, empty when `lo > hi`.
-    spans: Vec<[(f64, f64); 2]>,
+    /// Per set (inside 0, outside 1), per line: the interval's ends `lo` and `hi`, empty when
+    /// `lo > hi`.
+    lo: [Vec<f64>; 2],
+    hi: [Vec<f64>; 2],
+    /// Union–find over the lines of one set.
     parent: Vec<u32>,
 }
 
@@ -33,19 +38,26 @@ fn root(parent: &mut [u32], n: usize) -> usize {
     n
 }
 
-fn overlap(a: (f64, f64), b: (f64, f64)) -> (f64, f64) {
-    (a.0.max(b.0), a.1.min(b.1))
-}
-
-fn filled(s: (f64, f64)) -> bool {
-    s.0 <= s.1
+fn join(parent: &mut [u32], a: usize, b: usize) {
+    let (ra, rb) = (root(parent, a), root(parent, b));
+    if ra < rb {
+        parent[rb] = ra as u32;
+    } else {
+        parent[ra] = rb as u32;
+    }
 }
 
 impl Lines {
     /// The counts for corner values `g` on an `n × n` lattice of lines.
     pub fn counts(&mut self, g: &[f64; 8], n: usize) -> Counts {
         let m = n + 1;
-        self.spans.clear();
+        let lines = m * m;
+        for set in 0..2 {
+            self.lo[set].clear();
+            self.lo[set].resize(lines, 0.0);
+            self.hi[set].clear();
+            self.hi[set].resize(lines, 0.0);
+        }
         for k in 0..m {
             for j in 0..m {
                 let (y, z) = (j as f64 / n as f64, k as f64 / n as f64);
@@ -53,60 +65,70 @@ impl Lines {
                 let a = g[0] * w[0] + g[2] * w[1] + g[4] * w[2] + g[6] * w[3];
                 let b = g[1] * w[0] + g[3] * w[1] + g[5] * w[2] + g[7] * w[3];
                 // g(x) = a + (b − a) x: the inside set is one end of [0, 1], the outside the other.
-                let spans = match (a >= 0.0, b >= 0.0) {
-                    (true, true) => [(0.0, 1.0), (1.0, 0.0)],
-                    (false, false) => [(1.0, 0.0), (0.0, 1.0)],
-                    (true, false) => {
-                        let t = a / (a - b);
-                        [(0.0, t), (t, 1.0)]
-                    }
-                    (false, true) => {
-                        let t = a / (a - b);
-                        [(t, 1.0), (0.0, t)]
-                    }
+                let (inside, outside) = if a >= 0.0 && b >= 0.0 {
+                    ((0.0, 1.0), (1.0, 0.0))
+                } else if a < 0.0 && b < 0.0 {
+                    ((1.0, 0.0), (0.0, 1.0))
+                } else {
+                    let t = a / (a - b);
+                    if a >= 0.0 { ((0.0, t), (t, 1.0)) } else { ((t, 1.0), (0.0, t)) }
                 };
-                self.spans.push(spans);
+                let line = k * m + j;
+                (self.lo[0][line], self.hi[0][line]) = inside;
+                (self.lo[1][line], self.hi[1][line]) = outside;
             }
         }
-        self.parent.clear();
-        self.parent.extend(0..(2 * m * m) as u32);
-        let mut euler = [0i64; 2];
-        let mut components = [0usize; 2];
+        let mut euler = 0i64;
+        let mut components = 0usize;
         for set in 0..2 {
-            for line in 0..m * m {
-                euler[set] += i64::from(filled(self.spans[line][set]));
-            }
+            let (lo, hi) = (&self.lo[set], &self.hi[set]);
+            let parent = &mut self.parent;
+            parent.clear();
+            parent.extend(0..lines as u32);
             for k in 0..m {
                 for j in 0..m {
                     let here = k * m + j;
-                    let s = self.spans[here][set];
-                    let right = (j + 1 < m).then(|| here + 1);
-                    let up = (k + 1 < m).then(|| here + m);
-                    for other in [right, up].into_iter().flatten() {
-                        if filled(overlap(s, self.spans[other][set])) {
-                            euler[set] -= 1;
-                            let (ra, rb) =
-                                (root(&mut self.parent, 2 * here + set), root(&mut self.parent, 2 * other + set));
-                            self.parent[ra.max(rb)] = ra.min(rb) as u32;
-                        }
+                    let (l, h) = (lo[here], hi[here]);
+                    if l > h {
+                        continue;
                     }
-                    if let (Some(r), Some(u)) = (right, up) {
-                        let four = overlap(
-                            overlap(s, self.spans[r][set]),
-                            overlap(self.spans[u][set], self.spans[u + 1][set]),
-                        );
-                        euler[set] += i64::from(filled(four));
+                    euler += 1;
+                    // Overlaps with the next line along y and along z, and the square's four.
+                    let (mut l4, mut h4) = (l, h);
+                    if j + 1 < m {
+                        let r = here + 1;
+                        let (lr, hr) = (if l > lo[r] { l } else { lo[r] }, if h < hi[r] { h } else { hi[r] });
+                        if lr <= hr {
+                            euler -= 1;
+                            join(parent, here, r);
+                        }
+                        (l4, h4) = (lr, hr);
+                    }
+                    if k + 1 < m {
+                        let u = here + m;
+                        let (lu, hu) = (if l > lo[u] { l } else { lo[u] }, if h < hi[u] { h } else { hi[u] });
+                        if lu <= hu {
+                            euler -= 1;
+                            join(parent, here, u);
+                        }
+                        if j + 1 < m && l4 <= h4 {
+                            let d = u + 1;
+                            let lo4 = if l4 > lo[u] { l4 } else { lo[u] };
+                            let lo4 = if lo4 > lo[d] { lo4 } else { lo[d] };
+                            let hi4 = if h4 < hi[u] { h4 } else { hi[u] };
+                            let hi4 = if hi4 < hi[d] { hi4 } else { hi[d] };
+                            euler += i64::from(lo4 <= hi4);
+                        }
                     }
                 }
             }
-            for line in 0..m * m {
-                let node = 2 * line + set;
-                if filled(self.spans[line][set]) && root(&mut self.parent, node) == node {
-                    components[set] += 1;
+            for line in 0..lines {
+                if lo[line] <= hi[line] && root(parent, line) == line {
+                    components += 1;
                 }
             }
         }
-        Counts { pieces: (components[0] + components[1]).saturating_sub(1), euler: euler[0] + euler[1] - 1 }
+        Counts { pieces: components.saturating_sub(1), euler: euler - 1 }
     }
 }
 
