@@ -105,7 +105,7 @@ use std::sync::atomic::AtomicUsize;
 
 use rayon::prelude::*;
 
-use crate::data::volume::Volume;
+use crate::data::volume::{Volume, Voxels};
 use crate::enrich::volume::sample::invert;
 
 /// Most triangles one extraction makes (2²⁶ ≈ 67 million, about 2.4 GB of mesh).
@@ -283,22 +283,68 @@ impl<T> PlanePair<T> {
 }
 
 /// The bits of [`active_cells`] for voxel plane `k`: per row, 64 voxels to a word,
-/// `[≤ iso, ≥ iso, missing]`; `values` is a plane's worth of room.
+/// `[≤ iso, ≥ iso, missing]`; `values` is a plane's worth of room. Voxels stored as `f32`
+/// without a scale are compared as they are, against the `f32` bounds that give the same
+/// answers as their `f64` values against `iso`; others are read as numbers first.
 fn plane_masks(volume: &Volume, k: usize, iso: f64, values: &mut [f64], masks: &mut Vec<[u64; 3]>) {
     let nx = volume.dims()[0];
-    volume.read_run(k * values.len(), values);
+    let plane = values.len();
     masks.clear();
-    for row in values.chunks_exact(nx) {
-        for run in row.chunks(64) {
-            let mut m = [0u64; 3];
-            for (i, &v) in run.iter().enumerate() {
-                m[0] |= u64::from(v <= iso) << i;
-                m[1] |= u64::from(v >= iso) << i;
-                m[2] |= u64::from(v.is_nan()) << i;
-            }
-            masks.push(m);
+    match (volume.voxels(), volume.scale()) {
+        (Voxels::F32(stored), None) => {
+            // The largest f32 ≤ iso and the smallest ≥ iso: `v ≤ below` exactly when
+            // `f64::from(v) ≤ iso`, and `v ≥ above` exactly when `f64::from(v) ≥ iso`.
+            let near = iso as f32;
+            let below = if f64::from(near) > iso { near.next_down() } else { near };
+            let above = if f64::from(near) < iso { near.next_up() } else { near };
+            let stored = stored.get(k * plane..(k + 1) * plane).unwrap_or_default();
+            pack_masks(stored, nx, masks, |v| v <= below, |v| v >= above, f32::is_nan);
+        }
+        _ => {
+            volume.read_run(k * plane, values);
+            pack_masks(values, nx, masks, |v| v <= iso, |v| v >= iso, f64::is_nan);
         }
     }
+}
+
+/// The three `tests` on each voxel of a plane of rows `nx` long, packed 64 to a word along
+/// each row. Each test is first one byte a voxel, then eight bytes become eight bits at a time:
+/// loops the compiler turns into vector compares (a bit shifted in per voxel stayed scalar).
+fn pack_masks<T: Copy>(
+    plane: &[T],
+    nx: usize,
+    masks: &mut Vec<[u64; 3]>,
+    le: impl Fn(T) -> bool,
+    ge: impl Fn(T) -> bool,
+    missing: impl Fn(T) -> bool,
+) {
+    fn fill<T: Copy>(out: &mut [u8; 64], run: &[T], test: &impl Fn(T) -> bool) {
+        for (b, &v) in out.iter_mut().zip(run) {
+            *b = u8::from(test(v));
+        }
+    }
+    let mut bytes = [[0u8; 64]; 3];
+    for row in plane.chunks_exact(nx) {
+        for run in row.chunks(64) {
+            fill(&mut bytes[0], run, &le);
+            fill(&mut bytes[1], run, &ge);
+            fill(&mut bytes[2], run, &missing);
+            let valid = if run.len() == 64 { u64::MAX } else { (1u64 << run.len()) - 1 };
+            masks.push(bytes.map(|b| pack_bits(&b) & valid));
+        }
+    }
+}
+
+/// Bit `i` of the result is byte `i` of `bytes` (each 0 or 1): eight bytes at a time, by the
+/// multiplication that gathers the low bits of a word's bytes into its top byte.
+#[inline]
+fn pack_bits(bytes: &[u8; 64]) -> u64 {
+    let mut bits = 0u64;
+    for (k, chunk) in bytes.chunks_exact(8).enumerate() {
+        let word = u64::from_le_bytes(std::array::from_fn(|i| chunk[i]));
+        bits |= (word.wrapping_mul(0x0102_0408_1020_4080) >> 56) << (8 * k);
+    }
+    bits
 }
 
 /// The corner offsets (voxel numbers relative to a cell's first corner) of a cell, bit 0 of the

@@ -96,6 +96,41 @@ fn active_cells_follow_the_corner_range_rule() {
 }
 
 #[test]
+fn f32_voxels_compared_as_stored_follow_the_corner_range_rule() {
+    use crate::data::volume::Scale;
+    let mut rng = Rng::new(23);
+    let dims = [70, 5, 4];
+    let n: usize = dims.iter().product();
+    // Values a few f32 steps apart around 0.1 and 1e30, missing and infinite ones.
+    let values: Vec<f32> = (0..n)
+        .map(|_| match rng.next() {
+            r if r < 0.05 => f32::NAN,
+            r if r < 0.07 => f32::INFINITY,
+            r if r < 0.5 => (0..(r * 100.0) as usize % 4).fold(0.1f32, |v, _| v.next_up()),
+            r if r < 0.9 => (0..(r * 100.0) as usize % 4).fold(0.1f32, |v, _| v.next_down()),
+            _ => 1e30,
+        })
+        .collect();
+    let stored = Volume::new(dims, Voxels::F32(values.clone()), [1.0; 3]).expect("volume");
+    // The same values as f64 voxels: the scan must not depend on how they are stored.
+    let wide = volume(dims, values.iter().map(|&v| f64::from(v)).collect());
+    // A scale of 1 · v + 0 takes the other path, through the values as numbers.
+    let scaled = Volume::new(dims, Voxels::F32(values), [1.0; 3])
+        .expect("volume")
+        .with_scale(Some(Scale { slope: 1.0, inter: 0.0 }));
+    let steps = |v: f32| [v.next_down(), v, v.next_up()].map(f64::from);
+    let mut levels = vec![0.1, 1e30, 1e300, -1e300, f64::from(f32::MAX), 3.4028235677973366e38];
+    levels.extend(steps(0.1).iter().flat_map(|&v| [v, v.next_up(), v.next_down()]));
+    levels.extend(steps(1e30));
+    for iso in levels {
+        let expected = active_cells(&wide, iso);
+        assert_eq!(active_cells(&stored, iso), expected, "iso {iso:e}");
+        assert_eq!(active_cells(&scaled, iso), expected, "iso {iso:e}, scaled");
+    }
+    assert!(!active_cells(&wide, 0.1).is_empty() && !active_cells(&wide, 1e30).is_empty());
+}
+
+#[test]
 fn voxels_at_the_level_make_no_degenerate_triangles_or_duplicate_vertices() {
     for seed in 1..=5u64 {
         let mut rng = Rng::new(100 + seed);
