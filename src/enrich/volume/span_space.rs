@@ -26,7 +26,9 @@
 
 use rayon::prelude::*;
 
-use crate::data::volume::Volume;
+use crate::data::volume::{Volume, Voxels};
+
+use super::isosurface::{f32_bounds, pack_bits};
 
 /// Most buckets along each axis of the lattice (so a bucket number fits in a `u16`).
 const MAX_BUCKETS: usize = 255;
@@ -218,42 +220,91 @@ fn brick_ranges(volume: &Volume, cells: [usize; 3], bricks: [usize; 3]) -> (Vec<
     (lo, hi)
 }
 
+/// Slots for a brick's voxels, slot `(z·5 + y)·5 + x` (125 used).
+const ROOM: usize = 128;
+
+/// A thread's room for the voxels of one brick: stored `f32`s or numbers, and one byte a test.
+struct Room {
+    narrow: [f32; ROOM],
+    wide: [f64; ROOM],
+    bytes: [u8; ROOM],
+}
+
+impl Default for Room {
+    fn default() -> Room {
+        Room { narrow: [0.0; ROOM], wide: [0.0; ROOM], bytes: [0; ROOM] }
+    }
+}
+
+/// Bit `i` set where `test(values[i])`: one byte a slot first (a loop the compiler turns into
+/// vector compares), then packed eight at a time.
+fn bits_of<T: Copy>(values: &[T; ROOM], bytes: &mut [u8; ROOM], test: impl Fn(T) -> bool) -> u128 {
+    for (b, &v) in bytes.iter_mut().zip(values) {
+        *b = u8::from(test(v));
+    }
+    let (low, high) = bytes.split_at(64);
+    let half = |b: &[u8]| pack_bits(&std::array::from_fn(|i| b[i]));
+    u128::from(half(low)) | u128::from(half(high)) << 64
+}
+
 /// The active cells of brick `brick` for `iso`, as bits `k·16 + j·4 + i` of its cells: those
 /// with some corner `≤ iso`, some corner `≥ iso` and none missing (the rule of
-/// [`active_cells`](super::isosurface::active_cells)). The brick's voxels, read as up to 25
-/// runs, become three bit sets (bit `(z·5 + y)·5 + x`), and a cell's bits are those of its eight
-/// corners ORed, by shifts.
-fn brick_mask(
-    volume: &Volume,
-    cells: [usize; 3],
-    brick: [usize; 3],
-    iso: f64,
-    values: &mut [f64; SIDE * SIDE * SIDE],
-) -> u64 {
+/// [`active_cells`](super::isosurface::active_cells)). The brick's voxels are gathered as up to
+/// 25 runs into `room` (slot `(z·5 + y)·5 + x`; `f32` voxels without a scale as stored, others as
+/// numbers), become three bit sets, and a cell's bits are those of its eight corners ORed, by
+/// shifts. Slots outside a partial brick hold anything: no cell of the brick reads them.
+fn brick_mask(volume: &Volume, cells: [usize; 3], brick: [usize; 3], iso: f64, room: &mut Room) -> u64 {
     let [nx, ny, _] = volume.dims();
     let origin = brick.map(|b| b * BRICK);
     let width: [usize; 3] = std::array::from_fn(|a| (cells[a] - origin[a]).min(BRICK));
-    let (run, rows) = (width[0] + 1, (width[1] + 1) * (width[2] + 1));
-    let mut starts = [0usize; SIDE * SIDE];
-    for z in 0..=width[2] {
-        for y in 0..=width[1] {
-            starts[z * (width[1] + 1) + y] = ((origin[2] + z) * ny + origin[1] + y) * nx + origin[0];
+    let run = width[0] + 1;
+    let start = |z: usize, y: usize| ((origin[2] + z) * ny + origin[1] + y) * nx + origin[0];
+    let slot = |z: usize, y: usize| (z * SIDE + y) * SIDE;
+    let [le, ge, missing] = match (volume.voxels(), volume.scale()) {
+        (Voxels::F32(stored), None) => {
+            if run == SIDE {
+                // Runs of a constant length: copies the compiler writes out in place.
+                for z in 0..=width[2] {
+                    for y in 0..=width[1] {
+                        let (from, to) = (start(z, y), slot(z, y));
+                        room.narrow[to..to + SIDE].copy_from_slice(&stored[from..from + SIDE]);
+                    }
+                }
+            } else {
+                for z in 0..=width[2] {
+                    for y in 0..=width[1] {
+                        let (from, to) = (start(z, y), slot(z, y));
+                        room.narrow[to..to + run].copy_from_slice(&stored[from..from + run]);
+                    }
+                }
+            }
+            let (below, above) = f32_bounds(iso);
+            let Room { narrow, bytes, .. } = room;
+            [
+                bits_of(narrow, bytes, |v| v <= below),
+                bits_of(narrow, bytes, |v| v >= above),
+                bits_of(narrow, bytes, f32::is_nan),
+            ]
         }
-    }
-    volume.read_runs(&starts[..rows], &mut values[..run * rows]);
-    let (mut le, mut ge, mut missing) = (0u128, 0u128, 0u128);
-    for (r, row) in values[..run * rows].chunks_exact(run).enumerate() {
-        let (mut l, mut g, mut m) = (0u32, 0u32, 0u32);
-        for (x, &v) in row.iter().enumerate() {
-            l |= u32::from(v <= iso) << x;
-            g |= u32::from(v >= iso) << x;
-            m |= u32::from(v.is_nan()) << x;
+        _ => {
+            if width == [BRICK; 3] {
+                let mut starts = [0usize; SIDE * SIDE];
+                for (r, s) in starts.iter_mut().enumerate() {
+                    *s = start(r / SIDE, r % SIDE);
+                }
+                volume.read_runs(&starts, &mut room.wide[..SIDE * SIDE * SIDE]);
+            } else {
+                for z in 0..=width[2] {
+                    for y in 0..=width[1] {
+                        let to = slot(z, y);
+                        volume.read_run(start(z, y), &mut room.wide[to..to + run]);
+                    }
+                }
+            }
+            let Room { wide, bytes, .. } = room;
+            [bits_of(wide, bytes, |v| v <= iso), bits_of(wide, bytes, |v| v >= iso), bits_of(wide, bytes, f64::is_nan)]
         }
-        let at = (r / (width[1] + 1) * SIDE + r % (width[1] + 1)) * SIDE;
-        le |= u128::from(l) << at;
-        ge |= u128::from(g) << at;
-        missing |= u128::from(m) << at;
-    }
+    };
     let corners = |s: u128| {
         let x = s | s >> 1;
         let xy = x | x >> SIDE;
@@ -351,18 +402,33 @@ impl SpanSpace {
             return Vec::new();
         };
         let found = self.bricks_of(&plan, iso);
+        // Brick layer by brick layer in parallel: each layer's bricks decided, then its cells
+        // listed in order; the layers' lists joined.
         let [bx, by, _] = self.bricks;
-        let masks: Vec<u64> = found
+        let mut layers = Vec::new();
+        let mut first = 0;
+        for t in 1..=found.len() {
+            if t == found.len() || found[t] as usize / (bx * by) != found[first] as usize / (bx * by) {
+                layers.push(first..t);
+                first = t;
+            }
+        }
+        let parts: Vec<Vec<u32>> = layers
             .par_iter()
             .map_init(
-                || [0.0; SIDE * SIDE * SIDE],
-                |values, &b| {
-                    let b = b as usize;
-                    brick_mask(volume, self.cells, [b % bx, b / bx % by, b / (bx * by)], iso, values)
+                || (Room::default(), Vec::new()),
+                |(room, masks), range| {
+                    let bricks = &found[range.clone()];
+                    masks.clear();
+                    masks.extend(bricks.iter().map(|&b| {
+                        let b = b as usize;
+                        brick_mask(volume, self.cells, [b % bx, b / bx % by, b / (bx * by)], iso, room)
+                    }));
+                    self.cells_in_order(bricks, masks)
                 },
             )
             .collect();
-        self.cells_in_order(&found, &masks)
+        parts.concat()
     }
 
     /// The number of bricks indexed (those with a present voxel).
@@ -460,33 +526,37 @@ impl SpanSpace {
         let [bx, by, _] = self.bricks;
         let count = masks.iter().map(|m| m.count_ones() as usize).sum();
         let mut out = Vec::with_capacity(count);
-        let mut layer_start = 0;
-        while layer_start < found.len() {
-            let bz = found[layer_start] as usize / (bx * by);
-            let layer_end = layer_start + found[layer_start..].partition_point(|&b| b as usize / (bx * by) == bz);
+        // The found bricks of one brick layer, as runs sharing a brick row.
+        let mut rows: Vec<(usize, usize)> = Vec::new();
+        let mut t = 0;
+        while t < found.len() {
+            let bz = found[t] as usize / (bx * by);
+            rows.clear();
+            while t < found.len() && found[t] as usize / (bx * by) == bz {
+                let (row, first) = (found[t] as usize / bx, t);
+                while t < found.len() && found[t] as usize / bx == row {
+                    t += 1;
+                }
+                rows.push((first, t));
+            }
             for kl in 0..BRICK.min(cz - bz * BRICK) {
                 let k = bz * BRICK + kl;
-                let mut row_start = layer_start;
-                while row_start < layer_end {
-                    let b_y = found[row_start] as usize / bx % by;
-                    let row_end =
-                        row_start + found[row_start..layer_end].partition_point(|&b| b as usize / bx % by == b_y);
+                for &(first, end) in &rows {
+                    let b_y = found[first] as usize / bx % by;
                     for jl in 0..BRICK.min(cy - b_y * BRICK) {
                         let j = b_y * BRICK + jl;
                         let shift = kl * BRICK * BRICK + jl * BRICK;
-                        for t in row_start..row_end {
-                            let mut bits = (masks[t] >> shift) & ((1 << BRICK) - 1);
-                            let first = ((k * cy + j) * cx + found[t] as usize % bx * BRICK) as u32;
+                        for (&brick, &mask) in found[first..end].iter().zip(&masks[first..end]) {
+                            let mut bits = (mask >> shift) & ((1 << BRICK) - 1);
+                            let row_first = ((k * cy + j) * cx + brick as usize % bx * BRICK) as u32;
                             while bits != 0 {
-                                out.push(first + bits.trailing_zeros());
+                                out.push(row_first + bits.trailing_zeros());
                                 bits &= bits - 1;
                             }
                         }
                     }
-                    row_start = row_end;
                 }
             }
-            layer_start = layer_end;
         }
         out
     }

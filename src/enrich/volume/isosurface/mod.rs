@@ -292,11 +292,7 @@ fn plane_masks(volume: &Volume, k: usize, iso: f64, values: &mut [f64], masks: &
     masks.clear();
     match (volume.voxels(), volume.scale()) {
         (Voxels::F32(stored), None) => {
-            // The largest f32 ≤ iso and the smallest ≥ iso: `v ≤ below` exactly when
-            // `f64::from(v) ≤ iso`, and `v ≥ above` exactly when `f64::from(v) ≥ iso`.
-            let near = iso as f32;
-            let below = if f64::from(near) > iso { near.next_down() } else { near };
-            let above = if f64::from(near) < iso { near.next_up() } else { near };
+            let (below, above) = f32_bounds(iso);
             let stored = stored.get(k * plane..(k + 1) * plane).unwrap_or_default();
             pack_masks(stored, nx, masks, |v| v <= below, |v| v >= above, f32::is_nan);
         }
@@ -305,6 +301,16 @@ fn plane_masks(volume: &Volume, k: usize, iso: f64, values: &mut [f64], masks: &
             pack_masks(values, nx, masks, |v| v <= iso, |v| v >= iso, f64::is_nan);
         }
     }
+}
+
+/// The largest `f32` at most `iso` and the smallest at least `iso`: for any `f32` `v`,
+/// `v ≤ below` exactly when `f64::from(v) ≤ iso`, and `v ≥ above` exactly when
+/// `f64::from(v) ≥ iso` (for finite `iso`).
+pub(crate) fn f32_bounds(iso: f64) -> (f32, f32) {
+    let near = iso as f32;
+    let below = if f64::from(near) > iso { near.next_down() } else { near };
+    let above = if f64::from(near) < iso { near.next_up() } else { near };
+    (below, above)
 }
 
 /// The three `tests` on each voxel of a plane of rows `nx` long, packed 64 to a word along
@@ -338,7 +344,7 @@ fn pack_masks<T: Copy>(
 /// Bit `i` of the result is byte `i` of `bytes` (each 0 or 1): eight bytes at a time, by the
 /// multiplication that gathers the low bits of a word's bytes into its top byte.
 #[inline]
-fn pack_bits(bytes: &[u8; 64]) -> u64 {
+pub(crate) fn pack_bits(bytes: &[u8; 64]) -> u64 {
     let mut bits = 0u64;
     for (k, chunk) in bytes.chunks_exact(8).enumerate() {
         let word = u64::from_le_bytes(std::array::from_fn(|i| chunk[i]));
