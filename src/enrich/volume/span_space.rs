@@ -28,7 +28,7 @@ use rayon::prelude::*;
 
 use crate::data::volume::{Volume, Voxels};
 
-use super::isosurface::{f32_bounds, pack_bits};
+use super::isosurface::LevelTest;
 
 /// Most buckets along each axis of the lattice (so a bucket number fits in a `u16`).
 const MAX_BUCKETS: usize = 255;
@@ -223,28 +223,22 @@ fn brick_ranges(volume: &Volume, cells: [usize; 3], bricks: [usize; 3]) -> (Vec<
 /// Slots for a brick's voxels, slot `(z·5 + y)·5 + x` (125 used).
 const ROOM: usize = 128;
 
-/// A thread's room for the voxels of one brick: stored `f32`s or numbers, and one byte a test.
+/// A thread's room for the voxels of one brick: stored `f32`s or numbers.
 struct Room {
     narrow: [f32; ROOM],
     wide: [f64; ROOM],
-    bytes: [u8; ROOM],
 }
 
 impl Default for Room {
     fn default() -> Room {
-        Room { narrow: [0.0; ROOM], wide: [0.0; ROOM], bytes: [0; ROOM] }
+        Room { narrow: [0.0; ROOM], wide: [0.0; ROOM] }
     }
 }
 
-/// Bit `i` set where `test(values[i])`: one byte a slot first (a loop the compiler turns into
-/// vector compares), then packed eight at a time.
-fn bits_of<T: Copy>(values: &[T; ROOM], bytes: &mut [u8; ROOM], test: impl Fn(T) -> bool) -> u128 {
-    for (b, &v) in bytes.iter_mut().zip(values) {
-        *b = u8::from(test(v));
-    }
-    let (low, high) = bytes.split_at(64);
-    let half = |b: &[u8]| pack_bits(&std::array::from_fn(|i| b[i]));
-    u128::from(half(low)) | u128::from(half(high)) << 64
+/// The level tests `[≤ iso, ≥ iso, missing]` of a brick's slots, bit `i` for slot `i`.
+fn brick_bits<T: Copy + PartialOrd>(test: LevelTest<T>, values: &[T; ROOM]) -> [u128; 3] {
+    let (low, high) = (test.bits(&values[..64]), test.bits(&values[64..]));
+    std::array::from_fn(|t| u128::from(low[t]) | u128::from(high[t]) << 64)
 }
 
 /// The active cells of brick `brick` for `iso`, as bits `k·16 + j·4 + i` of its cells: those
@@ -278,13 +272,7 @@ fn brick_mask(volume: &Volume, cells: [usize; 3], brick: [usize; 3], iso: f64, r
                     }
                 }
             }
-            let (below, above) = f32_bounds(iso);
-            let Room { narrow, bytes, .. } = room;
-            [
-                bits_of(narrow, bytes, |v| v <= below),
-                bits_of(narrow, bytes, |v| v >= above),
-                bits_of(narrow, bytes, f32::is_nan),
-            ]
+            brick_bits(LevelTest::stored_f32(iso), &room.narrow)
         }
         _ => {
             if width == [BRICK; 3] {
@@ -301,8 +289,7 @@ fn brick_mask(volume: &Volume, cells: [usize; 3], brick: [usize; 3], iso: f64, r
                     }
                 }
             }
-            let Room { wide, bytes, .. } = room;
-            [bits_of(wide, bytes, |v| v <= iso), bits_of(wide, bytes, |v| v >= iso), bits_of(wide, bytes, f64::is_nan)]
+            brick_bits(LevelTest::numbers(iso), &room.wide)
         }
     };
     let corners = |s: u128| {

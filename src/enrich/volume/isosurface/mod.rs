@@ -259,11 +259,11 @@ pub fn active_cells(volume: &Volume, iso: f64) -> Vec<u32> {
 /// What a thread going up the layers of cells keeps of the two voxel planes of each layer:
 /// the far plane of layer `k` is the near plane of layer `k + 1`, so each plane is made once.
 #[derive(Default)]
-pub(crate) struct PlanePair<T> {
+struct PlanePair<T> {
     /// What was made of plane `k`.
-    pub near: T,
+    near: T,
     /// What was made of plane `k + 1`.
-    pub far: T,
+    far: T,
     /// The plane `far` holds.
     far_plane: Option<usize>,
 }
@@ -271,7 +271,7 @@ pub(crate) struct PlanePair<T> {
 impl<T> PlanePair<T> {
     /// Hold planes `k` (near) and `k + 1` (far), `make` filling a plane's slot when it is not
     /// already held.
-    pub fn hold(&mut self, k: usize, mut make: impl FnMut(usize, &mut T)) {
+    fn hold(&mut self, k: usize, mut make: impl FnMut(usize, &mut T)) {
         if self.far_plane == Some(k) {
             std::mem::swap(&mut self.near, &mut self.far);
         } else {
@@ -284,59 +284,81 @@ impl<T> PlanePair<T> {
 
 /// The bits of [`active_cells`] for voxel plane `k`: per row, 64 voxels to a word,
 /// `[≤ iso, ≥ iso, missing]`; `values` is a plane's worth of room. Voxels stored as `f32`
-/// without a scale are compared as they are, against the `f32` bounds that give the same
-/// answers as their `f64` values against `iso`; others are read as numbers first.
+/// without a scale are compared as they are ([`LevelTest::stored_f32`]); others are read as
+/// numbers first.
 fn plane_masks(volume: &Volume, k: usize, iso: f64, values: &mut [f64], masks: &mut Vec<[u64; 3]>) {
     let nx = volume.dims()[0];
     let plane = values.len();
     masks.clear();
     match (volume.voxels(), volume.scale()) {
         (Voxels::F32(stored), None) => {
-            let (below, above) = f32_bounds(iso);
             let stored = stored.get(k * plane..(k + 1) * plane).unwrap_or_default();
-            pack_masks(stored, nx, masks, |v| v <= below, |v| v >= above, f32::is_nan);
+            LevelTest::stored_f32(iso).rows(stored, nx, masks);
         }
         _ => {
             volume.read_run(k * plane, values);
-            pack_masks(values, nx, masks, |v| v <= iso, |v| v >= iso, f64::is_nan);
+            LevelTest::numbers(iso).rows(values, nx, masks);
         }
     }
 }
 
-/// The largest `f32` at most `iso` and the smallest at least `iso`: for any `f32` `v`,
-/// `v ≤ below` exactly when `f64::from(v) ≤ iso`, and `v ≥ above` exactly when
-/// `f64::from(v) ≥ iso` (for finite `iso`).
-pub(crate) fn f32_bounds(iso: f64) -> (f32, f32) {
-    let near = iso as f32;
-    let below = if f64::from(near) > iso { near.next_down() } else { near };
-    let above = if f64::from(near) < iso { near.next_up() } else { near };
-    (below, above)
+/// The tests a cell's corners are put to against a level — `≤ iso`, `≥ iso`, missing — on
+/// values of type `T`: numbers against `iso` itself, or stored `f32` voxels against the `f32`
+/// bounds that give the same answers as their `f64` values (no conversion a voxel). Shared by
+/// [`active_cells`] and the span-space index's bricks.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct LevelTest<T> {
+    /// A value is `≤ iso` when `≤ below`.
+    below: T,
+    /// A value is `≥ iso` when `≥ above`.
+    above: T,
 }
 
-/// The three `tests` on each voxel of a plane of rows `nx` long, packed 64 to a word along
-/// each row. Each test is first one byte a voxel, then eight bytes become eight bits at a time:
-/// loops the compiler turns into vector compares (a bit shifted in per voxel stayed scalar).
-fn pack_masks<T: Copy>(
-    plane: &[T],
-    nx: usize,
-    masks: &mut Vec<[u64; 3]>,
-    le: impl Fn(T) -> bool,
-    ge: impl Fn(T) -> bool,
-    missing: impl Fn(T) -> bool,
-) {
-    fn fill<T: Copy>(out: &mut [u8; 64], run: &[T], test: &impl Fn(T) -> bool) {
-        for (b, &v) in out.iter_mut().zip(run) {
-            *b = u8::from(test(v));
-        }
+impl LevelTest<f64> {
+    /// The tests on values as numbers.
+    pub fn numbers(iso: f64) -> LevelTest<f64> {
+        LevelTest { below: iso, above: iso }
     }
-    let mut bytes = [[0u8; 64]; 3];
-    for row in plane.chunks_exact(nx) {
-        for run in row.chunks(64) {
-            fill(&mut bytes[0], run, &le);
-            fill(&mut bytes[1], run, &ge);
-            fill(&mut bytes[2], run, &missing);
-            let valid = if run.len() == 64 { u64::MAX } else { (1u64 << run.len()) - 1 };
-            masks.push(bytes.map(|b| pack_bits(&b) & valid));
+}
+
+impl LevelTest<f32> {
+    /// The tests on stored `f32` voxels: `below` the largest `f32` at most `iso` and `above` the
+    /// smallest at least `iso`, so `v ≤ below` exactly when `f64::from(v) ≤ iso` and `v ≥ above`
+    /// exactly when `f64::from(v) ≥ iso` (for finite `iso`).
+    pub fn stored_f32(iso: f64) -> LevelTest<f32> {
+        let near = iso as f32;
+        let below = if f64::from(near) > iso { near.next_down() } else { near };
+        let above = if f64::from(near) < iso { near.next_up() } else { near };
+        LevelTest { below, above }
+    }
+}
+
+impl<T: Copy + PartialOrd> LevelTest<T> {
+    /// The three tests on up to 64 values, bit `i` of each word for `run[i]`. Each test is first
+    /// one byte a value, then eight bytes become eight bits at a time: loops the compiler turns
+    /// into vector compares (a bit shifted in per value stayed scalar).
+    #[inline]
+    pub fn bits(&self, run: &[T]) -> [u64; 3] {
+        let mut bytes = [[0u8; 64]; 3];
+        for (b, &v) in bytes[0].iter_mut().zip(run) {
+            *b = u8::from(v <= self.below);
+        }
+        for (b, &v) in bytes[1].iter_mut().zip(run) {
+            *b = u8::from(v >= self.above);
+        }
+        // Only NaN is not equal to itself.
+        #[allow(clippy::eq_op)]
+        for (b, &v) in bytes[2].iter_mut().zip(run) {
+            *b = u8::from(v != v);
+        }
+        let valid = if run.len() >= 64 { u64::MAX } else { (1u64 << run.len()) - 1 };
+        bytes.map(|b| pack_bits(&b) & valid)
+    }
+
+    /// The three tests on a plane of rows `nx` long, 64 values to a word along each row.
+    fn rows(&self, plane: &[T], nx: usize, masks: &mut Vec<[u64; 3]>) {
+        for row in plane.chunks_exact(nx) {
+            masks.extend(row.chunks(64).map(|run| self.bits(run)));
         }
     }
 }
@@ -344,7 +366,7 @@ fn pack_masks<T: Copy>(
 /// Bit `i` of the result is byte `i` of `bytes` (each 0 or 1): eight bytes at a time, by the
 /// multiplication that gathers the low bits of a word's bytes into its top byte.
 #[inline]
-pub(crate) fn pack_bits(bytes: &[u8; 64]) -> u64 {
+fn pack_bits(bytes: &[u8; 64]) -> u64 {
     let mut bits = 0u64;
     for (k, chunk) in bytes.chunks_exact(8).enumerate() {
         let word = u64::from_le_bytes(std::array::from_fn(|i| chunk[i]));
