@@ -479,7 +479,7 @@ fn check_lint_config(spec: &Spec, doc: &SpecDoc) -> Vec<Diagnostic> {
 }
 
 /// Run `work`; with the environment variable `DATAINK_TIMINGS` set, print how long it took.
-fn timed<T>(label: &str, work: impl FnOnce() -> T) -> T {
+pub(crate) fn timed<T>(label: &str, work: impl FnOnce() -> T) -> T {
     if std::env::var_os("DATAINK_TIMINGS").is_none() {
         return work();
     }

@@ -193,19 +193,45 @@ pub fn type_name(ty: VoxelType) -> &'static str {
 }
 
 /// The range and missing count of `values`, in parallel over runs: as numbers, a float NaN is
-/// counted and never a bound (`f64::min` and `max` pass over it).
+/// counted and never a bound (it fails every comparison).
 fn range_of<T: Sample + Sync>(values: &[T]) -> (Option<(f64, f64)>, usize) {
     let empty = (f64::INFINITY, f64::NEG_INFINITY, 0usize);
-    let (lo, hi, missing) = values
-        .par_chunks(1 << 18)
-        .map(|run| {
-            run.iter().fold(empty, |(lo, hi, missing), &x| {
-                let v = x.to_f64();
-                (lo.min(v), hi.max(v), missing + usize::from(v.is_nan()))
-            })
-        })
-        .reduce(|| empty, |a, b| (a.0.min(b.0), a.1.max(b.1), a.2 + b.2));
+    let (lo, hi, missing) =
+        values.par_chunks(1 << 18).map(run_range).reduce(|| empty, |a, b| (a.0.min(b.0), a.1.max(b.1), a.2 + b.2));
     ((lo <= hi).then_some((lo, hi)), missing)
+}
+
+/// Lanes of [`run_range`]: independent bounds the compiler keeps in vector registers.
+const RANGE_LANES: usize = 8;
+
+/// The smallest and largest value of a run and how many of its values are NaN, in
+/// [`RANGE_LANES`] lanes of compare-and-select (which vectorize, unlike `f64::min`'s NaN rule;
+/// a NaN fails both comparisons, so it is never a bound).
+fn run_range<T: Sample>(run: &[T]) -> (f64, f64, usize) {
+    let mut lo = [f64::INFINITY; RANGE_LANES];
+    let mut hi = [f64::NEG_INFINITY; RANGE_LANES];
+    let mut missing = [0usize; RANGE_LANES];
+    let mut take = |lane: usize, x: T| {
+        let v = x.to_f64();
+        lo[lane] = if v < lo[lane] { v } else { lo[lane] };
+        hi[lane] = if v > hi[lane] { v } else { hi[lane] };
+        missing[lane] += usize::from(v.is_nan());
+    };
+    let lanes = run.chunks_exact(RANGE_LANES);
+    let rest = lanes.remainder();
+    for group in lanes {
+        for (lane, &x) in group.iter().enumerate() {
+            take(lane, x);
+        }
+    }
+    for (lane, &x) in rest.iter().enumerate() {
+        take(lane, x);
+    }
+    (
+        lo.into_iter().fold(f64::INFINITY, f64::min),
+        hi.into_iter().fold(f64::NEG_INFINITY, f64::max),
+        missing.iter().sum(),
+    )
 }
 
 #[cfg(test)]
@@ -223,6 +249,9 @@ mod tests {
         assert_eq!(v.stored_range(), (Some((3.0, 65535.0)), 0));
         assert_eq!((v.memory_bytes(), v.voxel_type(), v.get(1)), (6, VoxelType::U16, 65535.0));
         assert_eq!(Voxels::F64(vec![f64::NAN]).stored_range(), (None, 1));
+        // Longer than the lanes, bounds and NaNs in every lane and in the remainder.
+        let long: Vec<f32> = (0..100).map(|i| if i % 7 == 3 { f32::NAN } else { (i as f32 - 40.0) * 0.5 }).collect();
+        assert_eq!(Voxels::F32(long).stored_range(), (Some((-20.0, 29.5)), 14));
         assert_eq!(1.5f32.swap_bytes().swap_bytes(), 1.5);
         assert_eq!(0x0102u16.swap_bytes(), 0x0201);
         assert!(f64::INFINITY.finite_or_nan().is_nan());

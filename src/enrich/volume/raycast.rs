@@ -21,9 +21,10 @@
 //!   `A ≥` [`TERMINATION`], where what is left could change no 8-bit channel by more than 1/2
 //!   of a level.
 //! - **Empty space.** The volume is cut into blocks of 8³ cells with their value ranges; an
-//!   image's rays jump over a block the transfer function leaves wholly transparent, and a
-//!   maximum over a block no higher than the maximum found so far. Only samples that would add
-//!   nothing are skipped, so the image is the same.
+//!   image's rays jump over a block the transfer function leaves wholly transparent — over the
+//!   whole cube of clear blocks around it that [`clear_reach`] finds — and a maximum over a
+//!   block no higher than the maximum found so far. Only samples that would add nothing are
+//!   skipped, so the image is the same.
 //! - **Missing voxels.** A sample with a missing (NaN) voxel among its eight is skipped: it adds
 //!   nothing (transparent; left out of maxima and means).
 //! - **Gradient opacity.** Optional: a sample's opacity is scaled by `min(1, |∇f| / full)`
@@ -133,6 +134,8 @@ pub struct TransferFunction {
     domain: (f64, f64),
     /// Straight colour (0 to 1) and opacity per reference length, at equal steps over `domain`.
     table: Vec<[f64; 4]>,
+    /// Table steps per unit of value (a function table; labels take one entry per unit).
+    per_value: f64,
     /// What values outside the domain look up: `None` holds the end entries.
     outside: Option<[f64; 4]>,
 }
@@ -165,7 +168,8 @@ impl TransferFunction {
                 [r, g, b, piecewise(opacity, v)]
             })
             .collect();
-        Ok(TransferFunction { domain: (lo, hi), table, outside: None })
+        let per_value = (LUT_SIZE - 1) as f64 / (hi - lo);
+        Ok(TransferFunction { domain: (lo, hi), table, per_value, outside: None })
     }
 
     /// A transfer function for a label volume (a segmentation): each `(label, colour, opacity)`
@@ -186,11 +190,12 @@ impl TransferFunction {
         }
         // One entry per whole number: the domain's ends are half a label beyond the end labels.
         let domain = (lo as f64 - 0.5, hi as f64 + 0.5);
-        Ok(TransferFunction { domain, table, outside: Some([0.0; 4]) })
+        Ok(TransferFunction { domain, table, per_value: 1.0, outside: Some([0.0; 4]) })
     }
 
     /// Colour and opacity at `value`: the nearest table entry; beyond the domain the end entries
     /// (a label function: transparent).
+    #[inline]
     pub fn at(&self, value: f64) -> [f64; 4] {
         match self.outside {
             Some(outside) if !(value >= self.domain.0 && value < self.domain.1) => outside,
@@ -198,17 +203,53 @@ impl TransferFunction {
         }
     }
 
-    /// The table entry `value` looks up (monotone in the value; clamped to the table).
+    /// The table entry `value` looks up (monotone in the value; clamped to the table; entry 0
+    /// for NaN, which clamps to NaN and truncates to 0). No division and no call to libm's
+    /// floor or round: truncation floors what is not negative, and adding ½ first rounds.
+    #[inline]
     fn entry(&self, value: f64) -> usize {
-        let (lo, hi) = self.domain;
-        let f = ((value - lo) / (hi - lo)).clamp(0.0, 1.0);
+        let last = (self.table.len() - 1) as u32 as f64;
         match self.outside {
-            // Label tables: entry k covers [lo + k, lo + k + 1).
-            // `f` is not negative: truncation floors, and adding ½ first rounds (without a call
-            // to libm's floor or round in the hot loop).
-            Some(_) => ((f * self.table.len() as f64) as usize).min(self.table.len() - 1),
-            None => (f * (self.table.len() - 1) as f64 + 0.5) as usize,
+            // Label tables: entry k covers [lo + k, lo + k + 1); the domain is as many values
+            // wide as the table is long.
+            Some(_) => (value - self.domain.0).clamp(0.0, last) as u32 as usize,
+            // Through `u32` (tables are far shorter), whose conversion from `f64` is one
+            // instruction, unlike `usize`'s.
+            None => (((value - self.domain.0) * self.per_value).clamp(0.0, last) + 0.5) as u32 as usize,
         }
+    }
+
+    /// Whether every value from `a` to `b` (a ≤ b) has an opacity of at least `threshold`, when
+    /// they all agree; `None` when they differ (or may: the test goes by table entries).
+    pub fn opacity_at_least_throughout(&self, (a, b): (f64, f64), threshold: f64) -> Option<bool> {
+        let shown = |e: &[f64; 4]| e[3] >= threshold;
+        let mut answer: Option<bool> = None;
+        let mut agree = |k: bool| match answer {
+            Some(seen) => seen == k,
+            None => {
+                answer = Some(k);
+                true
+            }
+        };
+        let (d0, d1) = self.domain;
+        if let Some(outside) = self.outside
+            && (a < d0 || b >= d1)
+            && !agree(shown(&outside))
+        {
+            return None;
+        }
+        let (from, to) = match self.outside {
+            Some(_) => (a.max(d0), b.min(d1)),
+            None => (a, b),
+        };
+        if from <= to {
+            let entries = &self.table[self.entry(from)..=self.entry(to)];
+            let first = shown(&entries[0]);
+            if !(entries.iter().all(|e| shown(e) == first) && agree(first)) {
+                return None;
+            }
+        }
+        answer
     }
 
     /// The same function with each opacity `α` replaced by `1 − (1 − α)^exponent`: the opacity
@@ -253,6 +294,9 @@ pub struct RayCaster<'v> {
     /// Blocks along x, y and z.
     block_dims: [usize; 3],
 }
+
+/// Pixels along each side of the tiles an image is cast in.
+const TILE: usize = 8;
 
 /// Cells along each side of the blocks used to skip empty space.
 pub(super) const BLOCK: usize = 8;
@@ -313,64 +357,60 @@ impl<'v> RayCaster<'v> {
     }
 
     /// The lower corner and fractional offsets of index point `p` (clamped into the box).
+    #[inline(always)]
     fn cell(&self, p: [f64; 3]) -> ([usize; 3], [f64; 3]) {
         let mut lower = [0usize; 3];
         let mut t = [0.0; 3];
         for a in 0..3 {
             let x = p[a].clamp(0.0, (self.dims[a] - 1) as f64);
-            // Not negative: truncation floors.
-            let i0 = (x as usize).min(self.dims[a] - 2);
-            lower[a] = i0;
-            t[a] = x - i0 as f64;
+            // Not negative: truncation floors. Through `u32` (sides are far shorter), whose
+            // conversions to and from `f64` are single instructions, unlike `usize`'s.
+            let i0 = (x as u32).min(self.dims[a] as u32 - 2);
+            lower[a] = i0 as usize;
+            t[a] = x - f64::from(i0);
         }
         (lower, t)
     }
 
+    /// The block (its numbers along x, y and z) holding the cell of index point `p`.
+    #[inline]
+    fn block_at(&self, p: [f64; 3]) -> [usize; 3] {
+        let (lower, _) = self.cell(p);
+        lower.map(|l| l / BLOCK)
+    }
+
+    /// The number of block `[bx, by, bz]`, x fastest.
+    #[inline]
+    fn block_number(&self, [bx, by, bz]: [usize; 3]) -> usize {
+        (bz * self.block_dims[1] + by) * self.block_dims[0] + bx
+    }
+
     /// The block holding the cell of index point `p`.
     fn block_of(&self, p: [f64; 3]) -> usize {
-        let (lower, _) = self.cell(p);
-        let [bx, by, bz] = [0, 1, 2].map(|a| lower[a] / BLOCK);
-        (bz * self.block_dims[1] + by) * self.block_dims[0] + bx
+        self.block_number(self.block_at(p))
     }
 
     /// Where the ray `p0 + t·d` leaves the block holding the cell of `p0 + t·d` (a `t`).
     fn block_exit(&self, p0: [f64; 3], d: [f64; 3], t: f64) -> f64 {
-        let (lower, _) = self.cell([p0[0] + t * d[0], p0[1] + t * d[1], p0[2] + t * d[2]]);
-        let mut exit = f64::INFINITY;
-        for a in 0..3 {
-            let b = (lower[a] / BLOCK) as f64 * BLOCK as f64;
-            let wall = if d[a] > 0.0 {
-                b + BLOCK as f64
-            } else if d[a] < 0.0 {
-                b
-            } else {
-                continue;
-            };
-            exit = exit.min((wall - p0[a]) / d[a]);
-        }
-        exit
+        cube_exit(p0, d, self.block_at([p0[0] + t * d[0], p0[1] + t * d[1], p0[2] + t * d[2]]), 1)
     }
 
     /// The eight voxel values around a cell's lower corner, bit 0 of the index picking +x,
     /// bit 1 +y, bit 2 +z.
+    #[inline(always)]
     fn corners(&self, [i, j, k]: [usize; 3]) -> [f32; 8] {
         let (nx, ny) = (self.dims[0], self.dims[1]);
         let base = (k * ny + j) * nx + i;
         let (sy, sz) = (nx, nx * ny);
-        let v = &self.values;
-        [
-            v[base],
-            v[base + 1],
-            v[base + sy],
-            v[base + sy + 1],
-            v[base + sz],
-            v[base + sz + 1],
-            v[base + sz + sy],
-            v[base + sz + sy + 1],
-        ]
+        // One bounds check for the cube; the pairs along x as two-element arrays.
+        let cube = &self.values[base..base + sz + sy + 2];
+        let pair = |at: usize| -> [f32; 2] { [cube[at], cube[at + 1]] };
+        let ([c0, c1], [c2, c3], [c4, c5], [c6, c7]) = (pair(0), pair(sy), pair(sz), pair(sz + sy));
+        [c0, c1, c2, c3, c4, c5, c6, c7]
     }
 
     /// The trilinear value at index point `p` (NaN when a corner is missing).
+    #[inline(always)]
     fn value(&self, p: [f64; 3]) -> f64 {
         let (lower, t) = self.cell(p);
         let c = self.corners(lower).map(f64::from);
@@ -456,6 +496,7 @@ impl<'v> RayCaster<'v> {
     }
 
     /// Colour and opacity of the sample at index point `p`, classified as `settings` says.
+    #[inline(always)]
     fn classified(&self, p: [f64; 3], tf: &TransferFunction, classify: Classify) -> Option<[f64; 4]> {
         match classify {
             Classify::After => {
@@ -487,8 +528,9 @@ impl<'v> RayCaster<'v> {
         self.composite_skipping(origin, dir, tf, settings, None, false)
     }
 
-    /// [`RayCaster::composite`], jumping over the blocks `clear` marks wholly transparent: the
-    /// samples skipped would add nothing, so the colour is the same. With `corrected`, `tf`'s
+    /// [`RayCaster::composite`], jumping over the blocks a transfer function leaves wholly
+    /// transparent, as far as `reach` (see [`clear_reach`]) says clear space goes around each:
+    /// the samples skipped would add nothing, so the colour is the same. With `corrected`, `tf`'s
     /// opacities are already corrected for the step (see [`TransferFunction::corrected`]).
     fn composite_skipping(
         &self,
@@ -496,45 +538,63 @@ impl<'v> RayCaster<'v> {
         dir: [f64; 3],
         tf: &TransferFunction,
         settings: &Settings,
-        clear: Option<&[bool]>,
+        reach: Option<&[u32]>,
         corrected: bool,
     ) -> [f64; 4] {
         let (p0, d) = (self.index_of(origin), self.index_direction(dir));
         let Some((t0, t1)) = self.clip(p0, d) else { return [0.0; 4] };
         let exponent = settings.step / settings.reference;
-        let mut acc = [0.0f64; 4];
         let step = settings.step;
-        let mut n = 0usize;
+        let mut acc = [0.0f64; 4];
+        // Sample n sits at t0 + (n + ½)·step; `n` is the next one to take. A float that counts
+        // whole numbers exactly, which saves a conversion a sample.
+        let mut n = 0.0f64;
         loop {
-            let t = t0 + (n as f64 + 0.5) * step;
+            let t = t0 + (n + 0.5) * step;
             if t >= t1 {
-                break;
+                return acc;
             }
-            let p = [p0[0] + t * d[0], p0[1] + t * d[1], p0[2] + t * d[2]];
-            if let Some(clear) = clear
-                && clear[self.block_of(p)]
-            {
-                let exit = self.block_exit(p0, d, t);
-                n = (n + 1).max(((exit - t0) / step - 0.5).ceil().max(0.0) as usize);
-                continue;
-            }
-            n += 1;
-            let Some([r, g, b, alpha]) = self.classified(p, tf, settings.classify) else { continue };
-            if alpha <= 0.0 {
-                continue;
-            }
-            let Some((alpha, light)) = settings.lit(alpha, || self.gradient(p)) else { continue };
-            let a = if corrected { alpha } else { 1.0 - (1.0 - alpha.min(1.0)).powf(exponent) };
-            let w = (1.0 - acc[3]) * a;
-            acc[0] += w * r * light;
-            acc[1] += w * g * light;
-            acc[2] += w * b * light;
-            acc[3] += w;
-            if acc[3] >= settings.termination {
-                break;
+            // The samples before `end` lie in the block of sample n (up to rounding at its
+            // walls) and are taken without asking again; or they lie in the cube of clear
+            // blocks around it and are skipped. A sample taken in a clear block adds nothing,
+            // so the colour is the same.
+            let end = match reach {
+                Some(reach) => {
+                    let block = self.block_at([p0[0] + t * d[0], p0[1] + t * d[1], p0[2] + t * d[2]]);
+                    let clear = reach[self.block_number(block)] as usize;
+                    let exit = cube_exit(p0, d, block, clear.max(1));
+                    let end = (n + 1.0).max(ceil_not_negative((exit - t0) / step - 0.5));
+                    if clear > 0 {
+                        n = end;
+                        continue;
+                    }
+                    end
+                }
+                None => f64::INFINITY,
+            };
+            while n < end {
+                let t = t0 + (n + 0.5) * step;
+                if t >= t1 {
+                    return acc;
+                }
+                n += 1.0;
+                let p = [p0[0] + t * d[0], p0[1] + t * d[1], p0[2] + t * d[2]];
+                let Some([r, g, b, alpha]) = self.classified(p, tf, settings.classify) else { continue };
+                if alpha <= 0.0 {
+                    continue;
+                }
+                let Some((alpha, light)) = settings.lit(alpha, || self.gradient(p)) else { continue };
+                let a = if corrected { alpha } else { 1.0 - (1.0 - alpha.min(1.0)).powf(exponent) };
+                let w = (1.0 - acc[3]) * a;
+                acc[0] += w * r * light;
+                acc[1] += w * g * light;
+                acc[2] += w * b * light;
+                acc[3] += w;
+                if acc[3] >= settings.termination {
+                    return acc;
+                }
             }
         }
-        acc
     }
 
     /// The largest (`Mode::Mip`) or mean (`Mode::Average`) value along the ray, or `None` when
@@ -578,7 +638,7 @@ impl<'v> RayCaster<'v> {
             let t = t0 + s as f64 * step;
             let block = self.block_of([p0[0] + t * d[0], p0[1] + t * d[1], p0[2] + t * d[2]]);
             let exit = self.block_exit(p0, d, t);
-            let end = (s + 1).max(((exit - t0) / step).ceil().max(0.0) as usize).min(samples);
+            let end = (s + 1).max(ceil_not_negative((exit - t0) / step) as usize).min(samples);
             runs.push((self.blocks[block].1, s, end));
             s = end;
         }
@@ -606,8 +666,8 @@ impl<'v> RayCaster<'v> {
         job: Job<'_>,
     ) -> Vec<[f64; 4]> {
         let mut out = vec![[0.0; 4]; width * height];
-        let clear = match job {
-            Job::Composite(tf, _) => clear_blocks(self, tf),
+        let reach = match job {
+            Job::Composite(tf, _) => clear_reach(&clear_blocks(self, tf), self.block_dims),
             Job::Reduce(..) => Vec::new(),
         };
         // Classified after interpolation and not scaled by the gradient, a sample's opacity is
@@ -618,45 +678,71 @@ impl<'v> RayCaster<'v> {
             }
             _ => None,
         };
-        out.par_chunks_mut(width.max(1)).enumerate().for_each(|(y, row)| {
-            for (x, px) in row.iter_mut().enumerate() {
-                let (o, d) = ray(x, y);
-                *px = match job {
-                    Job::Composite(tf, settings) => match &corrected {
-                        Some(c) => self.composite_skipping(o, d, c, settings, Some(&clear), true),
-                        None => self.composite_skipping(o, d, tf, settings, Some(&clear), false),
-                    },
-                    Job::Reduce(mode, step) => [self.reduce(o, d, mode, step).unwrap_or(f64::NAN), 0.0, 0.0, 0.0],
-                };
+        let cast = |x: usize, y: usize| {
+            let (o, d) = ray(x, y);
+            match job {
+                Job::Composite(tf, settings) => match &corrected {
+                    Some(c) => self.composite_skipping(o, d, c, settings, Some(&reach), true),
+                    None => self.composite_skipping(o, d, tf, settings, Some(&reach), false),
+                },
+                Job::Reduce(mode, step) => [self.reduce(o, d, mode, step).unwrap_or(f64::NAN), 0.0, 0.0, 0.0],
+            }
+        };
+        // Bands of TILE rows in parallel, each cast tile by tile: neighbouring rays read
+        // neighbouring voxels, which are then still in the core's cache.
+        let width = width.max(1);
+        out.par_chunks_mut(width * TILE).enumerate().for_each(|(band, rows)| {
+            let height = rows.len() / width;
+            for x0 in (0..width).step_by(TILE) {
+                for dy in 0..height {
+                    for x in x0..(x0 + TILE).min(width) {
+                        rows[dy * width + x] = cast(x, band * TILE + dy);
+                    }
+                }
             }
         });
         out
     }
 }
 
-/// The value range of every block of [`BLOCK`]³ cells of a volume (see [`RayCaster`]).
+/// The value range of every block of [`BLOCK`]³ cells of a volume (see [`RayCaster`]), axis by
+/// axis: each row's voxels into ranges per block along x, then those along y for each plane
+/// (planes in parallel), then along z for each layer of blocks (in parallel). A block's voxels
+/// reach one past its cells, so neighbouring blocks share a voxel plane.
 fn block_ranges(values: &[f32], dims: [usize; 3]) -> (Vec<(f32, f32)>, [usize; 3]) {
     let block_dims = dims.map(|n| (n - 1).div_ceil(BLOCK));
-    let count = block_dims.iter().product();
-    let ranges: Vec<(f32, f32)> = (0..count)
+    let [nx, ny, _] = dims;
+    let [bnx, bny, bnz] = block_dims;
+    // The voxels of block `b` along an axis of `n` voxels.
+    let span = |b: usize, n: usize| (b * BLOCK)..=((b + 1) * BLOCK).min(n - 1);
+    let empty = (f32::INFINITY, f32::NEG_INFINITY);
+    let widen = |(lo, hi): (f32, f32), (a, b): (f32, f32)| (if a < lo { a } else { lo }, if b > hi { b } else { hi });
+    // Per plane: the range of each (block row along y, block along x).
+    let planes: Vec<Vec<(f32, f32)>> = values
+        .par_chunks(nx * ny)
+        .map(|plane| {
+            let rows: Vec<(f32, f32)> = plane
+                .chunks(nx)
+                .flat_map(|row| {
+                    (0..bnx).map(move |bx| {
+                        // A NaN fails both comparisons: never a bound.
+                        row[span(bx, nx)].iter().fold(empty, |acc, &v| widen(acc, (v, v)))
+                    })
+                })
+                .collect();
+            (0..bny)
+                .flat_map(|by| {
+                    let rows = &rows;
+                    (0..bnx).map(move |bx| span(by, ny).map(|j| rows[j * bnx + bx]).fold(empty, widen))
+                })
+                .collect()
+        })
+        .collect();
+    let ranges: Vec<(f32, f32)> = (0..bnz)
         .into_par_iter()
-        .map(|b| {
-            let (bx, by, bz) =
-                (b % block_dims[0], b / block_dims[0] % block_dims[1], b / (block_dims[0] * block_dims[1]));
-            let span = |bi: usize, n: usize| (bi * BLOCK)..=((bi + 1) * BLOCK).min(n - 1);
-            let (mut lo, mut hi) = (f32::INFINITY, f32::NEG_INFINITY);
-            for k in span(bz, dims[2]) {
-                for j in span(by, dims[1]) {
-                    let row = (k * dims[1] + j) * dims[0];
-                    for &v in &values[row + bx * BLOCK..=row + ((bx + 1) * BLOCK).min(dims[0] - 1)] {
-                        if !v.is_nan() {
-                            lo = lo.min(v);
-                            hi = hi.max(v);
-                        }
-                    }
-                }
-            }
-            (lo, hi)
+        .flat_map_iter(|bz| {
+            let planes = &planes;
+            (0..bny * bnx).map(move |b| span(bz, dims[2]).map(|k| planes[k][b]).fold(empty, widen))
         })
         .collect();
     (ranges, block_dims)
@@ -684,6 +770,47 @@ fn clear_blocks(caster: &RayCaster<'_>, tf: &TransferFunction) -> Vec<bool> {
         .collect()
 }
 
+/// How far clear space reaches around each block of a `dims` grid whose blocks `clear` marks:
+/// 0 for a block that is not clear, and `r ≥ 1` when every block less than `r` blocks away
+/// along every axis (the chessboard distance) is clear; blocks beyond the grid count as clear
+/// (rays stop at the box), and `r` is at most the grid's longest side plus one. A ray in a
+/// clear block can jump to where it leaves that cube of blocks.
+///
+/// Two raster passes (forward, then backward) that each take the smallest of a block's value
+/// and its 13 neighbours' values before it plus one: exact for the chessboard distance
+/// (Rosenfeld and Pfaltz 1966).
+fn clear_reach(clear: &[bool], dims: [usize; 3]) -> Vec<u32> {
+    let cap = dims.into_iter().max().unwrap_or(0) as u32 + 1;
+    let mut reach: Vec<u32> = clear.iter().map(|&c| if c { cap } else { 0 }).collect();
+    let [nx, ny, nz] = dims.map(|n| n as isize);
+    // The 13 neighbours before a block in x-fastest raster order.
+    let before: Vec<[isize; 3]> = (-1..=1)
+        .flat_map(|dz| (-1..=1).flat_map(move |dy| (-1..=1).map(move |dx| [dx, dy, dz])))
+        .filter(|&[dx, dy, dz]| dz < 0 || (dz == 0 && (dy < 0 || (dy == 0 && dx < 0))))
+        .collect();
+    let mut pass = |order: &mut dyn Iterator<Item = [isize; 3]>, sign: isize| {
+        for [x, y, z] in order {
+            let at = ((z * ny + y) * nx + x) as usize;
+            if reach[at] == 0 {
+                continue;
+            }
+            let mut best = reach[at];
+            for &[dx, dy, dz] in &before {
+                let (u, v, w) = (x + sign * dx, y + sign * dy, z + sign * dz);
+                if (0..nx).contains(&u) && (0..ny).contains(&v) && (0..nz).contains(&w) {
+                    best = best.min(reach[((w * ny + v) * nx + u) as usize] + 1);
+                }
+            }
+            reach[at] = best;
+        }
+    };
+    let forward = (0..nz).flat_map(|z| (0..ny).flat_map(move |y| (0..nx).map(move |x| [x, y, z])));
+    pass(&mut forward.clone(), 1);
+    let backward: Vec<[isize; 3]> = forward.collect();
+    pass(&mut backward.into_iter().rev(), -1);
+    reach
+}
+
 #[cfg(test)]
 impl RayCaster<'_> {
     /// The largest value along a ray sampled every `step` from its entry, no block skipped.
@@ -709,6 +836,32 @@ pub enum Job<'a> {
 }
 
 /// Trilinear interpolation of eight corner values (bit 0 +x, bit 1 +y, bit 2 +z) at offsets `t`.
+/// Where the ray `p0 + t·d` (index space) leaves the cube of blocks less than `reach` blocks
+/// from block `b` along every axis (`reach` 1: block `b` itself), as a `t`.
+#[inline]
+fn cube_exit(p0: [f64; 3], d: [f64; 3], b: [usize; 3], reach: usize) -> f64 {
+    let mut exit = f64::INFINITY;
+    for a in 0..3 {
+        let wall = if d[a] > 0.0 {
+            (b[a] + reach) as f64
+        } else if d[a] < 0.0 {
+            b[a] as f64 - (reach - 1) as f64
+        } else {
+            continue;
+        };
+        exit = exit.min((wall * BLOCK as f64 - p0[a]) / d[a]);
+    }
+    exit
+}
+
+/// The smallest whole number at least `x`, for `x ≥ 0` (0 for negative `x` and NaN; at most
+/// 2⁵³), as a float, without a call to libm.
+fn ceil_not_negative(x: f64) -> f64 {
+    let floor = (x.clamp(0.0, 9_007_199_254_740_992.0) as u64) as f64;
+    if floor < x { floor + 1.0 } else { floor }
+}
+
+#[inline(always)]
 fn trilinear(c: &[f64; 8], t: [f64; 3]) -> f64 {
     let lerp = |a: f64, b: f64, s: f64| a + (b - a) * s;
     let x00 = lerp(c[0], c[1], t[0]);
@@ -825,6 +978,71 @@ pub(super) mod tests {
     }
 
     #[test]
+    fn clear_reach_is_the_chessboard_distance_to_the_nearest_block_that_is_not_clear() {
+        // Random grids (sparse and dense non-clear blocks) against a brute-force distance.
+        let mut seed = 0x9e37_79b9_7f4a_7c15u64;
+        let mut next = move || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            seed
+        };
+        for (dims, one_in) in [([7, 5, 6], 9), ([9, 4, 3], 2), ([6, 6, 6], 60), ([3, 1, 2], 4)] {
+            let clear: Vec<bool> = (0..dims.iter().product()).map(|_| next() % one_in != 0).collect();
+            let reach = clear_reach(&clear, dims);
+            let cap = *dims.iter().max().unwrap() as u32 + 1;
+            let at = |n: usize| [n % dims[0], n / dims[0] % dims[1], n / (dims[0] * dims[1])];
+            for (n, &r) in reach.iter().enumerate() {
+                let p = at(n);
+                let nearest = (0..clear.len())
+                    .filter(|&m| !clear[m])
+                    .map(|m| (0..3).map(|a| at(m)[a].abs_diff(p[a])).max().unwrap() as u32)
+                    .min()
+                    .map_or(cap, |d| d.min(cap));
+                assert_eq!(r, nearest, "block {p:?} of {dims:?}");
+            }
+        }
+    }
+
+    #[test]
+    fn block_ranges_are_the_ranges_of_each_blocks_voxels() {
+        // Sides that are and are not one more than a multiple of the block, NaNs scattered and
+        // one block of NaNs only.
+        let dims = [19, 9, 26];
+        let mut values: Vec<f32> =
+            (0..dims.iter().product::<usize>()).map(|n| ((n * 7919) % 1009) as f32 - 500.0).collect();
+        for n in (0..values.len()).step_by(13) {
+            values[n] = f32::NAN;
+        }
+        let at = |i: usize, j: usize, k: usize| (k * dims[1] + j) * dims[0] + i;
+        for k in 0..=8 {
+            for j in 0..=8 {
+                for i in 0..=8 {
+                    values[at(i, j, k)] = f32::NAN;
+                }
+            }
+        }
+        let (ranges, block_dims) = block_ranges(&values, dims);
+        assert_eq!(block_dims, [3, 1, 4]);
+        for (b, &got) in ranges.iter().enumerate() {
+            let (bx, by, bz) = (b % 3, b / 3 % 1, b / 3);
+            let mut want = (f32::INFINITY, f32::NEG_INFINITY);
+            for k in bz * BLOCK..=((bz + 1) * BLOCK).min(dims[2] - 1) {
+                for j in by * BLOCK..=((by + 1) * BLOCK).min(dims[1] - 1) {
+                    for i in bx * BLOCK..=((bx + 1) * BLOCK).min(dims[0] - 1) {
+                        let v = values[at(i, j, k)];
+                        if !v.is_nan() {
+                            want = (want.0.min(v), want.1.max(v));
+                        }
+                    }
+                }
+            }
+            assert_eq!(got, want, "block {b}");
+        }
+        assert!(ranges[0].0 > ranges[0].1, "the block of NaNs has no range: {:?}", ranges[0]);
+    }
+
+    #[test]
     fn skipping_clear_blocks_changes_nothing() {
         // A blob in a 40³ volume: most 8³ blocks are clear for a transfer function that is
         // transparent below 0.5.
@@ -836,6 +1054,8 @@ pub(super) mod tests {
         let clear = clear_blocks(&caster, &tf);
         let skipped = clear.iter().filter(|&&c| c).count();
         assert!(skipped > clear.len() / 2 && skipped < clear.len(), "{skipped} of {}", clear.len());
+        let reach = clear_reach(&clear, caster.block_dims);
+        assert!(reach.iter().any(|&r| r > 1), "{reach:?}");
         let mut s = settings(0.37, TERMINATION);
         for classify in [Classify::After, Classify::Before] {
             s.classify = classify;
@@ -844,7 +1064,8 @@ pub(super) mod tests {
                 let len = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
                 let (o, d) = ([-5.0, 5.0 + 0.6 * k as f64, 10.0 + 0.3 * k as f64], d.map(|c| c / len));
                 let all = caster.composite(o, d, &tf, &s);
-                assert_eq!(all, caster.composite_skipping(o, d, &tf, &s, Some(&clear), false), "ray {k}");
+                let skipping = caster.composite_skipping(o, d, &tf, &s, Some(&reach), false);
+                assert_eq!(all, skipping, "ray {k}");
                 let (plain, fast) = (caster.reduce_all(o, d, 0.25), caster.reduce(o, d, Mode::Mip, 0.25));
                 assert_eq!(plain, fast, "ray {k}");
             }

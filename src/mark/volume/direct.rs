@@ -16,6 +16,7 @@ use crate::guide::transfer_legend::TransferLegend;
 use crate::mark::derived::{Derived, DerivedColumn};
 use crate::mark::registry::{ChartContext, KindInfo, Technique};
 use crate::mark::{ChartOutput, MarkError, encode, frame};
+use crate::pipeline::timed;
 use crate::scene::{Item, Raster, Role, Shape, Style};
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
@@ -165,7 +166,8 @@ enum Look {
 pub fn draw(cx: &ChartContext<'_>, options: &VolumeOptions) -> Result<ChartOutput, MarkError> {
     let chart = &cx.chart;
     let volume = cx.volume()?;
-    let caster = RayCaster::new(&volume).map_err(|e| MarkError::at(&["data"], e, "choose a volume with depth"))?;
+    let caster = timed("prepare the ray caster", || RayCaster::new(&volume))
+        .map_err(|e| MarkError::at(&["data"], e, "choose a volume with depth"))?;
     let sampler =
         Sampler::new(&volume).map_err(|e| MarkError::at(&["data"], e, "check the file's orientation header"))?;
     let mode = options.mode.unwrap_or(RenderMode::Composite);
@@ -180,7 +182,7 @@ pub fn draw(cx: &ChartContext<'_>, options: &VolumeOptions) -> Result<ChartOutpu
     }
     let voxel = volume.spacing().into_iter().fold(f64::INFINITY, f64::min);
     let step = step_voxels * voxel;
-    let (lo, hi) = volume.range().0.ok_or_else(|| {
+    let (lo, hi) = timed("value range", || volume.range()).0.ok_or_else(|| {
         MarkError::at(&["data"], "every voxel of the volume is missing (NaN)", "check the file and its data type")
     })?;
     let default_scheme = if mode == RenderMode::Composite { "magma" } else { "greys_r" };
@@ -213,9 +215,15 @@ pub fn draw(cx: &ChartContext<'_>, options: &VolumeOptions) -> Result<ChartOutpu
         _ => (lo, hi).max_span(),
     };
     let counted = match &look {
-        Look::Function { tf, .. } | Look::Labels { tf, .. } => {
-            Some(census(caster.values(), axis, LEGEND_BINS, |v| tf.at(v)[3] >= SHOWN_OPACITY))
-        }
+        Look::Function { tf, .. } | Look::Labels { tf, .. } => Some(timed("legend histogram", || {
+            census(
+                caster.values(),
+                axis,
+                LEGEND_BINS,
+                |v| tf.at(v)[3] >= SHOWN_OPACITY,
+                |a, b| tf.opacity_at_least_throughout((a, b), SHOWN_OPACITY),
+            )
+        })),
         Look::Reduce(_) => None,
     };
     // The legend before the image, so the rays fit the room it leaves; a colour bar's domain is
@@ -283,7 +291,7 @@ pub fn draw(cx: &ChartContext<'_>, options: &VolumeOptions) -> Result<ChartOutpu
             let scaled = gradient_opacity.is_some();
             match options.renderer.unwrap_or(Renderer::RayCasting) {
                 Renderer::RayCasting => {
-                    let pixels = caster.image((side, side), &ray, Job::Composite(tf, &settings));
+                    let pixels = timed("cast rays", || caster.image((side, side), &ray, Job::Composite(tf, &settings)));
                     (composited_rgba(&pixels), composite_note(side, step_voxels, classify, scaled))
                 }
                 Renderer::ShearWarp => {
