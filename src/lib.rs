@@ -75,4 +75,5 @@ pub mod scene;
 pub mod selection;
 pub mod spec;
 pub mod text;
+pub mod timing;
 pub mod visible;

@@ -15,6 +15,7 @@ use crate::output;
 use crate::render;
 use crate::selection::{self, Highlight};
 use crate::spec::{self, Diagnostic, PathSeg, SourceFile, Spec, SpecDoc};
+use crate::timing::timed;
 
 /// A spec whose every check passed: ready to draw.
 #[derive(Debug)]
@@ -475,17 +476,6 @@ fn check_lint_config(spec: &Spec, doc: &SpecDoc) -> Vec<Diagnostic> {
             }
         }
     }
-    out
-}
-
-/// Run `work`; with the environment variable `DATAINK_TIMINGS` set, print how long it took.
-pub(crate) fn timed<T>(label: &str, work: impl FnOnce() -> T) -> T {
-    if std::env::var_os("DATAINK_TIMINGS").is_none() {
-        return work();
-    }
-    let start = std::time::Instant::now();
-    let out = work();
-    eprintln!("timing: {label}: {:.1} ms", start.elapsed().as_secs_f64() * 1e3);
     out
 }
 

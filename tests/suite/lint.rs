@@ -229,6 +229,26 @@ fn cm002_overplotting() {
 }
 
 #[test]
+fn cm002_reports_translucent_points_that_stack_until_the_ink_saturates() {
+    // 3,000 rows on 35 spots (about 86 a spot) at opacity 0.2: 18 marks already reach 98% ink.
+    let stacked: String =
+        std::iter::once("x,y\n".to_owned()).chain((0..3000).map(|i| format!("{},{}\n", i % 5, i % 7))).collect();
+    // The same rows spread out: at most one mark a spot.
+    let spread: String =
+        std::iter::once("x,y\n".to_owned()).chain((0..3000).map(|i| format!("{},{}\n", i % 60, i / 60))).collect();
+    let keys = "title = \"T\"\nopacity = 0.2\nradius = 2\nsize = [400, 300]\nx = \"x\"\ny = \"y\"";
+    let found = lint_findings(&scatter(keys), &[("d.csv", stacked.as_bytes())], "CM002");
+    assert_eq!(found.len(), 1, "{found:?}");
+    assert!(
+        found[0].message.contains("100% of 3000 points") && found[0].message.contains("18 or more"),
+        "{}",
+        found[0].message
+    );
+    assert!(found[0].hint.contains("density"), "{}", found[0].hint);
+    assert!(lint_findings(&scatter(keys), &[("d.csv", spread.as_bytes())], "CM002").is_empty());
+}
+
+#[test]
 fn allow_drops_and_deny_raises_findings() {
     let data = table_csv();
     let untitled = "[data.d]\npath = \"d.csv\"\n\n[[chart]]\nname = \"c\"\nkind = \"scatter\"\ndata = \"d\"\nopacity = 0.4\nx = \"x\"\ny = \"y\"\n";

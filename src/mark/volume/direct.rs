@@ -16,8 +16,8 @@ use crate::guide::transfer_legend::TransferLegend;
 use crate::mark::derived::{Derived, DerivedColumn};
 use crate::mark::registry::{ChartContext, KindInfo, Technique};
 use crate::mark::{ChartOutput, MarkError, encode, frame};
-use crate::pipeline::timed;
 use crate::scene::{Item, Raster, Role, Shape, Style};
+use crate::timing::timed;
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
