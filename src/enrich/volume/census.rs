@@ -150,13 +150,7 @@ mod tests {
         // Constant runs, zeros of both signs, subnormals, negatives, values on bin edges,
         // infinities and NaNs; a `keep` with steps, decided exactly where a bucket lies on one
         // side of them.
-        let mut seed = 0x2545_f491_4f6c_dd1du64;
-        let mut next = move || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            seed
-        };
+        let mut next = crate::enrich::volume::raycast::tests::xorshift(0x2545_f491_4f6c_dd1d);
         let special = [0.0, -0.0, 1e-40, -1e-40, 2.5, -2.5, 7.0, f32::INFINITY, f32::NEG_INFINITY, f32::NAN];
         let mut values: Vec<f32> = vec![0.0; CHUNK + 5];
         values.extend((0..2 * CHUNK).map(|i| match next() % 4 {

@@ -875,6 +875,16 @@ fn trilinear(c: &[f64; 8], t: [f64; 3]) -> f64 {
 pub(super) mod tests {
     use super::*;
 
+    /// Seeded pseudo-random numbers (xorshift64) for the volume tests.
+    pub(in crate::enrich::volume) fn xorshift(mut seed: u64) -> impl FnMut() -> u64 {
+        move || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            seed
+        }
+    }
+
     /// A volume of `f(i, j, k)` at each voxel, x fastest (shared with the shear-warp tests).
     pub(in crate::enrich::volume) fn volume(
         n: [usize; 3],
@@ -980,13 +990,7 @@ pub(super) mod tests {
     #[test]
     fn clear_reach_is_the_chessboard_distance_to_the_nearest_block_that_is_not_clear() {
         // Random grids (sparse and dense non-clear blocks) against a brute-force distance.
-        let mut seed = 0x9e37_79b9_7f4a_7c15u64;
-        let mut next = move || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            seed
-        };
+        let mut next = xorshift(0x9e37_79b9_7f4a_7c15);
         for (dims, one_in) in [([7, 5, 6], 9), ([9, 4, 3], 2), ([6, 6, 6], 60), ([3, 1, 2], 4)] {
             let clear: Vec<bool> = (0..dims.iter().product()).map(|_| next() % one_in != 0).collect();
             let reach = clear_reach(&clear, dims);
