@@ -788,12 +788,14 @@ fn clear_reach(clear: &[bool], dims: [usize; 3]) -> Vec<u32> {
         .flat_map(|dz| (-1..=1).flat_map(move |dy| (-1..=1).map(move |dx| [dx, dy, dz])))
         .filter(|&[dx, dy, dz]| dz < 0 || (dz == 0 && (dy < 0 || (dy == 0 && dx < 0))))
         .collect();
-    let mut pass = |order: &mut dyn Iterator<Item = [isize; 3]>, sign: isize| {
-        for [x, y, z] in order {
-            let at = ((z * ny + y) * nx + x) as usize;
+    let blocks = reach.len();
+    let mut pass = |order: &mut dyn Iterator<Item = usize>, sign: isize| {
+        for at in order {
             if reach[at] == 0 {
                 continue;
             }
+            let n = at as isize;
+            let [x, y, z] = [n % nx, n / nx % ny, n / (nx * ny)];
             let mut best = reach[at];
             for &[dx, dy, dz] in &before {
                 let (u, v, w) = (x + sign * dx, y + sign * dy, z + sign * dz);
@@ -804,10 +806,8 @@ fn clear_reach(clear: &[bool], dims: [usize; 3]) -> Vec<u32> {
             reach[at] = best;
         }
     };
-    let forward = (0..nz).flat_map(|z| (0..ny).flat_map(move |y| (0..nx).map(move |x| [x, y, z])));
-    pass(&mut forward.clone(), 1);
-    let backward: Vec<[isize; 3]> = forward.collect();
-    pass(&mut backward.into_iter().rev(), -1);
+    pass(&mut (0..blocks), 1);
+    pass(&mut (0..blocks).rev(), -1);
     reach
 }
 

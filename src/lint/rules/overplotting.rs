@@ -4,7 +4,7 @@
 //! look like ten thousand, which only a density view shows.
 
 use crate::lint::{Category, Issue, Rule, Severity, Subject};
-use crate::scene::{Role, Shape};
+use crate::scene::{Point, Role, Shape};
 
 /// The rule.
 pub static RULE: Rule = Rule {
@@ -47,25 +47,27 @@ pub fn saturating_stack(alpha: f64) -> usize {
 
 /// The share of marks whose centres lie in a cell holding at least `stack` centres, the cells
 /// squares of area `π·radius²` (a mark's area, so a cell's count is about how many marks cover
-/// its middle), counted on a dense grid over the centres' bounding box.
-pub fn saturated_share(centers: &[(f64, f64)], radius: f64, stack: usize) -> f64 {
-    let finite = || centers.iter().filter(|p| p.0.is_finite() && p.1.is_finite());
-    let n = finite().count();
+/// its middle), counted on a dense grid over the centres' bounding box (non-finite centres are
+/// left out).
+pub fn saturated_share(centers: &[Point], radius: f64, stack: usize) -> f64 {
+    let finite = || centers.iter().filter(|p| p.x.is_finite() && p.y.is_finite());
+    // One pass for the count and the bounding box.
+    let (n, x0, y0, x1, y1) = finite().fold(
+        (0usize, f64::INFINITY, f64::INFINITY, f64::NEG_INFINITY, f64::NEG_INFINITY),
+        |(n, x0, y0, x1, y1), p| (n + 1, x0.min(p.x), y0.min(p.y), x1.max(p.x), y1.max(p.y)),
+    );
     if n < stack || !(radius > 0.0) {
         return 0.0;
     }
     let side = radius * std::f64::consts::PI.sqrt();
-    let (x0, y0) = finite().fold((f64::INFINITY, f64::INFINITY), |(a, b), p| (a.min(p.0), b.min(p.1)));
-    let (x1, y1) = finite().fold((f64::NEG_INFINITY, f64::NEG_INFINITY), |(a, b), p| (a.max(p.0), b.max(p.1)));
     // Truncation floors what is not negative; the grid is at most a few million cells.
     let (nx, ny) = (((x1 - x0) / side) as usize + 1, ((y1 - y0) / side) as usize + 1);
     if nx.saturating_mul(ny) > 1 << 24 {
         return 0.0;
     }
     let mut counts = vec![0u32; nx * ny];
-    let cell = |p: &(f64, f64)| ((p.1 - y0) / side) as usize * nx + ((p.0 - x0) / side) as usize;
     for p in finite() {
-        counts[cell(p)] += 1;
+        counts[((p.y - y0) / side) as usize * nx + ((p.x - x0) / side) as usize] += 1;
     }
     let stacked = counts.iter().filter(|&&c| c as usize >= stack).map(|&c| c as usize).sum::<usize>();
     stacked as f64 / n as f64
@@ -109,16 +111,17 @@ fn check(s: &Subject<'_>) -> Vec<Issue> {
         if item.role != Role::DataMark || batch.centers.len() < 2 {
             return;
         }
-        let centers: Vec<(f64, f64)> = batch.centers.iter().map(|p| (p.x, p.y)).collect();
         let radius = batch.radius.at(0).unwrap_or(0.0);
         if a <= SEE_THROUGH_ALPHA + 1.0 / 255.0 {
+            // Read in place: a faint batch may hold a hundred million points.
             let k = saturating_stack(a);
-            all += centers.len();
-            saturated += saturated_share(&centers, radius, k) * centers.len() as f64;
+            all += batch.centers.len();
+            saturated += saturated_share(&batch.centers, radius, k) * batch.centers.len() as f64;
             faint = faint.min(a);
             stack = stack.max(k);
             return;
         }
+        let centers: Vec<(f64, f64)> = batch.centers.iter().map(|p| (p.x, p.y)).collect();
         let share = overlap_share(&centers, radius);
         marks += centers.len();
         overlapping += share * centers.len() as f64;
@@ -154,6 +157,7 @@ fn check(s: &Subject<'_>) -> Vec<Issue> {
 #[cfg(test)]
 mod tests {
     use super::{SATURATED, overlap_share, saturated_share, saturating_stack};
+    use crate::scene::Point;
 
     #[test]
     fn a_saturating_stack_is_the_fewest_marks_reaching_the_level() {
@@ -172,14 +176,14 @@ mod tests {
     fn saturated_share_counts_marks_in_cells_with_a_full_stack() {
         // Cells of side 2·√π ≈ 3.54 for radius 2: 30 marks on one spot, 10 on another, 60
         // spread 10 apart. With stacks of 18, only the 30 count.
-        let mut c = vec![(0.5, 0.5); 30];
-        c.extend(vec![(100.2, 50.3); 10]);
-        c.extend((0..60).map(|i| (200.0 + 10.0 * (i % 10) as f64, 10.0 * (i / 10) as f64)));
+        let mut c = vec![Point::new(0.5, 0.5); 30];
+        c.extend(vec![Point::new(100.2, 50.3); 10]);
+        c.extend((0..60).map(|i| Point::new(200.0 + 10.0 * (i % 10) as f64, 10.0 * (i / 10) as f64)));
         assert!((saturated_share(&c, 2.0, 18) - 0.3).abs() < 1e-12);
         assert!((saturated_share(&c, 2.0, 10) - 0.4).abs() < 1e-12);
         assert_eq!(saturated_share(&c, 2.0, 31), 0.0);
         // Non-finite centres are left out.
-        c.push((f64::NAN, 1.0));
+        c.push(Point::new(f64::NAN, 1.0));
         assert!((saturated_share(&c, 2.0, 18) - 0.3).abs() < 1e-12);
     }
 
