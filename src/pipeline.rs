@@ -1,7 +1,7 @@
 //! The whole pipeline for one spec file: check the spec, load its data, check the columns, draw
 //! every chart (in parallel) and write the requested outputs.
 
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
 
 use rayon::prelude::*;
@@ -40,6 +40,10 @@ pub struct Loaded {
     pub defaults: BTreeMap<String, Vec<spec::defaults::Taken>>,
     /// Warnings found while loading (printed, not fatal).
     pub warnings: Vec<Diagnostic>,
+    /// The sources whose rows stay in their lazy plans, by name: every chart of theirs only
+    /// counts rows (density views), so the engine streams them through the counting and they are
+    /// never held. Their tables have the columns and no rows.
+    pub plans: BTreeMap<String, data::density::plan::PlanRows>,
 }
 
 /// The defaults taken by chart index, keyed by the charts' names instead.
@@ -107,10 +111,36 @@ pub fn load(spec_path: &Path, policy: PathPolicy) -> Result<Loaded, Failed> {
     let conventional = conventional_columns(&json);
     let mut tables = BTreeMap::new();
     let build = |missing| data::transform::build_plans(&sources, &doc, &spec_dir, policy, false, missing);
+    let build_every = |missing| data::transform::build_plans(&sources, &doc, &spec_dir, policy, true, missing);
     let plans = timed("plan data", || build(MissingScan::Fast));
     let mut listed = None;
     diagnostics.extend(plans.errors.iter().map(|e| data::transform::to_diagnostic(e, &doc, &source.text)));
+    let counted = counted_only(&json);
+    let mut every_plan = None;
+    let mut kept_in_plans = BTreeMap::new();
     for (name, source_spec) in &sources {
+        if counted.contains(name) && !plans.failed.contains(name) {
+            let every = every_plan.get_or_insert_with(|| build_every(MissingScan::Listed));
+            // Every source has a plan once `all` is asked for; one that cannot be planned is read
+            // as usual, which reports why.
+            let every = &*every;
+            if let Some(frame) = every.frames.get(name) {
+                let parquet = plain_parquet(source_spec, &spec_dir);
+                match timed(&format!("plan rows \"{name}\""), || keep_in_plan(frame, name, parquet, &json)) {
+                    Ok(Some((table, plan))) => {
+                        tables.insert(name.clone(), table);
+                        kept_in_plans.insert(name.clone(), plan);
+                        continue;
+                    }
+                    Ok(None) => {}
+                    Err(message) => {
+                        let at = doc.span_of(&[PathSeg::Key("data".into()), PathSeg::Key(name.clone())]);
+                        diagnostics.push(Diagnostic::error(message).at_opt(at));
+                        continue;
+                    }
+                }
+            }
+        }
         let wanted: Option<Vec<String>> = needed.get(name).map(|set| set.iter().cloned().collect());
         let maybe: Vec<String> = conventional.get(name).map(|set| set.iter().cloned().collect()).unwrap_or_default();
         if plans.failed.contains(name) {
@@ -190,10 +220,78 @@ pub fn load(spec_path: &Path, policy: PathPolicy) -> Result<Loaded, Failed> {
     match typed {
         Some(mut spec) if !has_errors => {
             mark::categorical::share_domains(&mut spec.chart, &tables);
-            Ok(Loaded { source, spec, doc, tables, volumes, highlights, defaults, warnings: diagnostics })
+            Ok(Loaded {
+                source,
+                spec,
+                doc,
+                tables,
+                volumes,
+                highlights,
+                defaults,
+                warnings: diagnostics,
+                plans: kept_in_plans,
+            })
         }
         _ => Err(Failed { source, diagnostics }),
     }
+}
+
+/// The sources whose rows no chart needs one by one: each of their charts is a scatter that may
+/// be drawn as a density (`mode` "density" or "auto", with nothing drawn per row: no colour,
+/// size, trend, selection, tooltip or facet), and no selection reads them.
+fn counted_only(json: &Value) -> BTreeSet<String> {
+    let selected: BTreeSet<&str> = json
+        .get("selection")
+        .and_then(Value::as_object)
+        .into_iter()
+        .flat_map(|m| m.values().filter_map(|s| s.get("data").and_then(Value::as_str)))
+        .collect();
+    let mut verdicts: BTreeMap<String, bool> = BTreeMap::new();
+    for chart in json.get("chart").and_then(Value::as_array).into_iter().flatten() {
+        let Some(data) = chart.get("data").and_then(Value::as_str) else { continue };
+        let counts = chart.get("kind").and_then(Value::as_str) == Some("scatter")
+            && matches!(chart.get("mode").and_then(Value::as_str), None | Some("density" | "auto"))
+            && ["color", "point_size", "trend", "highlight", "tooltip", "facet"]
+                .iter()
+                .all(|k| chart.get(*k).is_none());
+        *verdicts.entry(data.to_string()).or_insert(true) &= counts;
+    }
+    verdicts.into_iter().filter(|(name, counts)| *counts && !selected.contains(name.as_str())).map(|(n, _)| n).collect()
+}
+
+/// Keep the rows of source `name` in its plan `frame` when every chart of it will draw them as a
+/// density at the plan's row count: the source's table (columns, no rows) and the plan; `None`
+/// when some chart would draw points (few rows under `mode = "auto"`).
+fn keep_in_plan(
+    frame: &polars::prelude::LazyFrame,
+    name: &str,
+    parquet: Option<PathBuf>,
+    json: &Value,
+) -> Result<Option<(Table, data::density::plan::PlanRows)>, String> {
+    let mut plan = data::density::plan::PlanRows::new(frame.clone(), name)?;
+    if let Some(path) = parquet {
+        plan = plan.scanning_only(path);
+    }
+    let rows = plan.rows();
+    let charts = json.get("chart").and_then(Value::as_array).into_iter().flatten();
+    let all_density = charts
+        .filter(|c| c.get("data").and_then(Value::as_str) == Some(name))
+        .all(|c| c.get("mode").and_then(Value::as_str) == Some("density") || rows > mark::density::AUTO_DENSITY_ROWS);
+    if !all_density {
+        return Ok(None);
+    }
+    let columns = plan.empty_frame()?;
+    let table = data::load::frame_to_table(&columns, &format!("data \"{name}\""))
+        .map_err(|e| format!("data \"{name}\": {e}; {}", e.hint()))?;
+    Ok(Some((table, plan)))
+}
+
+/// The Parquet file a source reads as it is (no `from`, no transform steps), if it is one.
+fn plain_parquet(source: &spec::DataSource, spec_dir: &Path) -> Option<PathBuf> {
+    let path = spec_dir.join(source.path.as_deref()?);
+    let format = source.format.or_else(|| data::load::infer_format(&path));
+    let plain = source.from.is_none() && source.transform.as_ref().is_none_or(|t| t.is_empty());
+    (plain && format == Some(spec::DataFormat::Parquet)).then_some(path)
 }
 
 /// Read the sources that are volumes, noting their warnings and errors in `diagnostics`; the
@@ -848,7 +946,8 @@ pub fn draw_chart(loaded: &Loaded, index: usize, chart: &spec::Chart) -> Result<
         &mark::ChartContext::new(chart, index, table)
             .with_highlight(highlight)
             .with_nodes(node_table(loaded, chart))
-            .with_volume(volume),
+            .with_volume(volume)
+            .with_plan(loaded.plans.get(&chart.data)),
     )?;
     attach_tooltips(index, chart, table, &mut output);
     Ok(output)

@@ -406,11 +406,15 @@ pub fn run() -> ExitCode {
             let waiting = if quiet { None } else { Some(say_waiting as fn(&std::path::Path)) };
             let options = RenderOptions { out_dir: out, formats, charts: chart, scale, waiting };
             let bar = progress_bar(loaded.spec.chart.len(), quiet);
+            let scans = (!loaded.plans.is_empty()).then(|| ScanBar::start(quiet));
             let result = pipeline::render_all(&loaded, &options, &|name| {
                 bar.set_message(name.to_string());
                 bar.inc(1);
             });
             bar.finish_and_clear();
+            if let Some(scans) = scans {
+                scans.finish();
+            }
             let (rendered, diagnostics) = match result {
                 Ok(rendered) => (rendered, Vec::new()),
                 Err(failure) => (failure.rendered, failure.diagnostics),
@@ -441,6 +445,40 @@ pub fn run() -> ExitCode {
 /// Tell the user that another run is writing into `dir` and this one waits for it.
 fn say_waiting(dir: &std::path::Path) {
     errln!("waiting for another dataink run writing into `{}` to finish", dir.display());
+}
+
+/// A bar of the rows the density charts' scans have read, while they stream a source's rows
+/// through its plan (on an interactive terminal only, like [`progress_bar`]).
+struct ScanBar {
+    stop: std::sync::Arc<std::sync::atomic::AtomicBool>,
+    watcher: std::thread::JoinHandle<()>,
+}
+
+impl ScanBar {
+    fn start(quiet: bool) -> ScanBar {
+        use std::sync::atomic::Ordering;
+        let stop = std::sync::Arc::new(std::sync::atomic::AtomicBool::new(false));
+        let bar = progress_bar(usize::MAX, quiet);
+        if let Ok(style) = indicatif::ProgressStyle::with_template("{bar:30} {human_pos}/{human_len} rows scanned") {
+            bar.set_style(style);
+        }
+        let stopping = std::sync::Arc::clone(&stop);
+        let watcher = std::thread::spawn(move || {
+            while !stopping.load(Ordering::Relaxed) {
+                let (scanned, total) = dataink::data::density::plan::PROGRESS.get();
+                bar.set_length(total.max(1));
+                bar.set_position(scanned.min(total));
+                std::thread::sleep(std::time::Duration::from_millis(100));
+            }
+            bar.finish_and_clear();
+        });
+        ScanBar { stop, watcher }
+    }
+
+    fn finish(self) {
+        self.stop.store(true, std::sync::atomic::Ordering::Relaxed);
+        let _ = self.watcher.join();
+    }
 }
 
 /// A progress bar on an interactive terminal; hidden otherwise (CI logs stay quiet).

@@ -13,6 +13,7 @@ pub mod compressed;
 pub mod contained;
 pub mod csv_tail;
 pub mod date_guess;
+pub mod density;
 pub mod frame;
 pub mod geojson;
 pub mod ipc;

@@ -102,6 +102,19 @@ pub struct Frame {
     /// What the reader should know about the frame, worded for the chart's warnings (category
     /// labels left out for lack of room).
     pub notes: Vec<String>,
+    /// Where the legend column was drawn: its top-left corner and the height it had.
+    pub legend_column: (Point, f64),
+}
+
+impl Frame {
+    /// Draw `legends` in place of the ones drawn in the legend column (for a kind whose legend
+    /// depends on the plot area, e.g. a density's counts; they must not be wider than those the
+    /// frame was laid out with).
+    pub fn redraw_legends(&mut self, legends: &[Legend], theme: &Theme) {
+        self.over.retain(|item| item.role != Role::Legend);
+        let (at, room) = self.legend_column;
+        self.over.extend(legend::draw_stack(legends, at, theme, room));
+    }
 }
 
 /// Notes drawn with the data (a chart's `annotate`), resolved to pixels: shapes under and over
@@ -344,7 +357,16 @@ fn fixed_frame(spec: &FrameSpec, fixed: FixedPlot) -> Result<Frame, LayoutError>
         notes.extend(left_out_note(&labels, side, scale, theme));
         over.extend(axis::draw_labels(&labels, side, plot, None, theme));
     }
-    Ok(Frame { plot, x, y, under, over, overlay: Overlay::default(), notes })
+    Ok(Frame {
+        plot,
+        x,
+        y,
+        under,
+        over,
+        overlay: Overlay::default(),
+        notes,
+        legend_column: (Point::new(0.0, 0.0), 0.0),
+    })
 }
 
 /// Lay out a cartesian chart.
@@ -468,6 +490,7 @@ pub fn cartesian(spec: &FrameSpec) -> Result<Frame, LayoutError> {
             },
         ));
     }
-    over.extend(legend::draw_stack(&spec.legends, Point::new(spec.width - m - legend_width, top), theme, legend_room));
-    Ok(Frame { plot, x, y, under, over, overlay: Overlay::default(), notes })
+    let legend_at = Point::new(spec.width - m - legend_width, top);
+    over.extend(legend::draw_stack(&spec.legends, legend_at, theme, legend_room));
+    Ok(Frame { plot, x, y, under, over, overlay: Overlay::default(), notes, legend_column: (legend_at, legend_room) })
 }

@@ -5,6 +5,7 @@ use std::sync::Arc;
 
 use super::Theme;
 use super::color::ContinuousMap;
+use super::count_scale::{CountColours, CountScale};
 use super::scale::{LinearScale, Scale};
 use super::transfer_legend::TransferLegend;
 use crate::scene::{Anchor, Baseline, Color, Item, PathCmd, Point, Raster, Rect, Role, Shape, Style, Text};
@@ -72,6 +73,16 @@ pub enum Legend {
         /// The ramp, curve and histogram.
         function: TransferLegend,
     },
+    /// The counts of a density view: the ramp as its bins are shaded, ticks at real counts
+    /// wherever the shading puts them.
+    Counts {
+        /// Legend title.
+        title: String,
+        /// How a bin is coloured from its ramp position.
+        colours: CountColours,
+        /// Where each count falls on the ramp.
+        scale: CountScale,
+    },
     /// Reference circles for a size (area) encoding.
     Size {
         /// Legend title.
@@ -116,6 +127,14 @@ impl Legend {
                     .max(measure(&shown_title(title, theme), theme.label_size).width);
                 (w, h + theme.font_size * 0.5)
             }
+            Legend::Counts { title, scale, .. } => {
+                let length = color_bar_length(available_height - title_h);
+                let label_w =
+                    scale.ticks(length, theme).iter().map(|t| measure(&t.1, theme.font_size).width).fold(0.0, f64::max);
+                let w = (COLOR_BAR_WIDTH + theme.tick_length + 3.0 + label_w)
+                    .max(measure(&shown_title(title, theme), theme.label_size).width);
+                (w, length + title_h + theme.font_size * 0.5)
+            }
             Legend::TransferFunction { title, function } => {
                 let length = color_bar_length(available_height - title_h - theme.font_size * 2.0);
                 let (w, h) = function.extent(theme, length);
@@ -144,6 +163,7 @@ impl Legend {
             | Legend::Steps { title, .. }
             | Legend::Notes { title, .. }
             | Legend::TransferFunction { title, .. }
+            | Legend::Counts { title, .. }
             | Legend::Size { title, .. } => title,
         }
     }
@@ -229,6 +249,17 @@ impl Legend {
             Legend::TransferFunction { function, .. } => {
                 let length = color_bar_length(available_height - title_h - theme.font_size * 2.0);
                 items.extend(function.draw(Point::new(at.x, top), theme, length));
+            }
+            Legend::Counts { colours, scale, .. } => {
+                let length = color_bar_length(available_height - title_h);
+                let bar = Rect::new(at.x, top + theme.font_size * 0.5, COLOR_BAR_WIDTH, length);
+                items.push(Item::new(Role::Legend, Shape::Image(count_ramp(colours, bar)), Style::default()));
+                items.push(Item::new(Role::Legend, Shape::Rect(bar), Style::stroke(theme.axis, 0.5)));
+                let mut ticks = Vec::new();
+                for (t, label) in scale.ticks(length, theme) {
+                    bar_tick(&mut ticks, &mut items, bar, bar.bottom() - t * length, &label, theme);
+                }
+                items.push(Item::new(Role::Legend, Shape::Path(ticks), Style::stroke(theme.axis, 1.0)));
             }
             Legend::Notes { lines, .. } => {
                 for (i, line) in lines.iter().enumerate() {
@@ -431,6 +462,18 @@ fn entry_label(at: Point, label: &str, theme: &Theme) -> Item {
 }
 
 /// A 1-pixel-wide raster of the colour map, top = high values.
+/// The ramp of a density legend, top (the most rows) to bottom, as its bins are coloured.
+fn count_ramp(colours: &CountColours, dest: Rect) -> Raster {
+    const STEPS: u32 = 256;
+    let rgba = (0..STEPS)
+        .flat_map(|i| {
+            let c = colours.at(1.0 - i as f64 / (STEPS - 1) as f64);
+            [c.r, c.g, c.b, c.a]
+        })
+        .collect();
+    Raster { dest, width: 1, height: STEPS, rgba: Arc::new(rgba), smooth: true }
+}
+
 fn ramp(map: &ContinuousMap, dest: Rect) -> Raster {
     const STEPS: u32 = 256;
     let mut rgba = Vec::with_capacity(STEPS as usize * 4);

@@ -5,6 +5,7 @@ pub mod axis;
 pub mod category_labels;
 pub mod color;
 pub mod colour_science;
+pub mod count_scale;
 pub mod format;
 pub mod layout;
 pub mod legend;

@@ -18,8 +18,9 @@ pub mod vector;
 pub mod volume;
 
 pub use shared::{
-    annotate, axis3d, bands, categorical, derived, encode, frame, geojson, geometry, gridded, grouped, highlight,
-    level_labels, network_input, node_link, overplot, panel, raster, size, spread, tooltip, tree_input, trend, warning,
+    annotate, axis3d, bands, categorical, density, derived, encode, frame, geojson, geometry, gridded, grouped,
+    highlight, level_labels, network_input, node_link, overplot, panel, raster, size, spread, tooltip, tree_input,
+    trend, warning,
 };
 
 use std::fmt;

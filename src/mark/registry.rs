@@ -12,6 +12,7 @@ use super::{ChartOutput, MarkError};
 use std::borrow::Cow;
 
 use crate::data::Table;
+use crate::data::density::plan::PlanRows;
 use crate::data::volume::Volume;
 use crate::enrich::volume::SpanSpace;
 use crate::layout::hyperbolic::Mobius;
@@ -192,6 +193,9 @@ pub struct ChartContext<'a> {
     /// Surfaces kept from the chart's earlier draws, by a caller that draws it again and again
     /// (the explorer turning the camera).
     pub surfaces: Option<&'a SurfaceCache>,
+    /// The rows of its `data` left in the source's lazy plan, for kinds that only count them
+    /// (its `table` then has the columns and no rows).
+    pub plan: Option<&'a PlanRows>,
 }
 
 impl<'a> ChartContext<'a> {
@@ -207,7 +211,14 @@ impl<'a> ChartContext<'a> {
             volume: None,
             span_space: None,
             surfaces: None,
+            plan: None,
         }
+    }
+
+    /// The same chart reading its rows from `plan` instead of its table.
+    pub fn with_plan(mut self, plan: Option<&'a PlanRows>) -> ChartContext<'a> {
+        self.plan = plan;
+        self
     }
 
     /// The same chart drawing the rows of `highlight` in full colour.

@@ -219,7 +219,7 @@ y = "petal_width"
         assert_eq!(
             diags[0].hint.as_deref(),
             Some(
-                "keys allowed here: name, data, kind, x, y, annotate, aspect, caption, color, facet, font_size, highlight, lint, mark_color, opacity, point_size, radius, size, title, tooltip, trend"
+                "keys allowed here: name, data, kind, x, y, annotate, aspect, bin, caption, color, facet, font_size, highlight, lint, mark_color, min_alpha, mode, opacity, point_size, radius, shading, size, spread, title, tooltip, trend"
             )
         );
         assert_eq!(
@@ -238,7 +238,7 @@ y = "petal_width"
    |
 12 | colour = "species"
    | ^^^^^^ did you mean `color`?
-   = hint: keys allowed here: name, data, kind, x, y, annotate, aspect, caption, color, facet, font_size, highlight, lint, mark_color, opacity, point_size, radius, size, title, tooltip, trend
+   = hint: keys allowed here: name, data, kind, x, y, annotate, aspect, bin, caption, color, facet, font_size, highlight, lint, mark_color, min_alpha, mode, opacity, point_size, radius, shading, size, spread, title, tooltip, trend
 
 error: `size` must be an array of 2 numbers, found a string
   --> spec.toml:13:8
@@ -480,6 +480,11 @@ opacity = 0.7
 tooltip = ["species", "petal_length"]
 facet = { row = "sex", column = "island", resolve = { y = "independent" }, sort = "data" }
 trend = { method = "loess", span = 0.5, groups = true, equation = false }
+mode = "points"
+shading = "log"
+bin = 3
+min_alpha = 0.5
+spread = 1
 annotate = [{ y = 2.5, label = "target", color = "firebrick", dash = true }, { x = [5, 6.5], opacity = 0.2 }, { text = "note", at = [5, 1], anchor = "start" }, { arrow = [[4, 1], [5, 2]] }]
 
 [[chart]]
@@ -665,6 +670,11 @@ point_size = "d"
                             groups: Some(true),
                             equation: Some(false),
                         })),
+                        mode: Some(crate::mark::density::PointMode::Points),
+                        shading: Some(crate::mark::density::ShadingOption::Log),
+                        bin: Some(3.0),
+                        min_alpha: Some(0.5),
+                        spread: Some(1),
                     }),
                 },
                 Chart {
@@ -763,6 +773,11 @@ point_size = "d"
                         mark_color: None,
                         opacity: None,
                         trend: None,
+                        mode: None,
+                        shading: None,
+                        bin: None,
+                        min_alpha: None,
+                        spread: None,
                     }),
                 },
             ],

@@ -17,6 +17,7 @@ mod colours;
 mod common;
 mod datasets;
 mod defaults;
+mod density;
 mod explore;
 mod facet;
 mod flow;

@@ -127,7 +127,7 @@ fn check(s: &Subject<'_>) -> Vec<Issue> {
         overlapping += share * centers.len() as f64;
         alpha = alpha.max(a);
     });
-    let density = "use a density view: splom `mode = \"density\"`, or `bin` both columns in the source's `transform` and draw a `heatmap` of the counts";
+    let density = "use a density view: `mode = \"density\"` (scatter and splom) counts the rows in bins and shades each by its count";
     if marks >= MIN_MARKS && overlapping / (marks as f64) > MAX_SHARE {
         return vec![Issue::new(
             "points",

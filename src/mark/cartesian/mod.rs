@@ -9,4 +9,5 @@ pub mod histogram;
 pub mod interp1d;
 pub mod line;
 pub mod scatter;
+pub mod scatter_density;
 pub mod violin;

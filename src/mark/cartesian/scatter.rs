@@ -1,7 +1,9 @@
 //! `scatter`: points at (x, y), coloured and sized by columns, drawn as one compact point batch.
 
+use super::scatter_density::{self, Rows};
 use crate::data::Table;
 use crate::guide::legend::{Legend, Symbol};
+use crate::mark::density::{PointMode, ShadingOption};
 use crate::mark::derived::{Derived, DerivedColumn};
 use crate::mark::encode::{self};
 use crate::mark::geometry::{Geometry, Plot, PlotScale};
@@ -49,6 +51,29 @@ pub struct ScatterOptions {
     #[serde(default)]
     #[schemars(example = &"linear")]
     pub trend: Option<Trend>,
+    /// `points` (one marker per row), `density` (rows counted in bins of a few pixels, each bin
+    /// shaded by its count) or `auto` (default: density above 200,000 rows).
+    #[serde(default)]
+    #[schemars(example = &"density")]
+    pub mode: Option<PointMode>,
+    /// How density bins are shaded by their counts: `eq_hist` (default; histogram-equalized),
+    /// `log` or `linear`. The legend's ticks are counts under any shading.
+    #[serde(default)]
+    pub shading: Option<ShadingOption>,
+    /// Side of a density bin in pixels, 1 to 50 (default 2).
+    #[serde(default)]
+    #[schemars(range(min = 1, max = 50))]
+    pub bin: Option<f64>,
+    /// Opacity of the density bins with the fewest rows, 0.05 to 1 (default 0.4), so that a
+    /// single row stays visible.
+    #[serde(default)]
+    #[schemars(range(min = 0.05, max = 1))]
+    pub min_alpha: Option<f64>,
+    /// Grow each isolated density bin (no non-empty neighbour) by this many bins on each side,
+    /// 0 to 5 (default 0), so lone rows are not lost as single dots.
+    #[serde(default)]
+    #[schemars(range(min = 0, max = 5))]
+    pub spread: Option<u32>,
 }
 
 /// Draw a scatter chart.
@@ -225,6 +250,22 @@ impl Technique for ScatterOptions {
     }
 
     fn draw(&self, cx: &ChartContext<'_>) -> Result<ChartOutput, MarkError> {
+        if let Some(plan) = cx.plan {
+            return scatter_density::draw(&cx.chart, self, Rows::Plan(plan), cx.highlight);
+        }
+        let mode = self.mode.unwrap_or_default();
+        if cx.chart.panel.is_some() {
+            // Each panel would shade its own counts under one legend: not honest yet.
+            if mode == PointMode::Density {
+                return Err(MarkError::at(
+                    &["mode"],
+                    "a faceted scatter cannot be drawn in density mode yet",
+                    "draw one chart per panel (a `filter` step each), or mode = \"points\"",
+                ));
+            }
+        } else if mode.is_density(cx.table.rows as u64) {
+            return scatter_density::draw(&cx.chart, self, Rows::Table(cx.table), cx.highlight);
+        }
         draw(&cx.chart, self, cx.table, cx.highlight)
     }
 

@@ -129,6 +129,7 @@ impl<'a> Parts<'a> {
             volume: None,
             span_space: None,
             surfaces: None,
+            plan: None,
         };
         match technique(&cx.chart.kind).draw(&cx) {
             Ok(output) => Ok((Some(output), handle.seen())),

@@ -8,10 +8,11 @@ use crate::data::{Column, Table};
 use crate::enrich::distribution::{bin_counts, freedman_diaconis_bins, kde, silverman_bandwidth};
 use crate::guide::Theme;
 use crate::guide::axis::{self, LabelRoom, Side};
-use crate::guide::color::{self, ContinuousMap};
+use crate::guide::count_scale::CountScale;
 use crate::guide::layout::{Domain, LayoutError, MIN_PLOT_SIDE, PositionAxis, build_scale};
 use crate::guide::legend::{Legend, Symbol, truncate_to_width};
 use crate::guide::scale::Scale;
+use crate::mark::density::{DensityLook, PointMode, ShadingOption};
 use crate::mark::derived::{Derived, DerivedColumn};
 use crate::mark::encode::{self, ColorEncoding};
 use crate::mark::geometry::{Geometry, Plot, PlotScale, RedrawnCells};
@@ -49,7 +50,11 @@ pub struct SplomOptions {
     /// `points` (one marker per row), `density` (counts per small bin, for large tables) or
     /// `auto` (default: density above 200,000 rows).
     #[serde(default)]
-    pub mode: Option<SplomMode>,
+    pub mode: Option<PointMode>,
+    /// How density bins are shaded by their counts: `eq_hist` (default), `log` or `linear`; the
+    /// legend's ticks are counts under any shading.
+    #[serde(default)]
+    pub shading: Option<ShadingOption>,
     /// Marker radius in pixels, at most 100 (default: from the row count).
     #[serde(default)]
     #[schemars(extend("exclusiveMinimum" = 0, "maximum" = 100))]
@@ -87,22 +92,8 @@ pub enum Diagonal {
     Label,
 }
 
-/// How a scatter-plot matrix draws its rows.
-#[derive(Clone, Copy, Debug, Deserialize, Serialize, JsonSchema, PartialEq, Eq)]
-#[serde(rename_all = "lowercase")]
-pub enum SplomMode {
-    /// One marker per row.
-    Points,
-    /// Rows counted in small bins, drawn as a shaded raster.
-    Density,
-    /// Points up to 200,000 rows, density above.
-    Auto,
-}
-
 /// Canvas size when the spec gives none.
 pub(super) const DEFAULT_SIZE: [f64; 2] = [760.0, 720.0];
-/// Above this many rows, `mode = "auto"` counts rows in bins instead of drawing markers.
-const AUTO_DENSITY_ROWS: usize = 200_000;
 /// Side of a density bin in pixels.
 const DENSITY_BIN_PX: f64 = 3.0;
 
@@ -127,11 +118,7 @@ pub fn draw(
     let fields: Vec<(&str, &Column)> = columns.iter().map(|(o, c)| (o.field.as_str(), *c)).collect();
     let (rows, mut warnings) = encode::drawn_rows(chart, table, fields, options.color.as_ref())?;
     let n = rows.len();
-    let density = match options.mode.unwrap_or(SplomMode::Auto) {
-        SplomMode::Points => false,
-        SplomMode::Density => true,
-        SplomMode::Auto => n > AUTO_DENSITY_ROWS,
-    };
+    let density = options.mode.unwrap_or_default().is_density(n as u64);
     if density && options.color.is_some() {
         warnings.push(Warning::from(format!("`color` is not drawn in density mode (bins count rows of every colour)")));
     }
@@ -146,7 +133,7 @@ pub fn draw(
     )?;
     let radius = options.radius.unwrap_or_else(|| (point_radius(n) * 0.75).max(1.0));
     let opacity = options.opacity.unwrap_or_else(|| point_opacity(n));
-    let density_map = color::continuous("blues").unwrap_or_else(|| color::continuous("viridis").expect("viridis"));
+    let look = DensityLook::new(options.shading, None, None, None);
 
     let mut axes = Vec::with_capacity(columns.len());
     for (opts, col) in &columns {
@@ -166,11 +153,9 @@ pub fn draw(
     }
     let mut legends: Vec<Legend> = color_legend.into_iter().collect();
     if density {
-        // Bins hold at most every row; the real maximum replaces this bound once counted, so the
-        // layout reserves room for the widest labels the colour bar can have.
-        let bound =
-            Legend::ColorBar { title: "rows per bin".into(), map: density_map.clone(), domain: (0.0, n as f64) };
-        legends.insert(0, bound);
+        // Bins hold at most every row; the real counts replace this bound once counted, so the
+        // layout reserves room for the widest labels the legend can have.
+        legends.insert(0, look.provisional_legend(n as u64));
     }
     legends.extend(highlight.map(|h| highlight::legend(h, &rows, Symbol::Circle)));
     let mut canvas = frame::PanelCanvas::new(chart, legends);
@@ -203,16 +188,17 @@ pub fn draw(
             ((i, j), marks)
         })
         .collect();
-    // Density rasters share one colour scale.
-    let density_max = cells
+    // Density rasters share one shading, of every cell's counts.
+    let shown_counts: Vec<u64> = cells
         .values()
-        .map(|c| match c {
-            CellMarks::Density(counts) => counts.max(),
-            CellMarks::Points(_) => 0.0,
+        .flat_map(|c| match c {
+            CellMarks::Density(counts) => counts.shown().iter().map(|&c| u64::from(c)).collect(),
+            CellMarks::Points(_) => Vec::new(),
         })
-        .fold(0.0, f64::max);
-    if let Some(Legend::ColorBar { domain, .. }) = canvas.legends.first_mut().filter(|_| density) {
-        *domain = (0.0, density_max.max(1.0));
+        .collect();
+    let scale = CountScale::new(&shown_counts, look.shading);
+    if density && let Some(first) = canvas.legends.first_mut() {
+        *first = look.legend(scale.clone());
     }
 
     let mut items = vec![canvas.background()];
@@ -250,7 +236,7 @@ pub fn draw(
                 ));
             }
             match cells.remove(&(i, j)) {
-                Some(CellMarks::Density(counts)) => items.push(counts.raster(&density_map, density_max)),
+                Some(CellMarks::Density(counts)) => items.push(counts.raster(&look, &scale)),
                 Some(CellMarks::Points(marks)) => items.push(
                     Item::group(Role::DataMark, marks, Some(cell))
                         .labelled(format!("{} × {}", columns[j].0.field, columns[i].0.field)),
@@ -685,20 +671,19 @@ struct DensityCounts {
 }
 
 impl DensityCounts {
-    /// The largest count of any bin (of the selected rows when a selection is drawn).
-    fn max(&self) -> f64 {
-        let counts = self.selected.as_ref().unwrap_or(&self.all);
-        counts.iter().copied().max().unwrap_or(0) as f64
+    /// The counts drawn in colour: of the selected rows when a selection is drawn.
+    fn shown(&self) -> &[u32] {
+        self.selected.as_ref().unwrap_or(&self.all)
     }
 
-    /// The cell as a raster: counts through `map` (square-root scaled, so sparse bins stay
-    /// visible); bins with only unselected rows in grey.
-    fn raster(&self, map: &ContinuousMap, max: f64) -> Item {
+    /// The cell as a raster: counts shaded by `scale` as `look` colours them; bins with only
+    /// unselected rows in grey.
+    fn raster(&self, look: &DensityLook, scale: &CountScale) -> Item {
         let mut rgba = vec![0u8; self.nx * self.ny * 4];
-        let counts = self.selected.as_ref().unwrap_or(&self.all);
+        let counts = self.shown();
         for k in 0..self.nx * self.ny {
             let color = if counts[k] > 0 {
-                map.at(0.15 + 0.85 * (counts[k] as f64 / max.max(1.0)).sqrt())
+                look.colours.at(scale.position(f64::from(counts[k])))
             } else if self.all[k] > 0 {
                 highlight::CONTEXT
             } else {

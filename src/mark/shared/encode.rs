@@ -200,7 +200,6 @@ pub fn position_axis(
     column: &Column,
     rows: &[u32],
 ) -> Result<PositionAxis, MarkError> {
-    let title = title_with_unit(options.title.as_deref().unwrap_or(&options.field), options.unit.as_deref());
     let kind = match (options.scale, column.categories().is_some(), column.is_time()) {
         (Some(ScaleKind::Band), _, _) | (None, true, _) => ScaleKind::Band,
         (Some(kind), true, _) => {
@@ -214,28 +213,43 @@ pub fn position_axis(
         (None, false, false) => ScaleKind::Linear,
         (Some(kind), false, _) => kind,
     };
-    let domain = if let Some(cats) = column.categories() {
-        Domain::Categories(used_levels(cats, rows))
-    } else {
-        let (mut lo, mut hi) = match (options.domain, column_extent(column, rows)) {
-            (Some([a, b]), _) => (a, b),
-            (None, Some(e)) => e,
-            (None, None) => {
-                return Err(MarkError::at(
-                    &[key],
-                    format!("column `{}` has no finite values to plot", options.field),
-                    "check the column's contents; non-finite cells are dropped",
-                ));
-            }
-        };
-        if options.zero == Some(true) && kind == ScaleKind::Linear {
-            lo = lo.min(0.0);
-            hi = hi.max(0.0);
+    match column.categories() {
+        Some(cats) => Ok(axis_over(options, kind, Domain::Categories(used_levels(cats, rows)))),
+        None => numeric_axis(key, options, kind, column_extent(column, rows)),
+    }
+}
+
+/// A numeric axis of `kind` for channel `key` over `extent` (the values' smallest and largest;
+/// the channel's own `domain` wins, and `zero` widens a linear axis to 0); an error when there is
+/// neither.
+pub fn numeric_axis(
+    key: &str,
+    options: &ChannelOptions,
+    kind: ScaleKind,
+    extent: Option<(f64, f64)>,
+) -> Result<PositionAxis, MarkError> {
+    let (mut lo, mut hi) = match (options.domain, extent) {
+        (Some([a, b]), _) => (a, b),
+        (None, Some(e)) => e,
+        (None, None) => {
+            return Err(MarkError::at(
+                &[key],
+                format!("column `{}` has no finite values to plot", options.field),
+                "check the column's contents; non-finite cells are dropped",
+            ));
         }
-        Domain::Continuous(lo, hi)
     };
-    Ok(PositionAxis {
-        title,
+    if options.zero == Some(true) && kind == ScaleKind::Linear {
+        lo = lo.min(0.0);
+        hi = hi.max(0.0);
+    }
+    Ok(axis_over(options, kind, Domain::Continuous(lo, hi)))
+}
+
+/// The axis of a channel over `domain`, with the channel's title, ticks and grid.
+fn axis_over(options: &ChannelOptions, kind: ScaleKind, domain: Domain) -> PositionAxis {
+    PositionAxis {
+        title: title_with_unit(options.title.as_deref().unwrap_or(&options.field), options.unit.as_deref()),
         kind,
         domain,
         // Log axes keep the data extent: rounding out to whole decades can waste most of the plot.
@@ -243,7 +257,7 @@ pub fn position_axis(
         ticks: options.ticks,
         grid: options.grid.unwrap_or(kind != ScaleKind::Band),
         inset: 0.0,
-    })
+    }
 }
 
 /// One axis per entry of a `columns` list over the kept rows, whole-number columns ticked per

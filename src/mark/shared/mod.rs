@@ -8,6 +8,7 @@ pub mod annotate;
 pub mod axis3d;
 pub mod bands;
 pub mod categorical;
+pub mod density;
 pub mod derived;
 pub mod encode;
 pub mod frame;

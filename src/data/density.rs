@@ -1,0 +1,383 @@
+//! Counting rows into a grid of bins, for density views of more rows than marks can show: the
+//! bins of each axis ([`Bins`]), the count grid ([`CountGrid`]) and the extent of the rows
+//! ([`Extent`]), computed from columns in memory ([`count_columns`], [`extent_of_columns`]) or
+//! from a source's lazy plan ([`plan`]) — the same arithmetic either way, so both give the same
+//! grid bit for bit.
+
+pub mod footer;
+pub mod plan;
+
+use rayon::prelude::*;
+
+/// One axis of a count grid: `n` equal bins from `lo` to `hi` (equal in `log10` of the values on
+/// a log axis).
+///
+/// Bin `k` holds the values `v` with `edge(k) ≤ v < edge(k + 1)`, where
+/// `edge(k) = lo + (hi − lo) · k / n` (in `log10` on a log axis); the last bin also holds
+/// `v = hi`, so every value from `lo` to `hi` has exactly one bin. Values outside, NaN, ±∞ and, on a
+/// log axis, values ≤ 0 have none.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Bins {
+    /// The bins' edges in the axis' own terms (`log10` of the values on a log axis), `n + 1` of
+    /// them, ascending.
+    edges: Vec<f64>,
+    log: bool,
+    /// Bins per unit of the axis' terms: `n / (hi − lo)`, for the first guess of a bin.
+    per_unit: f64,
+}
+
+impl Bins {
+    /// `n` bins (at least one) from `lo` to `hi`; `None` unless `lo < hi`, both finite (and
+    /// positive on a log axis).
+    pub fn new(lo: f64, hi: f64, n: usize, log: bool) -> Option<Bins> {
+        let (a, b) = if log { (lo.log10(), hi.log10()) } else { (lo, hi) };
+        if !(a.is_finite() && b.is_finite() && a < b) {
+            return None;
+        }
+        let n = n.max(1);
+        let edges = (0..=n).map(|k| if k == n { b } else { a + (b - a) * k as f64 / n as f64 }).collect();
+        Some(Bins { edges, log, per_unit: n as f64 / (b - a) })
+    }
+
+    /// Number of bins.
+    pub fn len(&self) -> usize {
+        self.edges.len() - 1
+    }
+
+    /// Whether the axis has no bins (never: [`Bins::new`] makes at least one).
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// Whether the bins are equal in `log10` of the values.
+    pub fn is_log(&self) -> bool {
+        self.log
+    }
+
+    /// The value at edge `k` (0 to `len()`), in data units.
+    pub fn edge(&self, k: usize) -> f64 {
+        let e = self.edges[k.min(self.len())];
+        if self.log { 10f64.powf(e) } else { e }
+    }
+
+    /// The value in the axis' own terms, if it can be placed on the axis at all.
+    fn term(&self, v: f64) -> Option<f64> {
+        let t = if self.log { if v > 0.0 { v.log10() } else { return None } } else { v };
+        t.is_finite().then_some(t)
+    }
+
+    /// The bin holding `v`, as documented on [`Bins`].
+    pub fn index(&self, v: f64) -> Option<usize> {
+        self.index_of_term(self.term(v)?)
+    }
+
+    #[inline]
+    fn index_of_term(&self, t: f64) -> Option<usize> {
+        let n = self.len();
+        let (lo, hi) = (self.edges[0], self.edges[n]);
+        if !(t >= lo && t <= hi) {
+            return None;
+        }
+        // The arithmetic guess is off by at most one near an edge; the edges settle it.
+        let mut k = ((t - lo) * self.per_unit) as usize;
+        k = k.min(n - 1);
+        if t < self.edges[k] {
+            k -= 1;
+        } else if k + 1 < n && t >= self.edges[k + 1] {
+            k += 1;
+        }
+        Some(k)
+    }
+}
+
+/// A coordinate as a column holds it, widened to `f64` exactly.
+pub trait Coord: Copy + Send + Sync {
+    /// The value as `f64`.
+    fn to_f64(self) -> f64;
+}
+
+impl Coord for f64 {
+    #[inline]
+    fn to_f64(self) -> f64 {
+        self
+    }
+}
+
+impl Coord for f32 {
+    #[inline]
+    fn to_f64(self) -> f64 {
+        f64::from(self)
+    }
+}
+
+/// Whether a value can be placed on an axis at all: finite, and positive on a log axis.
+pub fn placeable(v: f64, log: bool) -> bool {
+    v.is_finite() && (!log || v > 0.0)
+}
+
+/// Rows counted in the bins of an x and a y axis.
+#[derive(Clone, Debug, PartialEq)]
+pub struct CountGrid {
+    /// The horizontal bins.
+    pub x: Bins,
+    /// The vertical bins.
+    pub y: Bins,
+    /// Rows per bin, row-major from the lowest y bin up: bin (i, j) is `counts[j * nx + i]`.
+    pub counts: Vec<u64>,
+    /// Rows whose x or y cannot be placed (missing, not finite, ≤ 0 on a log axis).
+    pub missing: u64,
+    /// Placeable rows outside the grid's extent (a `domain` narrower than the data).
+    pub outside: u64,
+}
+
+impl CountGrid {
+    /// An empty grid over `x` and `y`.
+    pub fn new(x: Bins, y: Bins) -> CountGrid {
+        let cells = x.len() * y.len();
+        CountGrid { x, y, counts: vec![0; cells], missing: 0, outside: 0 }
+    }
+
+    /// Count the rows `(xs[r], ys[r])`.
+    pub fn add<X: Coord, Y: Coord>(&mut self, xs: &[X], ys: &[Y]) {
+        let nx = self.x.len();
+        if !self.x.log && !self.y.log {
+            // Linear axes: a value is its own term, and only a non-finite one is missing.
+            for (&a, &b) in xs.iter().zip(ys) {
+                let (vx, vy) = (a.to_f64(), b.to_f64());
+                match (self.x.index_of_term(vx), self.y.index_of_term(vy)) {
+                    (Some(i), Some(j)) => self.counts[j * nx + i] += 1,
+                    _ if vx.is_finite() && vy.is_finite() => self.outside += 1,
+                    _ => self.missing += 1,
+                }
+            }
+            return;
+        }
+        for (&a, &b) in xs.iter().zip(ys) {
+            match (self.x.term(a.to_f64()), self.y.term(b.to_f64())) {
+                (Some(tx), Some(ty)) => match (self.x.index_of_term(tx), self.y.index_of_term(ty)) {
+                    (Some(i), Some(j)) => self.counts[j * nx + i] += 1,
+                    _ => self.outside += 1,
+                },
+                _ => self.missing += 1,
+            }
+        }
+    }
+
+    /// Count the rows `(xs[r], ys[r])` split over the grids `parts` (one per thread, each over
+    /// the same bins), in parallel.
+    pub fn add_in_parts<X: Coord, Y: Coord>(parts: &mut [CountGrid], xs: &[X], ys: &[Y]) {
+        let len = xs.len().min(ys.len());
+        let chunk = len.div_ceil(parts.len().max(1)).max(1);
+        parts.par_iter_mut().enumerate().for_each(|(k, grid)| {
+            let (start, end) = ((k * chunk).min(len), ((k + 1) * chunk).min(len));
+            grid.add(&xs[start..end], &ys[start..end]);
+        });
+    }
+
+    /// Add another grid's counts (over the same bins) to this one.
+    pub fn merge(&mut self, other: &CountGrid) {
+        for (a, b) in self.counts.iter_mut().zip(&other.counts) {
+            *a += b;
+        }
+        self.missing += other.missing;
+        self.outside += other.outside;
+    }
+
+    /// Rows counted in bins.
+    pub fn placed(&self) -> u64 {
+        self.counts.iter().sum()
+    }
+
+    /// The largest count of any bin.
+    pub fn max(&self) -> u64 {
+        self.counts.iter().copied().max().unwrap_or(0)
+    }
+}
+
+/// Count the rows `rows` (all rows when `None`) of the columns `xs` and `ys` into a grid over
+/// `x` and `y`, in parallel.
+pub fn count_columns(xs: &[f64], ys: &[f64], rows: Option<&[u32]>, x: &Bins, y: &Bins) -> CountGrid {
+    let threads = rayon::current_num_threads().max(1);
+    let len = rows.map_or(xs.len().min(ys.len()), <[u32]>::len);
+    let chunk = len.div_ceil(threads).max(1 << 16);
+    let starts: Vec<usize> = (0..len).step_by(chunk).collect();
+    let empty = || CountGrid::new(x.clone(), y.clone());
+    starts
+        .into_par_iter()
+        .map(|start| {
+            let end = (start + chunk).min(len);
+            let mut grid = empty();
+            match rows {
+                None => grid.add(&xs[start..end], &ys[start..end]),
+                Some(rows) => {
+                    // Gather in short runs so the counting loop stays the one above.
+                    let (mut bx, mut by) = (Vec::with_capacity(4096), Vec::with_capacity(4096));
+                    for part in rows[start..end].chunks(4096) {
+                        bx.clear();
+                        by.clear();
+                        bx.extend(part.iter().map(|&r| xs[r as usize]));
+                        by.extend(part.iter().map(|&r| ys[r as usize]));
+                        grid.add(&bx, &by);
+                    }
+                }
+            }
+            grid
+        })
+        .reduce(empty, |mut a, b| {
+            a.merge(&b);
+            a
+        })
+}
+
+/// The extent of each axis: the smallest and largest placeable value of its column (see
+/// [`placeable`]), each column on its own (a row whose other coordinate is missing still widens
+/// an axis; the counts report it as missing). `None` for an axis without a placeable value.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Extent {
+    /// Smallest and largest placeable x.
+    pub x: Option<(f64, f64)>,
+    /// Smallest and largest placeable y.
+    pub y: Option<(f64, f64)>,
+}
+
+impl Extent {
+    /// No values yet.
+    pub const EMPTY: Extent = Extent { x: None, y: None };
+
+    /// Both extents together.
+    pub fn merge(self, other: Extent) -> Extent {
+        let join = |a: Option<(f64, f64)>, b: Option<(f64, f64)>| match (a, b) {
+            (Some(a), Some(b)) => Some((a.0.min(b.0), a.1.max(b.1))),
+            (a, b) => a.or(b),
+        };
+        Extent { x: join(self.x, other.x), y: join(self.y, other.y) }
+    }
+}
+
+/// The smallest and largest placeable value of `values`, in parallel.
+pub fn range_of<X: Coord>(values: &[X], log: bool) -> Option<(f64, f64)> {
+    let (lo, hi) = values
+        .par_chunks(1 << 16)
+        .map(|part| {
+            part.iter()
+                .map(|v| v.to_f64())
+                .filter(|&v| placeable(v, log))
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| (lo.min(v), hi.max(v)))
+        })
+        .reduce(|| (f64::INFINITY, f64::NEG_INFINITY), |a, b| (a.0.min(b.0), a.1.max(b.1)));
+    (lo <= hi).then_some((lo, hi))
+}
+
+/// The extent of columns `xs` and `ys`.
+pub fn extent_of_columns(xs: &[f64], ys: &[f64], log: [bool; 2]) -> Extent {
+    Extent { x: range_of(xs, log[0]), y: range_of(ys, log[1]) }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The bin by the definition: the last edge not above the value (the top edge belongs to the
+    /// last bin), found by searching the edges.
+    fn by_search(bins: &Bins, v: f64) -> Option<usize> {
+        let t = bins.term(v)?;
+        let n = bins.len();
+        if t < bins.edges[0] || t > bins.edges[n] {
+            return None;
+        }
+        let k = bins.edges.partition_point(|&e| e <= t);
+        Some(k.saturating_sub(1).min(n - 1))
+    }
+
+    fn xorshift(state: &mut u64) -> f64 {
+        *state ^= *state << 13;
+        *state ^= *state >> 7;
+        *state ^= *state << 17;
+        (*state >> 11) as f64 / (1u64 << 53) as f64
+    }
+
+    #[test]
+    fn every_value_has_the_bin_its_edges_say() {
+        let mut s = 0x9e37_79b9_7f4a_7c15;
+        for (lo, hi, n, log) in [(0.0, 10.0, 10, false), (-3.7, 12.9, 997, false), (0.1, 1e4, 333, true)] {
+            let bins = Bins::new(lo, hi, n, log).unwrap();
+            let mut values: Vec<f64> = (0..=n).map(|k| bins.edge(k)).collect();
+            values.extend((0..=n).map(|k| bins.edges[k]).map(|e| if log { 10f64.powf(e) } else { e }));
+            // Values a hair either side of every edge, and random ones over a wider range.
+            values.extend((0..=n).flat_map(|k| [bins.edge(k).next_up(), bins.edge(k).next_down()]));
+            values.extend((0..20_000).map(|_| lo - 1.0 + (hi - lo + 2.0) * xorshift(&mut s)));
+            values.extend([f64::NAN, f64::INFINITY, f64::NEG_INFINITY, lo.next_down(), hi.next_up(), hi, lo]);
+            for v in values {
+                assert_eq!(bins.index(v), by_search(&bins, v), "value {v:e} on {lo}..{hi} in {n} bins");
+            }
+        }
+    }
+
+    #[test]
+    fn the_top_edge_is_in_the_last_bin_and_outside_values_in_none() {
+        let bins = Bins::new(0.0, 4.0, 4, false).unwrap();
+        assert_eq!([0.0, 0.999, 1.0, 3.999, 4.0].map(|v| bins.index(v)), [Some(0), Some(0), Some(1), Some(3), Some(3)]);
+        assert_eq!(bins.index(4.0f64.next_up()), None);
+        assert_eq!(bins.index(-0.0), Some(0));
+        assert_eq!(bins.index(0.0f64.next_down()), None);
+        let log = Bins::new(1.0, 1000.0, 3, true).unwrap();
+        assert_eq!(
+            [1.0, 9.99, 10.0, 999.0, 1000.0, 0.0, -5.0].map(|v| log.index(v)),
+            [Some(0), Some(0), Some(1), Some(2), Some(2), None, None]
+        );
+        assert!(Bins::new(1.0, 1.0, 4, false).is_none());
+        assert!(Bins::new(0.0, 10.0, 4, true).is_none());
+    }
+
+    #[test]
+    fn counts_equal_a_brute_force_count_and_every_row_is_accounted_for() {
+        let mut s = 7u64;
+        let n = 300_000;
+        let mut xs: Vec<f64> = (0..n).map(|_| -1.0 + 12.0 * xorshift(&mut s)).collect();
+        let ys: Vec<f64> = (0..n).map(|_| (xorshift(&mut s) * 5.0).floor()).collect();
+        xs[10] = f64::NAN;
+        xs[11] = f64::INFINITY;
+        let (x, y) = (Bins::new(0.0, 10.0, 40, false).unwrap(), Bins::new(0.0, 4.0, 4, false).unwrap());
+        let grid = count_columns(&xs, &ys, None, &x, &y);
+        let mut brute = vec![0u64; 40 * 4];
+        let (mut missing, mut outside) = (0, 0);
+        for (&a, &b) in xs.iter().zip(&ys) {
+            if !(a.is_finite() && b.is_finite()) {
+                missing += 1;
+                continue;
+            }
+            // Search the edges one by one.
+            let i = (0..40).find(|&k| a >= x.edge(k) && (a < x.edge(k + 1) || (k == 39 && a <= x.edge(40))));
+            let j = (0..4).find(|&k| b >= y.edge(k) && (b < y.edge(k + 1) || (k == 3 && b <= y.edge(4))));
+            match (i, j) {
+                (Some(i), Some(j)) => brute[j * 40 + i] += 1,
+                _ => outside += 1,
+            }
+        }
+        assert_eq!(grid.counts, brute);
+        assert_eq!((grid.missing, grid.outside), (missing, outside));
+        assert_eq!(grid.placed() + grid.missing + grid.outside, n as u64);
+        // y = 4.0 is the top edge: its rows are in the top row of bins, not outside.
+        assert!(ys.contains(&4.0) && grid.counts[3 * 40..].iter().sum::<u64>() > 0);
+        // Counting a subset of rows counts exactly those.
+        let rows: Vec<u32> = (0..n as u32).filter(|r| r % 3 == 0).collect();
+        let some = count_columns(&xs, &ys, Some(&rows), &x, &y);
+        let picked: Vec<f64> = rows.iter().map(|&r| xs[r as usize]).collect();
+        let picked_y: Vec<f64> = rows.iter().map(|&r| ys[r as usize]).collect();
+        let mut serial = CountGrid::new(x.clone(), y.clone());
+        serial.add(&picked, &picked_y);
+        assert_eq!(some, serial);
+    }
+
+    #[test]
+    fn the_extent_skips_what_cannot_be_placed() {
+        let xs = [3.0, -2.0, f64::NAN, 8.0, 0.5];
+        let ys = [1.0, 5.0, 2.0, f64::NEG_INFINITY, 0.0];
+        let e = extent_of_columns(&xs, &ys, [false, false]);
+        assert_eq!((e.x, e.y), (Some((-2.0, 8.0)), Some((0.0, 5.0))));
+        let log = extent_of_columns(&xs, &ys, [true, true]);
+        assert_eq!((log.x, log.y), (Some((0.5, 8.0)), Some((1.0, 5.0))));
+        assert_eq!(extent_of_columns(&[], &[], [false, false]), Extent::EMPTY);
+        assert_eq!(range_of(&[f32::NAN, -1.0f32], true), None);
+    }
+}

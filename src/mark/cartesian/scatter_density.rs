@@ -1,0 +1,158 @@
+//! `scatter` in density mode: the rows counted in bins of a few pixels over the plot and each bin
+//! shaded by its count, with a legend whose ticks are counts. The rows come from the chart's
+//! table, or stay in the source's lazy plan and are counted as the engine streams them.
+
+use super::scatter::ScatterOptions;
+use crate::data::Table;
+use crate::data::density::{CountGrid, Extent, count_columns, extent_of_columns, plan::PlanRows};
+use crate::guide::format::format_value;
+use crate::guide::layout::PositionAxis;
+use crate::mark::density::{DensityLook, derived_bins};
+use crate::mark::encode;
+use crate::mark::geometry::{Geometry, Plot, PlotScale};
+use crate::mark::warning::Warning;
+use crate::mark::{ChartOutput, MarkError, frame};
+use crate::selection::Highlight;
+use crate::spec::{ChannelOptions, Chart, ScaleKind};
+use crate::timing::timed;
+
+/// Where the chart's rows are.
+pub enum Rows<'a> {
+    /// In its table.
+    Table(&'a Table),
+    /// In its source's lazy plan, not read yet.
+    Plan(&'a PlanRows),
+}
+
+/// The x and y of the rows, whichever way they are held.
+enum Placed<'a> {
+    Columns(&'a [f64], &'a [f64]),
+    Plan(&'a PlanRows),
+}
+
+impl Placed<'_> {
+    fn extent(&self, x: &ChannelOptions, y: &ChannelOptions, log: [bool; 2]) -> Result<Extent, MarkError> {
+        match self {
+            Placed::Columns(xs, ys) => Ok(extent_of_columns(xs, ys, log)),
+            Placed::Plan(plan) => plan.extent(&x.field, &y.field, log).map_err(engine_error),
+        }
+    }
+
+    fn count(
+        &self,
+        x: &ChannelOptions,
+        y: &ChannelOptions,
+        bins: &(crate::data::density::Bins, crate::data::density::Bins),
+    ) -> Result<CountGrid, MarkError> {
+        match self {
+            Placed::Columns(xs, ys) => Ok(count_columns(xs, ys, None, &bins.0, &bins.1)),
+            Placed::Plan(plan) => plan.count(&x.field, &y.field, &bins.0, &bins.1).map_err(engine_error),
+        }
+    }
+}
+
+fn engine_error(message: String) -> MarkError {
+    MarkError::at(&["data"], message, "`dataink data SPEC NAME` shows the rows after the source's transforms")
+}
+
+/// Draw a scatter chart as a density.
+pub fn draw(
+    chart: &Chart,
+    options: &ScatterOptions,
+    rows: Rows<'_>,
+    highlight: Option<&Highlight>,
+) -> Result<ChartOutput, MarkError> {
+    let (x_opts, y_opts) = (options.x.options(), options.y.options());
+    let mut warnings = Vec::new();
+    for (given, key, why) in [
+        (options.color.is_some(), "color", "bins count the rows of every colour together"),
+        (options.point_size.is_some(), "point_size", "bins count rows, not sizes"),
+        (options.trend.is_some(), "trend", "a density view draws no trend line yet"),
+        (highlight.is_some(), "highlight", "a density view does not mark a selection yet"),
+    ] {
+        if given {
+            warnings.push(Warning::from(format!("`{key}` is not drawn in density mode: {why}")));
+        }
+    }
+    let (placed, times, total) = match rows {
+        Rows::Table(table) => {
+            let mut columns = Vec::new();
+            for (key, opts) in [("x", &x_opts), ("y", &y_opts)] {
+                let column = encode::column(chart, key, &opts.field, table)?;
+                let values = column.numbers().ok_or_else(|| {
+                    MarkError::at(
+                        &[key],
+                        format!("column `{}` holds text; a density view places numbers or times", opts.field),
+                        "use mode = \"points\" to place categories in bands",
+                    )
+                })?;
+                columns.push((values, column.is_time()));
+            }
+            (Placed::Columns(columns[0].0, columns[1].0), [columns[0].1, columns[1].1], table.rows as u64)
+        }
+        Rows::Plan(plan) => {
+            (Placed::Plan(plan), [plan.is_time(&x_opts.field), plan.is_time(&y_opts.field)], plan.rows())
+        }
+    };
+    let log = [x_opts.scale == Some(ScaleKind::Log), y_opts.scale == Some(ScaleKind::Log)];
+    let extent = timed("density extent", || placed.extent(&x_opts, &y_opts, log))?;
+    let (Some(x_extent), Some(y_extent)) = (extent.x, extent.y) else {
+        return Err(MarkError::at(
+            &["data"],
+            format!("data \"{}\" has no row with both `{}` and `{}` placeable", chart.data, x_opts.field, y_opts.field),
+            "check the columns' contents; missing and non-finite cells are not drawn",
+        ));
+    };
+    let look = DensityLook::new(options.shading, options.bin, options.min_alpha, options.spread);
+    let x_axis = axis("x", &x_opts, x_extent, times[0])?;
+    let y_axis = axis("y", &y_opts, y_extent, times[1])?;
+    let (mut frame, theme) = frame::cartesian(chart, x_axis, y_axis, vec![look.provisional_legend(total)])?;
+    let bins = look
+        .bins(frame.plot, &frame.x, &frame.y)
+        .ok_or_else(|| MarkError::at(&["size"], "the plot has no room for density bins", "make the chart larger"))?;
+    let grid = timed("density counts", || placed.count(&x_opts, &y_opts, &bins))?;
+    if grid.missing > 0 {
+        warnings.push(Warning::from(format!(
+            "{} of {} rows not drawn: their `{}` or `{}` is missing, not finite{}",
+            grid.missing,
+            total,
+            x_opts.field,
+            y_opts.field,
+            if log.contains(&true) { " or not positive on a log axis" } else { "" }
+        )));
+    }
+    if grid.outside > 0 {
+        warnings.push(Warning::from(format!(
+            "{} rows lie outside the axes' `domain` and are not counted",
+            format_value(grid.outside as f64)
+        )));
+    }
+    let (raster, scale) = look.raster(&grid, frame.plot, &chart.name);
+    frame.redraw_legends(&[look.legend(scale)], &theme);
+    let plot = Plot::xy(
+        frame.plot,
+        PlotScale { field: x_opts.field.clone(), scale: frame.x.clone() },
+        PlotScale { field: y_opts.field.clone(), scale: frame.y.clone() },
+    );
+    let scene = frame::scene(chart, frame, &theme, vec![raster], &mut warnings);
+    let derived = derived_bins(&grid, &x_opts.field, &y_opts.field);
+    let geometry = Geometry { plots: vec![plot], ..Geometry::default() };
+    Ok(ChartOutput { scene, derived, warnings, meshes: Vec::new(), geojson: None, volume: None, geometry })
+}
+
+/// A position axis over the placed rows' extent (or the channel's `domain`).
+fn axis(key: &str, options: &ChannelOptions, extent: (f64, f64), time: bool) -> Result<PositionAxis, MarkError> {
+    let kind = match options.scale {
+        Some(ScaleKind::Band) => {
+            return Err(MarkError::at(
+                &[key, "scale"],
+                "a density view places numbers or times, not bands",
+                "use mode = \"points\" for a band scale",
+            ));
+        }
+        Some(kind) => kind,
+        None if time => ScaleKind::Time,
+        None => ScaleKind::Linear,
+    };
+    encode::numeric_axis(key, options, kind, Some(extent))
+}

@@ -1,0 +1,177 @@
+//! Scatters in density mode: rows counted in bins, exactly (a brute-force count by the bins'
+//! edges), the same grid whether the rows are read into memory or streamed through the source's
+//! plan, the plan's transforms honoured, and bad input named.
+
+use crate::common::{Fixture, numbers};
+use dataink::mark::ChartOutput;
+use dataink::scene::{Item, Role, Shape};
+
+/// `n` seeded rows: x on a lattice of quarter steps (so values sit exactly on bin edges), y
+/// spread, every 97th x missing, and a text column.
+fn rows_csv(n: usize) -> String {
+    let mut state: u64 = 0x2545_f491_4f6c_dd1d;
+    let mut next = || {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        (state >> 11) as f64 / (1u64 << 53) as f64
+    };
+    let mut csv = String::from("x,y,word\n");
+    for i in 0..n {
+        let x = if i % 97 == 0 { String::new() } else { format!("{}", (next() * 40.0).floor() / 4.0) };
+        csv.push_str(&format!("{x},{:.5},w{}\n", next() * next() * 7.0, i % 3));
+    }
+    csv
+}
+
+fn spec(extra_source: &str, extra_chart: &str) -> String {
+    format!(
+        "[data.p]\npath = \"p.csv\"\n{extra_source}\n[[chart]]\nname = \"d\"\nkind = \"scatter\"\ndata = \"p\"\n\
+         title = \"Rows\"\nx = \"x\"\ny = \"y\"\nmode = \"density\"\n{extra_chart}\n"
+    )
+}
+
+fn draw(text: &str, csv: &str) -> (ChartOutput, bool) {
+    let fixture = Fixture::new(text, &[("p.csv", csv.as_bytes())]);
+    let loaded = fixture.load().unwrap_or_else(|e| panic!("{e}"));
+    let in_plan = loaded.plans.contains_key("p");
+    let out = dataink::pipeline::draw_chart(&loaded, 0, &loaded.spec.chart[0])
+        .unwrap_or_else(|e| panic!("{}", loaded.source.render(&dataink::pipeline::mark_diagnostic(&loaded, &e))));
+    (out, in_plan)
+}
+
+/// The non-empty bins as (x_from, x_to, y_from, y_to, rows).
+fn bins(out: &ChartOutput) -> Vec<[f64; 5]> {
+    let cols = ["x_from", "x_to", "y_from", "y_to", "rows"].map(|c| numbers(out, c));
+    (0..cols[4].len()).map(|k| [cols[0][k], cols[1][k], cols[2][k], cols[3][k], cols[4][k]]).collect()
+}
+
+fn parsed(csv: &str) -> Vec<(Option<f64>, f64)> {
+    csv.lines()
+        .skip(1)
+        .map(|l| {
+            let mut parts = l.split(',');
+            (parts.next().and_then(|x| x.parse().ok()), parts.next().and_then(|y| y.parse().ok()).unwrap_or(f64::NAN))
+        })
+        .collect()
+}
+
+#[test]
+fn every_row_is_counted_once_in_the_bin_its_edges_say() {
+    let csv = rows_csv(20_000);
+    let (out, in_plan) = draw(&spec("", ""), &csv);
+    assert!(in_plan, "a source only counted stays in its plan");
+    let bins = bins(&out);
+    let rows = parsed(&csv);
+    let placed = rows.iter().filter(|(x, _)| x.is_some()).count();
+    assert_eq!(bins.iter().map(|b| b[4]).sum::<f64>() as usize, placed);
+    // Brute force: each row lies in exactly one listed bin, lower edge in, upper edge out (the
+    // top bin of an axis also holding its upper end); every listed bin's count is matched.
+    let (x_top, y_top) = bins.iter().fold((f64::MIN, f64::MIN), |(a, b), k| (a.max(k[1]), b.max(k[3])));
+    let inside = |v: f64, lo: f64, hi: f64, top: f64| v >= lo && (v < hi || (hi == top && v <= hi));
+    let mut found = vec![0usize; bins.len()];
+    for (x, y) in rows.iter().filter_map(|(x, y)| Some((x.as_ref().copied()?, *y))) {
+        let hits: Vec<usize> = (0..bins.len())
+            .filter(|&k| inside(x, bins[k][0], bins[k][1], x_top) && inside(y, bins[k][2], bins[k][3], y_top))
+            .collect();
+        assert_eq!(hits.len(), 1, "row ({x}, {y}) is in bins {hits:?}");
+        found[hits[0]] += 1;
+    }
+    assert_eq!(found.iter().map(|&c| c as f64).collect::<Vec<_>>(), bins.iter().map(|b| b[4]).collect::<Vec<_>>());
+    let missing = rows.len() - placed;
+    assert!(
+        out.warnings.iter().any(|w| w.to_string().contains(&format!("{missing} of {} rows not drawn", rows.len()))),
+        "{:?}",
+        out.warnings
+    );
+}
+
+#[test]
+fn rows_in_memory_and_rows_in_the_plan_give_the_same_grid() {
+    let csv = rows_csv(30_000);
+    let (streamed, in_plan) = draw(&spec("", ""), &csv);
+    // A selection over the source needs its rows, so they are read into memory.
+    let selected = "[selection.some]\ndata = \"p\"\nrange = { y = [0, 1] }\n";
+    let (held, held_in_plan) = draw(&spec(selected, ""), &csv);
+    assert!(in_plan && !held_in_plan);
+    assert_eq!(bins(&streamed), bins(&held));
+}
+
+#[test]
+fn the_plan_runs_the_sources_transforms_before_counting() {
+    let csv = rows_csv(10_000);
+    let source = "transform = [{ filter = \"y < 2\" }]\n";
+    let text = spec("", "").replacen("path = \"p.csv\"\n", &format!("path = \"p.csv\"\n{source}"), 1);
+    let (out, in_plan) = draw(&text, &csv);
+    assert!(in_plan);
+    let kept = parsed(&csv).iter().filter(|(x, y)| x.is_some() && *y < 2.0).count();
+    assert_eq!(bins(&out).iter().map(|b| b[4]).sum::<f64>() as usize, kept);
+}
+
+#[test]
+fn a_narrow_domain_counts_the_rows_outside_in_a_warning() {
+    let csv = rows_csv(5_000);
+    let (out, _) = draw(&spec("", "").replace("x = \"x\"", "x = { field = \"x\", domain = [0, 5] }"), &csv);
+    let outside = parsed(&csv).iter().filter(|(x, _)| x.is_some_and(|x| x > 5.0)).count();
+    assert!(
+        out.warnings.iter().any(|w| w.to_string().contains(&format!("{outside} rows lie outside"))),
+        "{:?}",
+        out.warnings
+    );
+    assert!(bins(&out).iter().all(|b| b[1] <= 5.0 + 1e-9));
+}
+
+fn legend_labels(items: &[Item], out: &mut Vec<String>) {
+    for item in items {
+        match &item.shape {
+            Shape::Text(t) if item.role == Role::Legend => out.push(t.content.clone()),
+            Shape::Group { items, .. } => legend_labels(items, out),
+            _ => {}
+        }
+    }
+}
+
+#[test]
+fn the_legend_names_counts_under_every_shading() {
+    let csv = rows_csv(20_000);
+    for shading in ["eq_hist", "log", "linear"] {
+        let (out, _) = draw(&spec("", &format!("shading = \"{shading}\"")), &csv);
+        let mut labels = Vec::new();
+        legend_labels(&out.scene.items, &mut labels);
+        assert_eq!(labels.first().map(String::as_str), Some("rows per bin"), "{shading}: {labels:?}");
+        let max = bins(&out).iter().map(|b| b[4]).fold(0.0, f64::max);
+        let counts: Vec<f64> =
+            labels[1..].iter().map(|l| l.parse::<f64>().unwrap_or_else(|_| panic!("{shading}: {l}"))).collect();
+        assert!(counts.len() >= 2 && counts.iter().all(|&c| c >= 0.0 && c <= max), "{shading}: {counts:?} (max {max})");
+        if shading != "linear" {
+            assert_eq!(counts.iter().copied().fold(f64::MAX, f64::min), 1.0, "{shading}: the fewest rows a bin shows");
+        }
+    }
+}
+
+#[test]
+fn text_columns_and_facets_are_refused_with_the_fix() {
+    let csv = rows_csv(500);
+    let fixture = Fixture::new(&spec("", "").replace("y = \"y\"", "y = \"word\""), &[("p.csv", csv.as_bytes())]);
+    let err = fixture.draw().expect_err("text cannot be counted in bins");
+    assert!(err.contains("column `word`") && err.contains("density view places numbers or times"), "{err}");
+    let faceted = spec("", "facet = \"word\"");
+    let err = Fixture::new(&faceted, &[("p.csv", csv.as_bytes())]).draw().expect_err("faceted density");
+    assert!(err.contains("faceted scatter cannot be drawn in density mode"), "{err}");
+}
+
+#[test]
+fn auto_mode_draws_points_up_to_the_threshold() {
+    let csv = rows_csv(2_000);
+    let fixture =
+        Fixture::new(&spec("", "").replace("mode = \"density\"", "mode = \"auto\""), &[("p.csv", csv.as_bytes())]);
+    let loaded = fixture.load().unwrap_or_else(|e| panic!("{e}"));
+    assert!(loaded.plans.is_empty(), "2,000 rows are read and drawn as points");
+    let out = dataink::pipeline::draw_chart(&loaded, 0, &loaded.spec.chart[0]).expect("draws");
+    fn has_points(items: &[Item]) -> bool {
+        items.iter().any(|i| {
+            matches!(&i.shape, Shape::Points(_)) || matches!(&i.shape, Shape::Group { items, .. } if has_points(items))
+        })
+    }
+    assert!(has_points(&out.scene.items));
+}
