@@ -22,8 +22,12 @@ if [ "$rows" = "1e8" ]; then
     -n datashader+pandas "python3 benches/peer_datashader.py $data target/bench/out/peer_density.png"
   echo "== peak memory (maximum resident set, kB)"
   /usr/bin/time -f "dataink %M kB, %e s" target/release/dataink render "$spec" --format png --out target/bench/out --quiet
+  POLARS_FORCE_ASYNC=1 /usr/bin/time -f "dataink, file read into buffers %M kB, %e s" \
+    target/release/dataink render "$spec" --format png --out target/bench/out --quiet
   /usr/bin/time -f "datashader+pandas %M kB, %e s" python3 benches/peer_datashader.py "$data" target/bench/out/peer_density.png
 else
   echo "== $rows points from Parquet to a 1000x1000 density PNG, whole process, peak memory"
   /usr/bin/time -f "dataink %M kB, %e s" target/release/dataink render "$spec" --format png --out target/bench/out --quiet
+  POLARS_FORCE_ASYNC=1 /usr/bin/time -f "dataink, file read into buffers %M kB, %e s" \
+    target/release/dataink render "$spec" --format png --out target/bench/out --quiet
 fi

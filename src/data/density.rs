@@ -27,14 +27,14 @@ pub struct Bins {
 }
 
 impl Bins {
-    /// `n` bins (at least one) from `lo` to `hi`; `None` unless `lo < hi`, both finite (and
+    /// `n` bins (at least one, at most [`MAX_BINS`]) from `lo` to `hi`; `None` unless `lo < hi`, both finite (and
     /// positive on a log axis).
     pub fn new(lo: f64, hi: f64, n: usize, log: bool) -> Option<Bins> {
         let (a, b) = if log { (lo.log10(), hi.log10()) } else { (lo, hi) };
         if !(a.is_finite() && b.is_finite() && a < b) {
             return None;
         }
-        let n = n.max(1);
+        let n = n.clamp(1, MAX_BINS);
         let edges = (0..=n).map(|k| if k == n { b } else { a + (b - a) * k as f64 / n as f64 }).collect();
         Some(Bins { edges, log, per_unit: n as f64 / (b - a) })
     }
@@ -78,8 +78,15 @@ impl Bins {
         if !(t >= lo && t <= hi) {
             return None;
         }
-        // The arithmetic guess is off by at most one near an edge; the edges settle it.
-        let mut k = ((t - lo) * self.per_unit) as usize;
+        // The arithmetic guess is off by at most one near an edge (by rounding a few units in the
+        // last place of `f`); away from an edge it is the bin, and near one the edges settle it.
+        let f = (t - lo) * self.per_unit;
+        // Through `i32` (one instruction; `n` is far below 2³¹ bins): `f` lies in 0..=n here.
+        let mut k = f as i32 as usize;
+        let frac = f - k as f64;
+        if frac > CLEAR_OF_EDGE && frac < 1.0 - CLEAR_OF_EDGE && k < n {
+            return Some(k);
+        }
         k = k.min(n - 1);
         if t < self.edges[k] {
             k -= 1;
@@ -89,6 +96,13 @@ impl Bins {
         Some(k)
     }
 }
+
+/// Most bins along one axis.
+pub const MAX_BINS: usize = 1 << 30;
+
+/// How far (in bins) a value's arithmetic position must be from an edge for the guess to stand
+/// without comparing the edges: far above the rounding of a position (n ≤ 2³² bins, `f64`).
+const CLEAR_OF_EDGE: f64 = 1e-6;
 
 /// A coordinate as a column holds it, widened to `f64` exactly.
 pub trait Coord: Copy + Send + Sync {
@@ -141,13 +155,26 @@ impl CountGrid {
     pub fn add<X: Coord, Y: Coord>(&mut self, xs: &[X], ys: &[Y]) {
         let nx = self.x.len();
         if !self.x.log && !self.y.log {
-            // Linear axes: a value is its own term, and only a non-finite one is missing.
-            for (&a, &b) in xs.iter().zip(ys) {
-                let (vx, vy) = (a.to_f64(), b.to_f64());
-                match (self.x.index_of_term(vx), self.y.index_of_term(vy)) {
-                    (Some(i), Some(j)) => self.counts[j * nx + i] += 1,
-                    _ if vx.is_finite() && vy.is_finite() => self.outside += 1,
-                    _ => self.missing += 1,
+            // Linear axes: a value is its own term, and only a non-finite one is missing. The bins
+            // of a run of rows are found first, then counted, so the counting's scattered reads
+            // and writes overlap instead of waiting on each row's arithmetic.
+            const RUN: usize = 1024;
+            let mut cells = [0usize; RUN];
+            for (xr, yr) in xs.chunks(RUN).zip(ys.chunks(RUN)) {
+                let mut found = 0;
+                for (&a, &b) in xr.iter().zip(yr) {
+                    let (vx, vy) = (a.to_f64(), b.to_f64());
+                    match (self.x.index_of_term(vx), self.y.index_of_term(vy)) {
+                        (Some(i), Some(j)) => {
+                            cells[found] = j * nx + i;
+                            found += 1;
+                        }
+                        _ if vx.is_finite() && vy.is_finite() => self.outside += 1,
+                        _ => self.missing += 1,
+                    }
+                }
+                for &cell in &cells[..found] {
+                    self.counts[cell] += 1;
                 }
             }
             return;
