@@ -256,6 +256,60 @@ pub fn count_columns(xs: &[f64], ys: &[f64], rows: Option<&[u32]>, x: &Bins, y: 
         })
 }
 
+/// Rows counted per bin and per category (the codes of a text column).
+#[derive(Clone, Debug, PartialEq)]
+pub struct CategoryGrid {
+    /// Every row counted, whatever its category.
+    pub totals: CountGrid,
+    /// Categories counted: the column's levels, plus one for rows whose category is missing.
+    pub categories: usize,
+    /// Rows per bin and category: bin `k`, category `c` is `by_category[k * categories + c]`.
+    pub by_category: Vec<u64>,
+}
+
+/// Count rows `(xs[r], ys[r])` into a grid over `x` and `y`, per category `codes[r]` (below
+/// `levels`; any other code, such as a missing cell's, counts in category `levels`), in
+/// parallel.
+pub fn count_by_category(xs: &[f64], ys: &[f64], codes: &[u32], levels: usize, x: &Bins, y: &Bins) -> CategoryGrid {
+    let categories = levels + 1;
+    let len = xs.len().min(ys.len()).min(codes.len());
+    let chunk = len.div_ceil(rayon::current_num_threads().max(1)).max(1 << 16);
+    let starts: Vec<usize> = (0..len).step_by(chunk).collect();
+    let empty = || CategoryGrid {
+        totals: CountGrid::new(x.clone(), y.clone()),
+        categories,
+        by_category: vec![0; x.len() * y.len() * categories],
+    };
+    starts
+        .into_par_iter()
+        .map(|start| {
+            let end = (start + chunk).min(len);
+            let mut grid = empty();
+            let nx = x.len();
+            for r in start..end {
+                let (vx, vy) = (xs[r], ys[r]);
+                match (x.index(vx), y.index(vy)) {
+                    (Some(i), Some(j)) => {
+                        let cell = j * nx + i;
+                        grid.totals.counts[cell] += 1;
+                        let c = (codes[r] as usize).min(levels);
+                        grid.by_category[cell * categories + c] += 1;
+                    }
+                    _ if placeable(vx, x.is_log()) && placeable(vy, y.is_log()) => grid.totals.outside += 1,
+                    _ => grid.totals.missing += 1,
+                }
+            }
+            grid
+        })
+        .reduce(empty, |mut a, b| {
+            a.totals.merge(&b.totals);
+            for (p, q) in a.by_category.iter_mut().zip(&b.by_category) {
+                *p += q;
+            }
+            a
+        })
+}
+
 /// The extent of each axis: the smallest and largest placeable value of its column (see
 /// [`placeable`]), each column on its own (a row whose other coordinate is missing still widens
 /// an axis; the counts report it as missing). `None` for an axis without a placeable value.
@@ -394,6 +448,26 @@ mod tests {
         let mut serial = CountGrid::new(x.clone(), y.clone());
         serial.add(&picked, &picked_y);
         assert_eq!(some, serial);
+    }
+
+    #[test]
+    fn categories_split_the_totals_exactly() {
+        let mut s = 11u64;
+        let n = 200_000;
+        let xs: Vec<f64> = (0..n).map(|_| xorshift(&mut s) * 10.0).collect();
+        let ys: Vec<f64> = (0..n).map(|i| if i % 50 == 0 { f64::NAN } else { xorshift(&mut s) * 3.0 }).collect();
+        let codes: Vec<u32> = (0..n as u32).map(|i| if i % 7 == 0 { u32::MAX } else { i % 3 }).collect();
+        let (x, y) = (Bins::new(0.0, 10.0, 20, false).unwrap(), Bins::new(0.0, 3.0, 6, false).unwrap());
+        let split = count_by_category(&xs, &ys, &codes, 3, &x, &y);
+        assert_eq!(split.totals, count_columns(&xs, &ys, None, &x, &y));
+        for (k, &total) in split.totals.counts.iter().enumerate() {
+            assert_eq!(split.by_category[k * 4..k * 4 + 4].iter().sum::<u64>(), total);
+        }
+        // Category 1's grid is the grid of its rows alone; the missing ones count in the last.
+        let ones: Vec<u32> = (0..n as u32).filter(|&r| codes[r as usize] == 1).collect();
+        let alone = count_columns(&xs, &ys, Some(&ones), &x, &y);
+        assert!(alone.counts.iter().enumerate().all(|(k, &c)| split.by_category[k * 4 + 1] == c));
+        assert!(split.by_category.iter().skip(3).step_by(4).sum::<u64>() > 0);
     }
 
     #[test]

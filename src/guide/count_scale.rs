@@ -144,12 +144,15 @@ fn equalized(counts: &[u64]) -> Vec<(u64, f64)> {
     steps
 }
 
-/// How a density raster colours a bin: the ramp `map` from `start` to its end, with opacity
-/// from `min_alpha` (the fewest rows, so a single row stays visible) to 1.
+/// How a density raster colours a bin: by the ramp `map`, or, when bins take their colour from
+/// elsewhere (the mix of their categories), by opacity alone, drawn in `fixed` on the legend;
+/// opacity runs from `min_alpha` (the fewest rows, so a single row stays visible) to 1.
 #[derive(Clone, Debug)]
 pub struct CountColours {
     /// The colour map.
     pub map: ContinuousMap,
+    /// The one colour of every bin on the legend, when the count shows as opacity only.
+    pub fixed: Option<Color>,
     /// Opacity of the bins at ramp position 0.
     pub min_alpha: f64,
 }
@@ -157,8 +160,12 @@ pub struct CountColours {
 impl CountColours {
     /// The colour of a bin at ramp position `t` (0 to 1).
     pub fn at(&self, t: f64) -> Color {
-        let alpha = self.min_alpha + (1.0 - self.min_alpha) * t.clamp(0.0, 1.0);
-        self.map.at(t).with_opacity(alpha)
+        self.fixed.unwrap_or_else(|| self.map.at(t)).with_opacity(self.alpha(t))
+    }
+
+    /// The opacity of a bin at ramp position `t`.
+    pub fn alpha(&self, t: f64) -> f64 {
+        self.min_alpha + (1.0 - self.min_alpha) * t.clamp(0.0, 1.0)
     }
 }
 

@@ -175,3 +175,18 @@ fn auto_mode_draws_points_up_to_the_threshold() {
     }
     assert!(has_points(&out.scene.items));
 }
+
+#[test]
+fn a_categorical_colour_mixes_in_the_bins_and_keys_its_categories() {
+    let csv = rows_csv(20_000);
+    let (out, in_plan) = draw(&spec("", "color = \"word\""), &csv);
+    assert!(!in_plan, "colour categories are counted from rows in memory");
+    let mut labels = Vec::new();
+    legend_labels(&out.scene.items, &mut labels);
+    for word in ["rows per bin", "word", "w0", "w1", "w2"] {
+        assert!(labels.iter().any(|l| l == word), "{word} not in {labels:?}");
+    }
+    let placed = parsed(&csv).iter().filter(|(x, _)| x.is_some()).count();
+    assert_eq!(bins(&out).iter().map(|b| b[4]).sum::<f64>() as usize, placed);
+    assert!(!out.warnings.iter().any(|w| w.to_string().contains("`color`")), "{:?}", out.warnings);
+}

@@ -4,14 +4,17 @@
 
 use super::scatter::ScatterOptions;
 use crate::data::Table;
-use crate::data::density::{CountGrid, Extent, count_columns, extent_of_columns, plan::PlanRows};
+use crate::data::density::{CountGrid, Extent, count_by_category, count_columns, extent_of_columns, plan::PlanRows};
 use crate::guide::format::format_value;
 use crate::guide::layout::PositionAxis;
+use crate::guide::legend::{Legend, Symbol};
 use crate::mark::density::{DensityLook, derived_bins};
 use crate::mark::encode;
+use crate::mark::encode::ColorEncoding;
 use crate::mark::geometry::{Geometry, Plot, PlotScale};
 use crate::mark::warning::Warning;
 use crate::mark::{ChartOutput, MarkError, frame};
+use crate::scene::Color;
 use crate::selection::Highlight;
 use crate::spec::{ChannelOptions, Chart, ScaleKind};
 use crate::timing::timed;
@@ -65,7 +68,6 @@ pub fn draw(
     let (x_opts, y_opts) = (options.x.options(), options.y.options());
     let mut warnings = Vec::new();
     for (given, key, why) in [
-        (options.color.is_some(), "color", "bins count the rows of every colour together"),
         (options.point_size.is_some(), "point_size", "bins count rows, not sizes"),
         (options.trend.is_some(), "trend", "a density view draws no trend line yet"),
         (highlight.is_some(), "highlight", "a density view does not mark a selection yet"),
@@ -94,6 +96,22 @@ pub fn draw(
             (Placed::Plan(plan), [plan.is_time(&x_opts.field), plan.is_time(&y_opts.field)], plan.rows())
         }
     };
+    let mixed = match (&rows, &options.color) {
+        (Rows::Table(table), Some(channel)) => {
+            let all: Vec<u32> = (0..table.rows as u32).collect();
+            match encode::color_encoding(chart, Some(channel), None, table, &all, Symbol::Square)? {
+                (ColorEncoding::Categorical { categories, colors }, legend) => Some((categories, colors, legend)),
+                _ => {
+                    warnings.push(Warning::from(
+                        "`color` by numbers is not drawn in density mode: bins count rows, and a bin's rows have many values"
+                            .to_string(),
+                    ));
+                    None
+                }
+            }
+        }
+        _ => None,
+    };
     let log = [x_opts.scale == Some(ScaleKind::Log), y_opts.scale == Some(ScaleKind::Log)];
     let extent = timed("density extent", || placed.extent(&x_opts, &y_opts, log))?;
     let (Some(x_extent), Some(y_extent)) = (extent.x, extent.y) else {
@@ -103,14 +121,28 @@ pub fn draw(
             "check the columns' contents; missing and non-finite cells are not drawn",
         ));
     };
-    let look = DensityLook::new(options.shading, options.bin, options.min_alpha, options.spread);
+    let mut look = DensityLook::new(options.shading, options.bin, options.min_alpha, options.spread);
+    if mixed.is_some() {
+        look = look.by_category();
+    }
+    let category_legend: Vec<Legend> = mixed.as_ref().and_then(|m| m.2.clone()).into_iter().collect();
     let x_axis = axis("x", &x_opts, x_extent, times[0])?;
     let y_axis = axis("y", &y_opts, y_extent, times[1])?;
-    let (mut frame, theme) = frame::cartesian(chart, x_axis, y_axis, vec![look.provisional_legend(total)])?;
+    let legends = [vec![look.provisional_legend(total)], category_legend.clone()].concat();
+    let (mut frame, theme) = frame::cartesian(chart, x_axis, y_axis, legends)?;
     let bins = look
         .bins(frame.plot, &frame.x, &frame.y)
         .ok_or_else(|| MarkError::at(&["size"], "the plot has no room for density bins", "make the chart larger"))?;
-    let grid = timed("density counts", || placed.count(&x_opts, &y_opts, &bins))?;
+    let split = match (&mixed, &placed) {
+        (Some((categories, colors, _)), Placed::Columns(xs, ys)) => Some(timed("density counts by category", || {
+            count_by_category(xs, ys, &categories.codes, colors.len(), &bins.0, &bins.1)
+        })),
+        _ => None,
+    };
+    let grid = match &split {
+        Some(split) => split.totals.clone(),
+        None => timed("density counts", || placed.count(&x_opts, &y_opts, &bins))?,
+    };
     if grid.missing > 0 {
         warnings.push(Warning::from(format!(
             "{} of {} rows not drawn: their `{}` or `{}` is missing, not finite{}",
@@ -127,8 +159,14 @@ pub fn draw(
             format_value(grid.outside as f64)
         )));
     }
-    let (raster, scale) = look.raster(&grid, frame.plot, &chart.name);
-    frame.redraw_legends(&[look.legend(scale)], &theme);
+    let (raster, scale) = match (&split, &mixed) {
+        (Some(split), Some((_, colors, _))) => {
+            let with_missing: Vec<Color> = colors.iter().copied().chain([crate::guide::color::MISSING]).collect();
+            look.mixed_raster(split, &with_missing, frame.plot, &chart.name)
+        }
+        _ => look.raster(&grid, frame.plot, &chart.name),
+    };
+    frame.redraw_legends(&[vec![look.legend(scale)], category_legend].concat(), &theme);
     let plot = Plot::xy(
         frame.plot,
         PlotScale { field: x_opts.field.clone(), scale: frame.x.clone() },

@@ -6,12 +6,12 @@ use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
 use super::derived::{Derived, DerivedColumn};
-use crate::data::density::{Bins, CountGrid};
+use crate::data::density::{Bins, CategoryGrid, CountGrid};
 use crate::guide::color;
 use crate::guide::count_scale::{CountColours, CountScale, Shading};
 use crate::guide::legend::Legend;
 use crate::guide::scale::Scale;
-use crate::scene::{Item, Raster, Rect, Role, Shape, Style};
+use crate::scene::{Color, Item, Raster, Rect, Role, Shape, Style};
 
 /// Above this many rows, `mode = "auto"` counts rows in bins instead of drawing markers.
 pub const AUTO_DENSITY_ROWS: u64 = 200_000;
@@ -93,7 +93,11 @@ impl DensityLook {
         DensityLook {
             shading: shading.unwrap_or_default().into(),
             bin_px: bin_px.unwrap_or(DEFAULT_BIN_PX).clamp(1.0, 50.0),
-            colours: CountColours { map: map.starting_at(0.3), min_alpha: min_alpha.unwrap_or(DEFAULT_MIN_ALPHA) },
+            colours: CountColours {
+                map: map.starting_at(0.3),
+                fixed: None,
+                min_alpha: min_alpha.unwrap_or(DEFAULT_MIN_ALPHA),
+            },
             spread: spread.unwrap_or(0).min(5) as usize,
         }
     }
@@ -133,6 +137,53 @@ impl DensityLook {
                     let colour = self.colours.at(scale.position(c as f64));
                     rgba[(row + i) * 4..(row + i) * 4 + 4].copy_from_slice(&[colour.r, colour.g, colour.b, colour.a]);
                 }
+            }
+        }
+        spread_isolated(&mut rgba, nx, ny, self.spread);
+        let raster =
+            Raster { dest: plot, width: nx as u32, height: ny as u32, rgba: std::sync::Arc::new(rgba), smooth: false };
+        (Item::new(Role::DataMark, Shape::Image(raster), Style::default()).labelled(label), scale)
+    }
+}
+
+/// The grey a categorical density's legend draws its counts in (the bins' own colours are the
+/// mix of their categories' colours).
+const COUNT_INK: Color = Color { r: 80, g: 80, b: 80, a: 255 };
+
+impl DensityLook {
+    /// The same look for bins coloured by the mix of their categories: counts show as opacity.
+    pub fn by_category(mut self) -> DensityLook {
+        self.colours.fixed = Some(COUNT_INK);
+        self
+    }
+
+    /// The categories' counts as a raster over `plot`: each bin in the mean of its categories'
+    /// `colours` weighted by their counts (the last colour for rows of a missing category), its
+    /// opacity from the shading of its total; and the totals' scale.
+    pub fn mixed_raster(&self, grid: &CategoryGrid, colours: &[Color], plot: Rect, label: &str) -> (Item, CountScale) {
+        let totals = &grid.totals;
+        let scale = CountScale::new(&totals.counts, self.shading);
+        let (nx, ny) = (totals.x.len(), totals.y.len());
+        let mut rgba = vec![0u8; nx * ny * 4];
+        for j in 0..ny {
+            let row = (ny - 1 - j) * nx;
+            for i in 0..nx {
+                let cell = j * nx + i;
+                let total = totals.counts[cell];
+                if total == 0 {
+                    continue;
+                }
+                let counts = &grid.by_category[cell * grid.categories..(cell + 1) * grid.categories];
+                let mut mix = [0.0f64; 3];
+                for (&c, colour) in counts.iter().zip(colours) {
+                    for (m, v) in mix.iter_mut().zip([colour.r, colour.g, colour.b]) {
+                        *m += c as f64 * f64::from(v);
+                    }
+                }
+                let alpha = self.colours.alpha(scale.position(total as f64));
+                let [r, g, b] = mix.map(|m| (m / total as f64).round().clamp(0.0, 255.0) as u8);
+                let a = (alpha * 255.0).round() as u8;
+                rgba[(row + i) * 4..(row + i) * 4 + 4].copy_from_slice(&[r, g, b, a]);
             }
         }
         spread_isolated(&mut rgba, nx, ny, self.spread);
@@ -214,6 +265,25 @@ mod tests {
         }
         spread_isolated(&mut rgba, nx, ny, 1);
         assert_eq!(alpha_grid(&rgba, nx), ["###....", "###....", "###....", ".....##", "......."]);
+    }
+
+    #[test]
+    fn mixed_bins_take_the_count_weighted_mean_colour_and_opacity_from_the_total() {
+        let (x, y) = (Bins::new(0.0, 3.0, 3, false).unwrap(), Bins::new(0.0, 1.0, 1, false).unwrap());
+        // Bin 0: 4 rows of red; bin 1: 1 red and 3 blue; bin 2: empty. Two levels and "missing".
+        let mut totals = CountGrid::new(x, y);
+        totals.counts = vec![4, 4, 0];
+        let grid = CategoryGrid { totals, categories: 3, by_category: vec![4, 0, 0, 1, 3, 0, 0, 0, 0] };
+        let colours = [Color::rgb(200, 0, 0), Color::rgb(0, 0, 200), Color::rgb(100, 100, 100)];
+        let look = DensityLook::new(Some(ShadingOption::Linear), None, Some(0.5), None).by_category();
+        let (item, _) = look.mixed_raster(&grid, &colours, Rect::new(0.0, 0.0, 30.0, 10.0), "m");
+        let Shape::Image(raster) = &item.shape else { panic!("a raster") };
+        assert_eq!(&raster.rgba[0..4], &[200, 0, 0, 255]);
+        assert_eq!(&raster.rgba[4..8], &[50, 0, 150, 255]);
+        assert_eq!(raster.rgba[11], 0, "an empty bin stays clear");
+        // The count legend shows opacity in one grey.
+        assert_eq!(look.colours.at(0.0).a, 128);
+        assert_eq!(look.colours.at(0.0).r, look.colours.at(1.0).r);
     }
 
     #[test]
