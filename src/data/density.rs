@@ -190,14 +190,24 @@ impl CountGrid {
         }
     }
 
-    /// Count the rows `(xs[r], ys[r])` split over the grids `parts` (one per thread, each over
-    /// the same bins), in parallel.
+    /// Count the rows `(xs[r], ys[r])` split over the grids `parts` (each over the same bins),
+    /// one scoped thread each. Not on rayon's pool: the caller may be a thread of a query that a
+    /// rayon worker waits on (a chart drawn on the pool), and with every worker waiting, work
+    /// handed to the pool would never run.
     pub fn add_in_parts<X: Coord, Y: Coord>(parts: &mut [CountGrid], xs: &[X], ys: &[Y]) {
         let len = xs.len().min(ys.len());
         let chunk = len.div_ceil(parts.len().max(1)).max(1);
-        parts.par_iter_mut().enumerate().for_each(|(k, grid)| {
-            let (start, end) = ((k * chunk).min(len), ((k + 1) * chunk).min(len));
-            grid.add(&xs[start..end], &ys[start..end]);
+        std::thread::scope(|scope| {
+            let mut parts = parts.iter_mut().enumerate();
+            let first = parts.next();
+            for (k, grid) in parts {
+                let (start, end) = ((k * chunk).min(len), ((k + 1) * chunk).min(len));
+                let (xs, ys) = (&xs[start..end], &ys[start..end]);
+                scope.spawn(move || grid.add(xs, ys));
+            }
+            if let Some((_, grid)) = first {
+                grid.add(&xs[..chunk.min(len)], &ys[..chunk.min(len)]);
+            }
         });
     }
 

@@ -190,3 +190,25 @@ fn a_categorical_colour_mixes_in_the_bins_and_keys_its_categories() {
     assert_eq!(bins(&out).iter().map(|b| b[4]).sum::<f64>() as usize, placed);
     assert!(!out.warnings.iter().any(|w| w.to_string().contains("`color`")), "{:?}", out.warnings);
 }
+
+#[test]
+fn many_density_charts_of_one_streamed_source_render_in_parallel_without_waiting_on_each_other() {
+    // More charts than cores: every drawing thread waits on its scan, and the scans' counting
+    // must not need those threads (it once handed work to the same pool and hung for good).
+    let csv = rows_csv(20_000);
+    let mut text = String::from("[data.p]\npath = \"p.csv\"\n");
+    for k in 0..8 {
+        text.push_str(&format!(
+            "\n[[chart]]\nname = \"d{k}\"\nkind = \"scatter\"\ndata = \"p\"\ntitle = \"Rows {k}\"\nx = \"x\"\ny = \"y\"\nmode = \"density\"\n"
+        ));
+    }
+    let fixture = Fixture::new(&text, &[("p.csv", csv.as_bytes())]);
+    let out = crate::common::run_dataink(
+        fixture.dir.path(),
+        &["render", "spec.toml", "--out", "out", "--format", "png", "--quiet"],
+        120,
+    )
+    .expect("eight density charts of one source render within two minutes");
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert_eq!((0..8).filter(|k| fixture.dir.path().join(format!("out/d{k}.png")).exists()).count(), 8);
+}
