@@ -139,9 +139,13 @@ pub fn draw(
         })),
         _ => None,
     };
+    let counted;
     let grid = match &split {
-        Some(split) => split.totals.clone(),
-        None => timed("density counts", || placed.count(&x_opts, &y_opts, &bins))?,
+        Some(split) => &split.totals,
+        None => {
+            counted = timed("density counts", || placed.count(&x_opts, &y_opts, &bins))?;
+            &counted
+        }
     };
     if grid.missing > 0 {
         warnings.push(Warning::from(format!(
@@ -164,7 +168,7 @@ pub fn draw(
             let with_missing: Vec<Color> = colors.iter().copied().chain([crate::guide::color::MISSING]).collect();
             look.mixed_raster(split, &with_missing, frame.plot, &chart.name)
         }
-        _ => look.raster(&grid, frame.plot, &chart.name),
+        _ => look.raster(grid, frame.plot, &chart.name),
     };
     frame.redraw_legends(&[vec![look.legend(scale)], category_legend].concat(), &theme);
     let plot = Plot::xy(
@@ -173,7 +177,7 @@ pub fn draw(
         PlotScale { field: y_opts.field.clone(), scale: frame.y.clone() },
     );
     let scene = frame::scene(chart, frame, &theme, vec![raster], &mut warnings);
-    let derived = derived_bins(&grid, &x_opts.field, &y_opts.field);
+    let derived = derived_bins(grid, &x_opts.field, &y_opts.field);
     let geometry = Geometry { plots: vec![plot], ..Geometry::default() };
     Ok(ChartOutput { scene, derived, warnings, meshes: Vec::new(), geojson: None, volume: None, geometry })
 }

@@ -126,23 +126,33 @@ impl DensityLook {
     /// The grid as a raster over `plot` (empty bins transparent), and its counts' scale.
     pub fn raster(&self, grid: &CountGrid, plot: Rect, label: &str) -> (Item, CountScale) {
         let scale = CountScale::new(&grid.counts, self.shading);
+        let item = self.paint(grid, plot, label, |_, count| {
+            let colour = self.colours.at(scale.position(count as f64));
+            [colour.r, colour.g, colour.b, colour.a]
+        });
+        (item, scale)
+    }
+
+    /// The non-empty bins of `grid` as a raster over `plot`, each in the colour `colour_of`
+    /// gives for its cell and count (bin rows run from the bottom, raster rows from the top),
+    /// isolated bins spread.
+    fn paint(&self, grid: &CountGrid, plot: Rect, label: &str, colour_of: impl Fn(usize, u64) -> [u8; 4]) -> Item {
         let (nx, ny) = (grid.x.len(), grid.y.len());
         let mut rgba = vec![0u8; nx * ny * 4];
         for j in 0..ny {
-            // Raster rows run from the top; bin rows from the bottom.
             let row = (ny - 1 - j) * nx;
             for i in 0..nx {
-                let c = grid.counts[j * nx + i];
-                if c > 0 {
-                    let colour = self.colours.at(scale.position(c as f64));
-                    rgba[(row + i) * 4..(row + i) * 4 + 4].copy_from_slice(&[colour.r, colour.g, colour.b, colour.a]);
+                let cell = j * nx + i;
+                let count = grid.counts[cell];
+                if count > 0 {
+                    rgba[(row + i) * 4..(row + i) * 4 + 4].copy_from_slice(&colour_of(cell, count));
                 }
             }
         }
         spread_isolated(&mut rgba, nx, ny, self.spread);
         let raster =
             Raster { dest: plot, width: nx as u32, height: ny as u32, rgba: std::sync::Arc::new(rgba), smooth: false };
-        (Item::new(Role::DataMark, Shape::Image(raster), Style::default()).labelled(label), scale)
+        Item::new(Role::DataMark, Shape::Image(raster), Style::default()).labelled(label)
     }
 }
 
@@ -161,35 +171,20 @@ impl DensityLook {
     /// `colours` weighted by their counts (the last colour for rows of a missing category), its
     /// opacity from the shading of its total; and the totals' scale.
     pub fn mixed_raster(&self, grid: &CategoryGrid, colours: &[Color], plot: Rect, label: &str) -> (Item, CountScale) {
-        let totals = &grid.totals;
-        let scale = CountScale::new(&totals.counts, self.shading);
-        let (nx, ny) = (totals.x.len(), totals.y.len());
-        let mut rgba = vec![0u8; nx * ny * 4];
-        for j in 0..ny {
-            let row = (ny - 1 - j) * nx;
-            for i in 0..nx {
-                let cell = j * nx + i;
-                let total = totals.counts[cell];
-                if total == 0 {
-                    continue;
+        let scale = CountScale::new(&grid.totals.counts, self.shading);
+        let item = self.paint(&grid.totals, plot, label, |cell, total| {
+            let counts = &grid.by_category[cell * grid.categories..(cell + 1) * grid.categories];
+            let mut mix = [0.0f64; 3];
+            for (&c, colour) in counts.iter().zip(colours) {
+                for (m, v) in mix.iter_mut().zip([colour.r, colour.g, colour.b]) {
+                    *m += c as f64 * f64::from(v);
                 }
-                let counts = &grid.by_category[cell * grid.categories..(cell + 1) * grid.categories];
-                let mut mix = [0.0f64; 3];
-                for (&c, colour) in counts.iter().zip(colours) {
-                    for (m, v) in mix.iter_mut().zip([colour.r, colour.g, colour.b]) {
-                        *m += c as f64 * f64::from(v);
-                    }
-                }
-                let alpha = self.colours.alpha(scale.position(total as f64));
-                let [r, g, b] = mix.map(|m| (m / total as f64).round().clamp(0.0, 255.0) as u8);
-                let a = (alpha * 255.0).round() as u8;
-                rgba[(row + i) * 4..(row + i) * 4 + 4].copy_from_slice(&[r, g, b, a]);
             }
-        }
-        spread_isolated(&mut rgba, nx, ny, self.spread);
-        let raster =
-            Raster { dest: plot, width: nx as u32, height: ny as u32, rgba: std::sync::Arc::new(rgba), smooth: false };
-        (Item::new(Role::DataMark, Shape::Image(raster), Style::default()).labelled(label), scale)
+            let [r, g, b] = mix.map(|m| (m / total as f64).round().clamp(0.0, 255.0) as u8);
+            let a = (self.colours.alpha(scale.position(total as f64)) * 255.0).round() as u8;
+            [r, g, b, a]
+        });
+        (item, scale)
     }
 }
 
