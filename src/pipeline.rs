@@ -107,6 +107,7 @@ pub fn load(spec_path: &Path, policy: PathPolicy) -> Result<Loaded, Failed> {
         None => valid_sources(&json),
     };
     let (volumes, sources) = load_volumes(sources, &doc, &spec_dir, policy, |_| true, &mut diagnostics);
+    let (on_engines, sources) = split_engine_sources(sources, &doc, &mut diagnostics);
     let needed = needed_columns(&json);
     let conventional = conventional_columns(&json);
     let mut tables = BTreeMap::new();
@@ -118,6 +119,32 @@ pub fn load(spec_path: &Path, policy: PathPolicy) -> Result<Loaded, Failed> {
     let counted = counted_only(&json);
     let mut every_plan = None;
     let mut kept_in_plans = BTreeMap::new();
+    for (name, source_spec) in &on_engines {
+        let source_key = |key: &str| {
+            doc.span_of(&[PathSeg::Key("data".into()), PathSeg::Key(name.clone()), PathSeg::Key(key.into())])
+        };
+        let query = match data::engine::source::query_of(source_spec, name, &spec_dir) {
+            Ok(query) => query,
+            Err((key, message)) => {
+                diagnostics.push(Diagnostic::error(format!("data \"{name}\": {message}")).at_opt(source_key(key)));
+                continue;
+            }
+        };
+        let wanted: Option<Vec<String>> = needed.get(name).map(|set| set.iter().cloned().collect());
+        let whole = conventional.get(name).is_some_and(|set| !set.is_empty());
+        let loaded = timed(&format!("engine data \"{name}\""), || {
+            load_from_engine(query, name, counted.contains(name), if whole { None } else { wanted.as_deref() }, &json)
+        });
+        match loaded {
+            Ok((table, plan)) => {
+                tables.insert(name.clone(), table);
+                if let Some(plan) = plan {
+                    kept_in_plans.insert(name.clone(), plan);
+                }
+            }
+            Err(message) => diagnostics.push(Diagnostic::error(message).at_opt(source_key("engine"))),
+        }
+    }
     for (name, source_spec) in &sources {
         if counted.contains(name) && !plans.failed.contains(name) {
             let every = every_plan.get_or_insert_with(|| build_every(MissingScan::Listed));
@@ -272,6 +299,68 @@ fn keep_in_plan(
     if let Some(path) = parquet {
         plan = plan.scanning_only(path);
     }
+    kept_if_all_density(plan, name, json)
+}
+
+/// The sources that live on an engine, apart from the others; a source that starts from or
+/// joins one of them is dropped with an error (its rows would have to come back whole).
+fn split_engine_sources(
+    sources: BTreeMap<String, spec::DataSource>,
+    doc: &SpecDoc,
+    diagnostics: &mut Vec<Diagnostic>,
+) -> (BTreeMap<String, spec::DataSource>, BTreeMap<String, spec::DataSource>) {
+    let (on_engines, local): (BTreeMap<_, _>, BTreeMap<_, _>) =
+        sources.into_iter().partition(|(_, source)| source.engine.is_some());
+    let mut kept = BTreeMap::new();
+    for (name, source) in local {
+        match data::transform::plan::dependencies(&source).into_iter().find(|d| on_engines.contains_key(d)) {
+            Some(engine_source) => {
+                let key = if source.from.is_some() { "from" } else { "transform" };
+                diagnostics.push(
+                    Diagnostic::error(format!(
+                        "data \"{name}\" builds on \"{engine_source}\", which is on an engine; that is not supported yet"
+                    ))
+                    .with_hint(format!("write the step as a `sql` step of \"{engine_source}\" itself, so it runs on the engine"))
+                    .at_opt(doc.span_of(&data::transform::plan::source_path(&name, key))),
+                );
+            }
+            None => {
+                kept.insert(name, source);
+            }
+        }
+    }
+    (on_engines, kept)
+}
+
+/// An engine source's table and, when every chart of it only counts its rows, the engine
+/// query that counts them (`counted`: the source is one [`counted_only`] allows); otherwise its
+/// rows (the columns `wanted`, all when `None`) fetched into the table.
+fn load_from_engine(
+    query: data::engine::EngineQuery,
+    name: &str,
+    counted: bool,
+    wanted: Option<&[String]>,
+    json: &Value,
+) -> Result<(Table, Option<data::density::plan::PlanRows>), String> {
+    if counted {
+        let plan = data::density::plan::PlanRows::on_engine(query.clone(), name)?;
+        if let Some((table, plan)) = kept_if_all_density(plan, name, json)? {
+            return Ok((table, Some(plan)));
+        }
+    }
+    let frame = query.rows_of(wanted).map_err(|e| format!("data \"{name}\": {e}"))?;
+    let table = data::load::frame_to_table(&frame, &format!("data \"{name}\""))
+        .map_err(|e| format!("data \"{name}\": {e}; {}", e.hint()))?;
+    Ok((table, None))
+}
+
+/// The plan kept, with the source's table (columns, no rows), when every chart of source `name`
+/// draws a density at the plan's row count; `None` when some chart would draw points.
+fn kept_if_all_density(
+    plan: data::density::plan::PlanRows,
+    name: &str,
+    json: &Value,
+) -> Result<Option<(Table, data::density::plan::PlanRows)>, String> {
     let rows = plan.rows();
     let charts = json.get("chart").and_then(Value::as_array).into_iter().flatten();
     let all_density = charts
@@ -420,6 +509,14 @@ pub fn preview_sources(
         let summary = data::volume::summary::describe(&volume);
         out.push(SourcePreview { name, schema: Vec::new(), rows: volume.len(), head: kind, volume: Some(summary) });
     }
+    let (on_engines, sources) = split_engine_sources(sources, &doc, &mut diagnostics);
+    for (name, source_spec) in on_engines.iter().filter(|(name, _)| wanted(name)) {
+        let at = doc.span_of(&[PathSeg::Key("data".into()), PathSeg::Key(name.clone())]);
+        match preview_on_engine(source_spec, name, &spec_dir, rows) {
+            Ok(preview) => out.push(preview),
+            Err(message) => diagnostics.push(Diagnostic::error(format!("data \"{name}\": {message}")).at_opt(at)),
+        }
+    }
     let build = |missing| data::transform::build_plans(&sources, &doc, &spec_dir, policy, true, missing);
     let plans = build(MissingScan::Fast);
     let mut listed = None;
@@ -467,6 +564,25 @@ pub fn preview_sources(
         return Err(fail(source, diagnostics));
     }
     Ok(out)
+}
+
+/// An engine source's columns, row count and first `rows` rows, as the engine answers them.
+fn preview_on_engine(
+    source: &spec::DataSource,
+    name: &str,
+    spec_dir: &Path,
+    rows: usize,
+) -> Result<SourcePreview, String> {
+    let query = data::engine::source::query_of(source, name, spec_dir).map_err(|(_, message)| message)?;
+    let n = query.rows()?;
+    let head = query.run(&format!("SELECT * FROM ({}) AS rows LIMIT {rows}", query.query))?;
+    Ok(SourcePreview {
+        name: name.to_string(),
+        schema: head.schema().iter().map(|(k, v)| (k.to_string(), v.to_string())).collect(),
+        rows: usize::try_from(n).unwrap_or(usize::MAX),
+        head: format!("{head}"),
+        volume: None,
+    })
 }
 
 /// Whether a byte offset lies inside one of the spec's `[data.NAME]` tables.
@@ -805,7 +921,9 @@ impl Formats {
 /// no output overwrites them.
 pub fn input_files(loaded: &Loaded) -> Vec<PathBuf> {
     let spec_dir = loaded.source.path.parent().map(Path::to_path_buf).unwrap_or_else(|| PathBuf::from("."));
-    let data = loaded.spec.data.values().filter_map(|source| source.path.as_deref()).map(|p| spec_dir.join(p));
+    // An engine source's path is the cluster's to read, not an input of this process.
+    let local = loaded.spec.data.values().filter(|source| source.engine.is_none());
+    let data = local.filter_map(|source| source.path.as_deref()).map(|p| spec_dir.join(p));
     std::iter::once(loaded.source.path.clone()).chain(data).collect()
 }
 

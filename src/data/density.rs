@@ -6,6 +6,7 @@
 
 pub mod footer;
 pub mod plan;
+pub mod remote;
 
 use rayon::prelude::*;
 

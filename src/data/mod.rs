@@ -14,6 +14,7 @@ pub mod contained;
 pub mod csv_tail;
 pub mod date_guess;
 pub mod density;
+pub mod engine;
 pub mod frame;
 pub mod geojson;
 pub mod ipc;

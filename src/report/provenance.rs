@@ -17,7 +17,8 @@ use crate::spec::{DataFormat, DataSource};
 pub struct Provenance {
     /// The source's name (`[data.NAME]`).
     pub name: String,
-    /// `"file"` or `"inline"`.
+    /// `"file"`, `"inline"` or `"engine"` (the engine address and what it reads in `path`; the hash
+    /// is of the path or table and the transform steps sent, not of the cluster's data).
     pub origin: &'static str,
     /// The file path exactly as written in the spec (empty for inline values).
     pub path: String,
@@ -51,6 +52,23 @@ pub fn collect(
             None => (0, Vec::new()),
         };
         let entry = match (&source.path, &source.values) {
+            // The data is the cluster's: what is recorded is where, and the hash of what was asked.
+            _ if source.engine.is_some() => {
+                let engine = crate::data::engine::EngineUrl::parse(source.engine.as_deref().unwrap_or_default())
+                    .map_or_else(|_| "engine".to_string(), |url| url.to_string());
+                let read = source.path.as_deref().or(source.table.as_deref()).unwrap_or_default();
+                let asked = serde_json::to_vec(&(read, &source.transform)).unwrap_or_default();
+                Provenance {
+                    name: name.clone(),
+                    origin: "engine",
+                    path: format!("{engine} {read}"),
+                    format: "engine query".to_string(),
+                    rows,
+                    columns,
+                    bytes: asked.len() as u64,
+                    sha256: hex(&Sha256::digest(&asked)),
+                }
+            }
             (Some(path), _) => {
                 let resolved = resolve_data_path(spec_dir, path, policy)
                     .map_err(|error| ReportError::DataPath { name: name.clone(), error })?;

@@ -113,6 +113,22 @@ pub struct DataSource {
     #[serde(default)]
     #[schemars(length(min = 1, max = 1), example = &";")]
     pub delimiter: Option<String>,
+    /// A query engine the source lives on: `"sc://HOST:PORT"` (Spark Connect; parameters
+    /// `/;token=...;user_id=...` as Spark's clients take them). Its `path` (or `table`) is read
+    /// by the cluster, its `filter`, `calculate` and `sql` steps run there, and only what the
+    /// charts need comes back: a density view's counted bins, or the rows of other charts.
+    #[serde(default)]
+    #[schemars(example = &"sc://127.0.0.1:15002")]
+    pub engine: Option<String>,
+    /// For an `engine` source: a table of the engine's catalog (`name` or `db.name`), instead of
+    /// a `path`.
+    #[serde(default)]
+    #[schemars(example = &"trips")]
+    pub table: Option<String>,
+    /// For an `engine` source: seconds one query may take before it is given up (default 600).
+    #[serde(default)]
+    #[schemars(range(min = 0.001), example = 120.0)]
+    pub timeout: Option<f64>,
     /// Another data source whose rows (after its own transforms) this one starts from, instead
     /// of `path` or `values`: one file can feed several shapes.
     #[serde(default)]

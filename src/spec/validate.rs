@@ -927,6 +927,17 @@ impl<'s> Walker<'s> {
             return;
         }
         let name = format!("`data.{}`", shorten(&display_key(&e.key)));
+        if source.entry("engine").is_some() {
+            self.check_engine_source(&name, source);
+            return;
+        }
+        if let Some(table) = source.entry("table") {
+            self.diags.push(
+                Diagnostic::error(format!("{name} names a `table` but no `engine`"))
+                    .at(table.key_span.clone())
+                    .with_hint("`table` is a table on a query engine: add `engine = \"sc://HOST:PORT\"`, or read a file with `path`"),
+            );
+        }
         let origins: Vec<&TableEntry> = ["path", "values", "from"].iter().filter_map(|k| source.entry(k)).collect();
         match origins.as_slice() {
             [] => self.diags.push(
@@ -952,6 +963,33 @@ impl<'s> Walker<'s> {
                     .at(delim.span.clone())
                     .with_hint("CSV readers split on single bytes; use e.g. `,`, `;`, `|` or `\\t`"),
             );
+        }
+    }
+
+    /// An engine source reads exactly one of `path` and `table`, on the cluster.
+    fn check_engine_source(&mut self, name: &str, source: &SpannedValue) {
+        for key in ["values", "from"] {
+            if let Some(entry) = source.entry(key) {
+                self.diags.push(
+                    Diagnostic::error(format!("{name} is on an engine and cannot take `{key}`"))
+                        .at(entry.key_span.clone())
+                        .with_hint("an engine source reads a `path` or a `table` the cluster holds; another source cannot start from it yet"),
+                );
+            }
+        }
+        let origins: Vec<&TableEntry> = ["path", "table"].iter().filter_map(|k| source.entry(k)).collect();
+        match origins.as_slice() {
+            [] => self.diags.push(
+                Diagnostic::error(format!("{name} has an `engine` but neither `path` nor `table`"))
+                    .at(source.span.clone())
+                    .with_hint("name what the cluster reads: `path = \"/data/trips.parquet\"` or `table = \"trips\"`"),
+            ),
+            [first, second, ..] => self.diags.push(
+                Diagnostic::error(format!("{name} has both `{}` and `{}`", first.key, second.key))
+                    .at(second.key_span.clone())
+                    .with_label(format!("remove this or `{}`", first.key)),
+            ),
+            _ => {}
         }
     }
 

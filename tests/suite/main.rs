@@ -18,6 +18,7 @@ mod common;
 mod datasets;
 mod defaults;
 mod density;
+mod engine;
 mod explore;
 mod facet;
 mod flow;

@@ -28,15 +28,31 @@ impl ScanProgress {
     }
 }
 
-/// A source whose rows stay in its lazy plan, for charts that only need them counted.
+/// A source whose rows stay where they are (in its lazy plan, or on an engine), for charts
+/// that only need them counted.
 #[derive(Clone)]
 pub struct PlanRows {
-    frame: LazyFrame,
     source: String,
     schema: SchemaRef,
     rows: u64,
-    /// The Parquet file the plan only scans (no transforms), whose footer may give the extent.
-    parquet: Option<std::path::PathBuf>,
+    backend: Backend,
+}
+
+/// Where the rows are counted.
+#[derive(Clone)]
+enum Backend {
+    /// In this process, by polars' streaming engine.
+    Lazy {
+        frame: LazyFrame,
+        /// The Parquet file the plan only scans (no transforms), whose footer may give the extent.
+        parquet: Option<std::path::PathBuf>,
+    },
+    /// On a query engine, which sends back the counted bins.
+    Engine {
+        query: crate::data::engine::EngineQuery,
+        /// The query's columns, with no rows.
+        columns: DataFrame,
+    },
 }
 
 impl std::fmt::Debug for PlanRows {
@@ -58,14 +74,40 @@ impl PlanRows {
         let counted =
             contain(|| frame.clone().select([len().alias("n")]).collect())?.map_err(|e| engine_error(source, &e))?;
         let rows = counted.column("n").ok().and_then(|c| c.get(0).ok()).and_then(|v| v.extract::<u64>()).unwrap_or(0);
-        Ok(PlanRows { frame, source: source.to_string(), schema, rows, parquet: None })
+        Ok(PlanRows { source: source.to_string(), schema, rows, backend: Backend::Lazy { frame, parquet: None } })
+    }
+
+    /// The rows of source `source` as an engine's query yields them (two queries: the columns,
+    /// and the row count).
+    pub fn on_engine(query: crate::data::engine::EngineQuery, source: &str) -> Result<PlanRows, String> {
+        let columns = query.columns()?;
+        let rows = query.rows()?;
+        let schema = columns.schema().clone();
+        Ok(PlanRows { source: source.to_string(), schema, rows, backend: Backend::Engine { query, columns } })
     }
 
     /// The same rows, known to be exactly those of the Parquet file at `path` (the plan scans it
     /// and does nothing else), so its footer's statistics can give the extent.
     pub fn scanning_only(mut self, path: std::path::PathBuf) -> PlanRows {
-        self.parquet = Some(path);
+        if let Backend::Lazy { parquet, .. } = &mut self.backend {
+            *parquet = Some(path);
+        }
         self
+    }
+
+    /// The plan, when the rows are counted in this process.
+    fn frame(&self) -> Result<&LazyFrame, String> {
+        match &self.backend {
+            Backend::Lazy { frame, .. } => Ok(frame),
+            Backend::Engine { .. } => Err(format!("data \"{}\": the rows are on the engine", self.source)),
+        }
+    }
+
+    /// The column `field` and its type.
+    fn typed<'a>(&'a self, field: &'a str) -> Result<(&'a str, &'a DataType), String> {
+        let dtype =
+            self.schema.get(field).ok_or_else(|| format!("data \"{}\" has no column `{field}`", self.source))?;
+        Ok((field, dtype))
     }
 
     /// How many rows the plan yields.
@@ -75,7 +117,12 @@ impl PlanRows {
 
     /// The plan's columns, with no rows: what column checks and titles read.
     pub fn empty_frame(&self) -> Result<DataFrame, String> {
-        contain(|| self.frame.clone().slice(0, 0).collect())?.map_err(|e| engine_error(&self.source, &e))
+        match &self.backend {
+            Backend::Lazy { frame, .. } => {
+                contain(|| frame.clone().slice(0, 0).collect())?.map_err(|e| engine_error(&self.source, &e))
+            }
+            Backend::Engine { columns, .. } => Ok(columns.clone()),
+        }
     }
 
     /// Whether `field` holds instants (a date or date-time column).
@@ -86,7 +133,13 @@ impl PlanRows {
     /// The extent of each axis (`log`: whether it is logarithmic), as [`Extent`] defines it:
     /// one streaming query of four minima and maxima.
     pub fn extent(&self, x: &str, y: &str, log: [bool; 2]) -> Result<Extent, String> {
-        if let Some(path) = &self.parquet
+        let parquet = match &self.backend {
+            Backend::Engine { query, .. } => {
+                return query.extent(self.typed(x)?, self.typed(y)?, log).map_err(|e| self.named(e));
+            }
+            Backend::Lazy { parquet, .. } => parquet,
+        };
+        if let Some(path) = parquet
             && let (Some(xr), Some(yr)) =
                 (super::footer::float_range(path, x, log[0]), super::footer::float_range(path, y, log[1]))
         {
@@ -100,7 +153,7 @@ impl PlanRows {
         };
         let [x0, x1] = range(x, log[0])?;
         let [y0, y1] = range(y, log[1])?;
-        let query = self.frame.clone().select([x0.alias("x0"), x1.alias("x1"), y0.alias("y0"), y1.alias("y1")]);
+        let query = self.frame()?.clone().select([x0.alias("x0"), x1.alias("x1"), y0.alias("y0"), y1.alias("y1")]);
         let df = contain(|| query.collect_with_engine(Engine::Streaming))?
             .map_err(|e| engine_error(&self.source, &e))?
             .unwrap_single();
@@ -114,6 +167,12 @@ impl PlanRows {
 
     /// The rows counted into a grid over `x` and `y`.
     pub fn count(&self, x_field: &str, y_field: &str, x: &Bins, y: &Bins) -> Result<CountGrid, String> {
+        if let Backend::Engine { query, .. } = &self.backend {
+            PROGRESS.total.fetch_add(self.rows, Ordering::Relaxed);
+            let grid = query.count(self.typed(x_field)?, self.typed(y_field)?, x, y).map_err(|e| self.named(e))?;
+            PROGRESS.scanned.fetch_add(self.rows, Ordering::Relaxed);
+            return Ok(grid);
+        }
         let threads = rayon::current_num_threads().max(1);
         let parts = vec![CountGrid::new(x.clone(), y.clone()); threads];
         let mut parts = self.scan(x_field, y_field, CountFold { parts })?.parts.into_iter();
@@ -128,7 +187,7 @@ impl PlanRows {
     /// numbers as `f64`, times in milliseconds since the epoch as tables hold them), folding each
     /// batch into `fold`.
     fn scan<F: Fold>(&self, x: &str, y: &str, fold: F) -> Result<F, String> {
-        let placed = self.frame.clone().select([self.number(x)?.alias(X), self.number(y)?.alias(Y)]);
+        let placed = self.frame()?.clone().select([self.number(x)?.alias(X), self.number(y)?.alias(Y)]);
         let shared = Arc::new(Mutex::new(fold));
         let sink = Arc::clone(&shared);
         PROGRESS.total.fetch_add(self.rows, Ordering::Relaxed);
@@ -151,6 +210,11 @@ impl PlanRows {
             .map_err(|e| engine_error(source, &e))?;
         let fold = Arc::try_unwrap(shared).map_err(|_| format!("data \"{source}\": the scan did not finish"))?;
         fold.into_inner().map_err(|_| format!("data \"{source}\": the scan failed part way"))
+    }
+
+    /// An engine's error, naming the source.
+    fn named(&self, message: String) -> String {
+        format!("data \"{}\": {message}", self.source)
     }
 
     /// Column `field` as numbers: `f32` and `f64` as they are, other numbers cast to `f64`,
