@@ -348,7 +348,7 @@ fn load_from_engine(
             return Ok((table, Some(plan)));
         }
     }
-    let frame = query.rows_of(wanted).map_err(|e| format!("data \"{name}\": {e}"))?;
+    let frame = query.rows_of(wanted, data::engine::MAX_FETCHED_ROWS).map_err(|e| format!("data \"{name}\": {e}"))?;
     let table = data::load::frame_to_table(&frame, &format!("data \"{name}\""))
         .map_err(|e| format!("data \"{name}\": {e}; {}", e.hint()))?;
     Ok((table, None))

@@ -184,6 +184,13 @@ fn spark_connect_sources_count_the_grid_in_process_counts() {
     let path = dir.path().join("p.parquet");
     std::fs::write(&path, &file).expect("write");
     let read = format!("SELECT * FROM parquet.`{}`", path.display());
+    // Rows for a chart that draws them come back only up to a limit, else an error says why.
+    let err = cluster.query(&read, 120).rows_of(None, 1000).expect_err("120,000 rows are more than 1,000");
+    assert!(err.contains("more than 1000 rows") && err.contains("density"), "{err}");
+    assert_eq!(
+        cluster.query(&read, 120).rows_of(Some(&["y".to_string()]), 120_000).expect("rows").shape(),
+        (120_000, 1)
+    );
     let (bx, by) = (Bins::new(0.0, 10.0, 40, false).expect("bins"), Bins::new(0.01, 7.0, 57, true).expect("bins"));
     both_grids(&cluster, &path, &read, ("x", &bx), ("y", &by), 1);
     let odd = Bins::new(-0.3, 9.7, 1000, false).expect("bins");

@@ -121,6 +121,9 @@ impl fmt::Display for EngineError {
     }
 }
 
+/// Most rows fetched from an engine for a chart that draws rows.
+pub const MAX_FETCHED_ROWS: usize = 10_000_000;
+
 /// How long a query may take, unless the source says (`timeout`).
 pub const DEFAULT_TIMEOUT: Duration = Duration::from_secs(600);
 
@@ -173,13 +176,22 @@ impl EngineQuery {
             .ok_or_else(|| format!("engine {}: the row count came back unreadable (query: {})", self.url, self.query))
     }
 
-    /// The query's rows, only the columns `wanted` (all when `None`).
-    pub fn rows_of(&self, wanted: Option<&[String]>) -> Result<DataFrame, String> {
+    /// The query's rows, only the columns `wanted` (all when `None`), at most `limit` of them:
+    /// more is an error that says how to aggregate on the engine instead.
+    pub fn rows_of(&self, wanted: Option<&[String]>, limit: usize) -> Result<DataFrame, String> {
         let columns = match wanted {
             Some(names) if !names.is_empty() => names.iter().map(|n| sql::ident(n)).collect::<Vec<_>>().join(", "),
             _ => "*".to_string(),
         };
-        self.run(&format!("SELECT {columns} FROM ({}) AS rows", self.query))
+        let rows = self.run(&format!("SELECT {columns} FROM ({}) AS rows LIMIT {}", self.query, limit + 1))?;
+        if rows.height() > limit {
+            return Err(format!(
+                "engine {}: the query yields more than {limit} rows, and a chart that draws rows needs them all here; \
+                 draw a density scatter (`mode = \"density\"`), whose bins are counted on the engine, or aggregate in a `sql` step",
+                self.url
+            ));
+        }
+        Ok(rows)
     }
 }
 

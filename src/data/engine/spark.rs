@@ -86,7 +86,8 @@ pub fn run(url: &EngineUrl, query: &str, timeout: Duration) -> Result<DataFrame,
         .map_err(|e| EngineError::new(url, query, format!("cannot start the network runtime: {e}")))?;
     let batches = runtime.block_on(async {
         let settled_then_run = async {
-            settle_session(url).await?;
+            // A failure here is the query's: it names the query the user asked for.
+            settle_session(url).await.map_err(|e| EngineError::new(url, query, e.message))?;
             execute(url, query).await
         };
         tokio::time::timeout(timeout, settled_then_run).await.map_err(|_| {
