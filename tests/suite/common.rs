@@ -252,3 +252,15 @@ pub fn volume_npy(n: [usize; 3], f: impl Fn(f64, f64, f64) -> f64) -> Vec<u8> {
     }
     npy("<f8", &format!("({}, {}, {})", n[2], n[1], n[0]), &data)
 }
+
+/// Uniform numbers in [0, 1) from a fixed xorshift64 seed: the same sequence on every run, so
+/// test data built from it is the same everywhere.
+pub fn seeded_uniform() -> impl FnMut() -> f64 {
+    let mut state: u64 = 0x2545_f491_4f6c_dd1d;
+    move || {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        (state >> 11) as f64 / (1u64 << 53) as f64
+    }
+}

@@ -2,20 +2,14 @@
 //! edges), the same grid whether the rows are read into memory or streamed through the source's
 //! plan, the plan's transforms honoured, and bad input named.
 
-use crate::common::{Fixture, numbers};
+use crate::common::{Fixture, numbers, seeded_uniform};
 use dataink::mark::ChartOutput;
 use dataink::scene::{Item, Role, Shape};
 
 /// `n` seeded rows: x on a lattice of quarter steps (so values sit exactly on bin edges), y
 /// spread, every 97th x missing, and a text column.
 fn rows_csv(n: usize) -> String {
-    let mut state: u64 = 0x2545_f491_4f6c_dd1d;
-    let mut next = || {
-        state ^= state << 13;
-        state ^= state >> 7;
-        state ^= state << 17;
-        (state >> 11) as f64 / (1u64 << 53) as f64
-    };
+    let mut next = seeded_uniform();
     let mut csv = String::from("x,y,word\n");
     for i in 0..n {
         let x = if i % 97 == 0 { String::new() } else { format!("{}", (next() * 40.0).floor() / 4.0) };

@@ -9,7 +9,7 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::time::Duration;
 
-use crate::common::{Fixture, root, run_with_timeout, skip_outside_ci};
+use crate::common::{Fixture, root, run_with_timeout, seeded_uniform, skip_outside_ci};
 use dataink::data::density::Bins;
 use dataink::data::density::plan::PlanRows;
 use dataink::data::engine::{EngineQuery, EngineUrl};
@@ -79,13 +79,7 @@ impl Drop for Cluster {
 /// every 97th missing and every 101st NaN; `y` (f64) spread over [0, 7), every 89th ≤ 0 (for a log
 /// axis) and one infinite; `t` a timestamp (µs) one minute per row.
 fn points(n: usize) -> DataFrame {
-    let mut state: u64 = 0x2545_f491_4f6c_dd1d;
-    let mut next = || {
-        state ^= state << 13;
-        state ^= state >> 7;
-        state ^= state << 17;
-        (state >> 11) as f64 / (1u64 << 53) as f64
-    };
+    let mut next = seeded_uniform();
     let mut xs = Vec::with_capacity(n);
     let mut ys = Vec::with_capacity(n);
     for i in 0..n {
