@@ -938,21 +938,14 @@ impl<'s> Walker<'s> {
                     .with_hint("`table` is a table on a query engine: add `engine = \"sc://HOST:PORT\"`, or read a file with `path`"),
             );
         }
-        let origins: Vec<&TableEntry> = ["path", "values", "from"].iter().filter_map(|k| source.entry(k)).collect();
-        match origins.as_slice() {
-            [] => self.diags.push(
-                Diagnostic::error(format!("{name} has none of `path`, `values` or `from`"))
-                    .at(source.span.clone())
-                    .with_hint("add `path = \"data/iris.csv\"` (a file next to the spec), inline rows `values = [{ x = 1, y = 2 }]` or `from = \"OTHER\"` (another source, then its own `transform`)"),
-            ),
-            [first, second, ..] => self.diags.push(
-                Diagnostic::error(format!("{name} has both `{}` and `{}`", first.key, second.key))
-                    .at(second.key_span.clone())
-                    .with_label(format!("remove this or `{}`", first.key))
-                    .with_hint("a data source reads a file (`path`), holds inline rows (`values`) or derives from another source (`from`): exactly one"),
-            ),
-            _ => {}
-        }
+        self.exactly_one(
+            &name,
+            source,
+            &["path", "values", "from"],
+            Diagnostic::error(format!("{name} has none of `path`, `values` or `from`"))
+                .with_hint("add `path = \"data/iris.csv\"` (a file next to the spec), inline rows `values = [{ x = 1, y = 2 }]` or `from = \"OTHER\"` (another source, then its own `transform`)"),
+            Some("a data source reads a file (`path`), holds inline rows (`values`) or derives from another source (`from`): exactly one"),
+        );
         if let Some(delim) = source.get("delimiter")
             && let Some(text) = delim.as_str()
             && text.chars().count() == 1
@@ -977,18 +970,38 @@ impl<'s> Walker<'s> {
                 );
             }
         }
-        let origins: Vec<&TableEntry> = ["path", "table"].iter().filter_map(|k| source.entry(k)).collect();
+        self.exactly_one(
+            name,
+            source,
+            &["path", "table"],
+            Diagnostic::error(format!("{name} has an `engine` but neither `path` nor `table`"))
+                .with_hint("name what the cluster reads: `path = \"/data/trips.parquet\"` or `table = \"trips\"`"),
+            None,
+        );
+    }
+
+    /// Exactly one of the origin `keys` in a data source: `none` (placed at the source) when it
+    /// has none, "has both" at the second when it has two.
+    fn exactly_one(
+        &mut self,
+        name: &str,
+        source: &SpannedValue,
+        keys: &[&str],
+        none: Diagnostic,
+        both_hint: Option<&str>,
+    ) {
+        let origins: Vec<&TableEntry> = keys.iter().filter_map(|k| source.entry(k)).collect();
         match origins.as_slice() {
-            [] => self.diags.push(
-                Diagnostic::error(format!("{name} has an `engine` but neither `path` nor `table`"))
-                    .at(source.span.clone())
-                    .with_hint("name what the cluster reads: `path = \"/data/trips.parquet\"` or `table = \"trips\"`"),
-            ),
-            [first, second, ..] => self.diags.push(
-                Diagnostic::error(format!("{name} has both `{}` and `{}`", first.key, second.key))
+            [] => self.diags.push(none.at(source.span.clone())),
+            [first, second, ..] => {
+                let mut d = Diagnostic::error(format!("{name} has both `{}` and `{}`", first.key, second.key))
                     .at(second.key_span.clone())
-                    .with_label(format!("remove this or `{}`", first.key)),
-            ),
+                    .with_label(format!("remove this or `{}`", first.key));
+                if let Some(hint) = both_hint {
+                    d = d.with_hint(hint);
+                }
+                self.diags.push(d);
+            }
             _ => {}
         }
     }

@@ -348,3 +348,21 @@ fn keys_and_values_from_other_tools_get_the_dataink_spelling() {
     let harmonic = Fixture::new(interp, &[]).load().expect_err("harmonic");
     assert!(harmonic.contains("(Fritsch–Carlson) is `pchip`; expected one of:"), "{harmonic}");
 }
+
+#[test]
+fn engine_sources_name_what_they_lack_or_cannot_take() {
+    let load =
+        |source: &str| Fixture::new(&format!("[data.d]\n{source}\n{XY_CHART}"), &[]).load().expect_err("refused");
+    let out = load("engine = \"sc://127.0.0.1:1\"");
+    assert!(out.contains("error: `data.d` has an `engine` but neither `path` nor `table`"), "{out}");
+    let out = load("engine = \"sc://127.0.0.1:1\"\npath = \"a.parquet\"\ntable = \"t\"");
+    assert!(out.contains("error: `data.d` has both `path` and `table`"), "{out}");
+    let out = load("engine = \"sc://127.0.0.1:1\"\ntable = \"t\"\nfrom = \"e\"");
+    assert!(out.contains("error: `data.d` is on an engine and cannot take `from`"), "{out}");
+    let out = load("path = \"a.csv\"\ntable = \"t\"");
+    assert!(out.contains("error: `data.d` names a `table` but no `engine`"), "{out}");
+    let out = load("engine = \"df://127.0.0.1:50050\"\ntable = \"t\"");
+    assert!(out.contains("Ballista (`df://`) is not supported") && out.contains("spec.toml:2:10"), "{out}");
+    let out = load("engine = \"sc://127.0.0.1:1\"\ntable = \"t\"\ntransform = [{ sample = 5 }]");
+    assert!(out.contains("transform step 1: this step does not run on an engine source"), "{out}");
+}
