@@ -6,10 +6,7 @@
 #   bash benches/engine.sh [ROWS]     ROWS: 1e7 or 1e8 (default 1e8)
 set -euo pipefail
 cd "$(dirname "$0")/.."
-rows=${1:-1e8}
-data="$PWD/benches/data/points_$rows.parquet"
-[ -f "$data" ] || python3 benches/make_big_points.py "$data" "$rows"
-cargo build --release --quiet
+. benches/big_points.sh "${1:-1e8}"
 cluster=$(mktemp -d /tmp/dataink-spark.XXXXXX)
 trap 'bash scripts/spark_cluster.sh stop "$cluster"' EXIT
 bash scripts/spark_cluster.sh start "$cluster"

@@ -116,7 +116,8 @@ pub fn load(spec_path: &Path, policy: PathPolicy) -> Result<Loaded, Failed> {
     let plans = timed("plan data", || build(MissingScan::Fast));
     let mut listed = None;
     diagnostics.extend(plans.errors.iter().map(|e| data::transform::to_diagnostic(e, &doc, &source.text)));
-    let counted = counted_only(&json);
+    let counted = counted_only(&json, Counting::InProcess);
+    let counted_on_engine = counted_only(&json, Counting::OnEngine);
     let mut every_plan = None;
     let mut kept_in_plans = BTreeMap::new();
     for (name, source_spec) in &on_engines {
@@ -133,7 +134,13 @@ pub fn load(spec_path: &Path, policy: PathPolicy) -> Result<Loaded, Failed> {
         let wanted: Option<Vec<String>> = needed.get(name).map(|set| set.iter().cloned().collect());
         let whole = conventional.get(name).is_some_and(|set| !set.is_empty());
         let loaded = timed(&format!("engine data \"{name}\""), || {
-            load_from_engine(query, name, counted.contains(name), if whole { None } else { wanted.as_deref() }, &json)
+            load_from_engine(
+                query,
+                name,
+                counted_on_engine.contains(name),
+                if whole { None } else { wanted.as_deref() },
+                &json,
+            )
         });
         match loaded {
             Ok((table, plan)) => {
@@ -263,10 +270,20 @@ pub fn load(spec_path: &Path, policy: PathPolicy) -> Result<Loaded, Failed> {
     }
 }
 
+/// Where a source's rows would be counted.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Counting {
+    /// In this process, by scans of its lazy plan: density scatters and histograms.
+    InProcess,
+    /// On its engine: density scatters.
+    OnEngine,
+}
+
 /// The sources whose rows no chart needs one by one: each of their charts is a scatter that may
 /// be drawn as a density (`mode` "density" or "auto", with nothing drawn per row: no colour,
-/// size, trend, selection, tooltip or facet), and no selection reads them.
-fn counted_only(json: &Value) -> BTreeSet<String> {
+/// size, trend, selection, tooltip or facet) or, counted in-process, a histogram of one group
+/// (no colour, rug, selection, tooltip or facet); and no selection reads them.
+fn counted_only(json: &Value, counting: Counting) -> BTreeSet<String> {
     let selected: BTreeSet<&str> = json
         .get("selection")
         .and_then(Value::as_object)
@@ -276,11 +293,17 @@ fn counted_only(json: &Value) -> BTreeSet<String> {
     let mut verdicts: BTreeMap<String, bool> = BTreeMap::new();
     for chart in json.get("chart").and_then(Value::as_array).into_iter().flatten() {
         let Some(data) = chart.get("data").and_then(Value::as_str) else { continue };
-        let counts = chart.get("kind").and_then(Value::as_str) == Some("scatter")
-            && matches!(chart.get("mode").and_then(Value::as_str), None | Some("density" | "auto"))
-            && ["color", "point_size", "trend", "highlight", "tooltip", "facet"]
-                .iter()
-                .all(|k| chart.get(*k).is_none());
+        let none_of = |keys: &[&str]| keys.iter().all(|k| chart.get(*k).is_none());
+        let counts = match chart.get("kind").and_then(Value::as_str) {
+            Some("scatter") => {
+                matches!(chart.get("mode").and_then(Value::as_str), None | Some("density" | "auto"))
+                    && none_of(&["color", "point_size", "trend", "highlight", "tooltip", "facet"])
+            }
+            Some("histogram") => {
+                counting == Counting::InProcess && none_of(&["color", "rug", "highlight", "tooltip", "facet"])
+            }
+            _ => false,
+        };
         *verdicts.entry(data.to_string()).or_insert(true) &= counts;
     }
     verdicts.into_iter().filter(|(name, counts)| *counts && !selected.contains(name.as_str())).map(|(n, _)| n).collect()
@@ -355,7 +378,9 @@ fn load_from_engine(
 }
 
 /// The plan kept, with the source's table (columns, no rows), when every chart of source `name`
-/// draws a density at the plan's row count; `None` when some chart would draw points.
+/// only counts rows at the plan's row count (a density scatter, or a histogram of more rows than
+/// [`mark::density::AUTO_DENSITY_ROWS`]); `None` when some chart would draw points or bin rows it
+/// holds.
 fn kept_if_all_density(
     plan: data::density::plan::PlanRows,
     name: &str,

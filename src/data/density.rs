@@ -7,6 +7,7 @@
 pub mod footer;
 pub mod plan;
 pub mod remote;
+pub mod tally;
 
 use rayon::prelude::*;
 
@@ -38,6 +39,20 @@ impl Bins {
         let n = n.clamp(1, MAX_BINS);
         let edges = (0..=n).map(|k| if k == n { b } else { a + (b - a) * k as f64 / n as f64 }).collect();
         Some(Bins { edges, log, per_unit: n as f64 / (b - a) })
+    }
+
+    /// Linear bins with the given `edges` (at least two, ascending, finite, equally spaced up to
+    /// rounding, as a histogram's are), so a value's bin is decided by these very edges; `None`
+    /// unless the edges span a range.
+    pub fn from_edges(edges: Vec<f64>) -> Option<Bins> {
+        let n = edges.len().checked_sub(1).filter(|n| (1..=MAX_BINS).contains(n))?;
+        let (a, b) = (edges[0], edges[n]);
+        let ascending = edges.windows(2).all(|w| w[0] <= w[1]);
+        (a.is_finite() && b.is_finite() && a < b && ascending).then(|| Bins {
+            per_unit: n as f64 / (b - a),
+            edges,
+            log: false,
+        })
     }
 
     /// Number of bins.

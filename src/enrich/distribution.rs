@@ -70,11 +70,17 @@ pub fn quartiles_in_place(v: &mut [f64]) -> Option<(f64, f64)> {
     Some((q1, q3))
 }
 
+/// Where the `q` quantile (type 7) of `n` sorted values lies: between the values at 0-based
+/// ranks `i` and `i + 1`, a fraction `frac` of the way (`frac` is 0 at a value).
+pub fn type7_position(q: f64, n: usize) -> (usize, f64) {
+    let pos = q * n.saturating_sub(1) as f64;
+    let i = pos.floor() as usize;
+    (i, pos - i as f64)
+}
+
 /// The `q` quantile (0 ≤ q ≤ 1, type 7) of finite, non-empty `v`, reordering it.
 fn percentile_in_place(v: &mut [f64], q: f64) -> f64 {
-    let pos = q * (v.len() - 1) as f64;
-    let i = pos.floor() as usize;
-    let frac = pos - i as f64;
+    let (i, frac) = type7_position(q, v.len());
     let (_, &mut at, above) = v.select_nth_unstable_by(i, f64::total_cmp);
     match above.iter().copied().min_by(f64::total_cmp) {
         Some(next) if frac > 0.0 => at + frac * (next - at),

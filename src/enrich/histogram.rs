@@ -19,9 +19,22 @@ pub enum BinRule {
 /// most `max_bins`. The values are reordered (the quartiles are found by selection).
 pub fn bin_count(rule: BinRule, finite: &mut [f64], lo: f64, hi: f64, max_bins: usize) -> usize {
     let n = finite.len();
+    bin_count_of(rule, n, || super::distribution::quartiles_in_place(finite), lo, hi, max_bins)
+}
+
+/// [`bin_count`] for `n` finite values whose quartiles `quartiles` gives (asked only by the
+/// rules that need them), for values that are not held in memory.
+pub fn bin_count_of(
+    rule: BinRule,
+    n: usize,
+    quartiles: impl FnOnce() -> Option<(f64, f64)>,
+    lo: f64,
+    hi: f64,
+    max_bins: usize,
+) -> usize {
     let sturges = || if n == 0 { 1 } else { ((n as f64).log2() + 1.0).ceil() as usize };
-    let mut fd = || {
-        let (q1, q3) = super::distribution::quartiles_in_place(finite)?;
+    let fd = || {
+        let (q1, q3) = quartiles()?;
         let width = 2.0 * (q3 - q1) / (n as f64).cbrt();
         (width > 0.0 && hi > lo).then(|| ((hi - lo) / width).ceil()).filter(|c| c.is_finite()).map(|c| c as usize)
     };

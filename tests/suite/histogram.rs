@@ -204,3 +204,75 @@ fn bad_input_gets_the_documented_errors() {
     let missing = draw_err("y\n1\n", "x = \"x\"");
     assert!(missing.contains("no column `x`"), "{missing}");
 }
+
+/// `n` seeded rows of `x`: a quarter-step lattice (values on bin edges, many ties), a long
+/// continuous tail, every 101st cell empty and every 499th `inf`.
+fn many_rows(n: usize) -> String {
+    let mut next = crate::common::seeded_uniform();
+    let mut csv = String::from("x\n");
+    for i in 0..n {
+        let x = match i {
+            _ if i % 101 == 0 => String::new(),
+            _ if i % 499 == 0 => "inf".to_string(),
+            _ if i % 3 == 0 => format!("{}", (next() * 40.0).floor() / 4.0),
+            _ => format!("{}", -next().ln() * 2.5),
+        };
+        csv.push_str(&x);
+        csv.push('\n');
+    }
+    csv
+}
+
+/// The histogram drawn with its rows streamed through the source's plan, and drawn from the
+/// same rows held in memory (a selection over the source needs them held).
+fn streamed_and_held(csv: &str, extra: &str) -> (ChartOutput, ChartOutput) {
+    let draw = |text: String| {
+        let fixture = Fixture::new(&text, &[("d.csv", csv.as_bytes())]);
+        let loaded = fixture.load().unwrap_or_else(|e| panic!("{e}"));
+        let in_plan = loaded.plans.contains_key("d");
+        let out = dataink::pipeline::draw_chart(&loaded, 0, &loaded.spec.chart[0])
+            .unwrap_or_else(|e| panic!("{}", loaded.source.render(&dataink::pipeline::mark_diagnostic(&loaded, &e))));
+        (out, in_plan)
+    };
+    let (streamed, in_plan) = draw(spec(extra));
+    let held_spec = format!("[selection.some]\ndata = \"d\"\nrange = {{ x = [0, 1] }}\n\n{}", spec(extra));
+    let (held, held_in_plan) = draw(held_spec);
+    assert!(in_plan && !held_in_plan, "{extra}: in plan {in_plan}, held in plan {held_in_plan}");
+    (streamed, held)
+}
+
+#[test]
+fn a_histogram_of_rows_left_in_the_plan_equals_the_one_of_rows_in_memory() {
+    // More rows than the count from which a source's rows stay in its plan.
+    let csv = many_rows(240_000);
+    for extra in [
+        "x = \"x\"\n",
+        "x = \"x\"\nbins = \"fd\"\nnice = false\nstat = \"density\"\n",
+        "x = \"x\"\nbins = \"sturges\"\ncumulative = true\nstat = \"percent\"\n",
+        "x = { field = \"x\", domain = [1.3, 7.7] }\nstep = 0.5\n",
+        "x = { field = \"x\", domain = [1.3, 7.7] }\nbins = 17\nnice = false\n",
+    ] {
+        let (streamed, held) = streamed_and_held(&csv, extra);
+        for column in ["bin_start", "bin_end", "count", "height"] {
+            assert_eq!(numbers(&streamed, column), numbers(&held, column), "{extra}: column {column}");
+        }
+        let notes = |out: &ChartOutput| out.warnings.iter().map(|w| w.to_string()).collect::<Vec<_>>();
+        assert_eq!(notes(&streamed), notes(&held), "{extra}");
+        let dropped = (0..240_000).filter(|i| i % 101 == 0 || i % 499 == 0).count();
+        let said = format!("dropped {dropped} of 240000 rows");
+        assert!(notes(&streamed).iter().any(|w| w.contains(&said)), "{extra}: {:?}", notes(&streamed));
+        assert_eq!(bars(&streamed).len(), bars(&held).len(), "{extra}");
+    }
+}
+
+#[test]
+fn a_streamed_histogram_names_a_column_it_cannot_bin() {
+    let mut csv = String::from("x,t\n");
+    for i in 0..210_000 {
+        csv.push_str(&format!("{},w{}\n", i % 10, i % 3));
+    }
+    let err = draw_err(&csv, "x = \"t\"\n");
+    assert!(err.contains("`t`"), "{err}");
+    let err = draw_err(&csv, "x = { field = \"x\", domain = [20, 30] }\n");
+    assert!(err.contains("no value of `x` lies in the domain [20, 30]"), "{err}");
+}

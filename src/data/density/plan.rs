@@ -186,7 +186,7 @@ impl PlanRows {
     /// Run the plan with only `x` and `y` selected (`f32` and `f64` columns as stored, other
     /// numbers as `f64`, times in milliseconds since the epoch as tables hold them), folding each
     /// batch into `fold`.
-    fn scan<F: Fold>(&self, x: &str, y: &str, fold: F) -> Result<F, String> {
+    pub(super) fn scan<F: Fold>(&self, x: &str, y: &str, fold: F) -> Result<F, String> {
         let placed = self.frame()?.clone().select([self.number(x)?.alias(X), self.number(y)?.alias(Y)]);
         let shared = Arc::new(Mutex::new(fold));
         let sink = Arc::clone(&shared);
@@ -246,7 +246,8 @@ impl PlanRows {
 }
 
 /// What a scan folds its batches into.
-trait Fold: Send + 'static {
+pub(super) trait Fold: Send + 'static {
+    /// Count one batch's rows `(xs[r], ys[r])`.
     fn fold<X: Coord, Y: Coord>(&mut self, xs: &[X], ys: &[Y]);
 }
 

@@ -158,7 +158,9 @@ pub struct EngineQuery {
 impl EngineQuery {
     /// Run `sql` (which reads `self.query`) on the engine; the error names engine and query.
     pub fn run(&self, sql: &str) -> Result<DataFrame, String> {
-        fetch(&self.url, sql, self.timeout).map_err(|e| e.to_string())
+        let label: String = sql.chars().take(60).collect();
+        crate::timing::timed(&format!("engine query `{label}…`"), || fetch(&self.url, sql, self.timeout))
+            .map_err(|e| e.to_string())
     }
 
     /// The query's columns, with no rows.

@@ -9,9 +9,13 @@
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
+use crate::data::density::Bins as TallyBins;
+use crate::data::density::plan::PlanRows;
+use crate::data::density::tally::{OPENING_BINS, Tally};
 use crate::data::transform::bin::Bins;
 use crate::data::{Column, Table};
-use crate::enrich::histogram::{BinRule, OUTSIDE, bin_count, bins_of_rows, equal_edges, stepped_edges};
+use crate::enrich::distribution::type7_position;
+use crate::enrich::histogram::{BinRule, OUTSIDE, bin_count_of, bins_of_rows, equal_edges, stepped_edges};
 use crate::guide::axis::title_with_unit;
 use crate::guide::format::format_value;
 use crate::guide::layout::{Domain, PositionAxis};
@@ -139,8 +143,11 @@ const RUG_SHADE: Color = Color::rgb(0x22, 0x22, 0x22);
 /// The binned rows of a histogram: the edges, and per group the rows in each bin.
 struct Binned {
     edges: Vec<f64>,
-    /// `rows[g][k]`: the rows of group `g` in bin `k`.
+    /// `rows[g][k]`: the rows of group `g` in bin `k` (none listed when the rows stay in their
+    /// source's plan and were only counted).
     rows: Vec<Vec<Vec<u32>>>,
+    /// `counts[g][k]`: how many rows of group `g` lie in bin `k`.
+    counts: Vec<Vec<usize>>,
 }
 
 impl Binned {
@@ -154,7 +161,7 @@ impl Binned {
 
     /// Rows of group `g` over all bins.
     fn group_size(&self, g: usize) -> usize {
-        self.rows[g].iter().map(Vec::len).sum()
+        self.counts[g].iter().sum()
     }
 }
 
@@ -210,64 +217,73 @@ impl Heights {
     }
 }
 
-/// Draw a histogram.
+/// Draw a histogram of the rows of `table`, or of the rows left in the source's `plan` (then
+/// `table` has the columns and no rows, and the bins are counted by streaming scans).
 pub fn draw(
     chart: &Chart,
     options: &HistogramOptions,
     table: &Table,
     highlight: Option<&Highlight>,
+    plan: Option<&PlanRows>,
 ) -> Result<ChartOutput, MarkError> {
     let x_opts = options.x.options();
     let x_col = encode::column(chart, "x", &x_opts.field, table)?;
     check_column(options, x_col)?;
-    if table.rows == 0 {
+    let counted = plan.map(|plan| counted_bins(chart, options, plan)).transpose()?;
+    if counted.is_none() && table.rows == 0 {
         return Err(encode::no_rows(chart, table, None));
     }
     let color = crate::mark::bands::grouping_channel(chart, options.color.as_ref(), table, "histogram bars")?;
-    let (mut rows, mut warnings) =
-        encode::drawn_rows(chart, table, vec![(x_opts.field.as_str(), x_col)], color.as_ref())?;
     let values = x_col.numbers().unwrap_or(&[]);
-
-    // Rows outside a fixed domain are not binned.
-    if let Some([a, b]) = x_opts.domain {
-        let (lo, hi) = (a.min(b), a.max(b));
-        let before = rows.len();
-        rows.retain(|&r| values.get(r as usize).is_some_and(|v| (lo..=hi).contains(v)));
-        if rows.is_empty() {
-            return Err(MarkError::at(
-                &["x", "domain"],
-                format!("no value of `{}` lies in the domain [{lo}, {hi}]", x_opts.field),
-                "widen `domain` to cover the data, or remove it",
-            ));
+    let (rows, mut warnings) = match &counted {
+        Some((_, warnings)) => (Vec::new(), warnings.clone()),
+        None => {
+            let (mut rows, mut warnings) =
+                encode::drawn_rows(chart, table, vec![(x_opts.field.as_str(), x_col)], color.as_ref())?;
+            // Rows outside a fixed domain are not binned.
+            if let Some([a, b]) = x_opts.domain {
+                let (lo, hi) = (a.min(b), a.max(b));
+                let before = rows.len();
+                rows.retain(|&r| values.get(r as usize).is_some_and(|v| (lo..=hi).contains(v)));
+                if rows.is_empty() {
+                    return Err(empty_domain(&x_opts.field, lo, hi));
+                }
+                warnings.extend(left_out_of_domain(before - rows.len(), before, &x_opts.field, lo, hi));
+            }
+            (rows, warnings)
         }
-        if rows.len() < before {
-            warnings.push(Warning::from(format!(
-                "left out {} of {before} rows whose `{}` lies outside the domain [{lo}, {hi}]",
-                before - rows.len(),
-                x_opts.field
-            )));
-        }
-    }
+    };
 
     let (colors, color_legend) =
         encode::color_encoding(chart, color.as_ref(), options.mark_color.as_deref(), table, &rows, Symbol::Square)?;
     let (group_of_row, groups) = categorical::row_groups(&colors, color.as_ref(), &rows)?;
     let group_colors: Vec<Color> = groups.iter().map(|(_, c)| *c).collect();
     let ng = groups.len();
-    let edges = edges(options, values, &rows, x_opts.domain)?;
-    let binned = bin_rows(edges, values, &rows, &group_of_row, ng);
+    let binned = match counted {
+        Some((binned, _)) => binned,
+        None => {
+            let (lo, hi) = match x_opts.domain {
+                Some([a, b]) => (a.min(b), a.max(b)),
+                None => encode::extent(values, &rows).unwrap_or((0.0, 1.0)),
+            };
+            let mut kept: Vec<f64> = rows.iter().filter_map(|&r| values.get(r as usize).copied()).collect();
+            let n = kept.len();
+            let edges = edges(options, lo, hi, n, || crate::enrich::distribution::quartiles_in_place(&mut kept))?;
+            bin_rows(edges, values, &rows, &group_of_row, ng)
+        }
+    };
 
     let position = if ng > 1 { options.position.unwrap_or_default() } else { GroupPosition::Stack };
     let per_group = position != GroupPosition::Stack;
     let heights = Heights { stat: options.stat.unwrap_or_default(), cumulative: options.cumulative.unwrap_or(false) };
     let widths: Vec<f64> = (0..binned.bins()).map(|k| binned.width(k)).collect();
-    let total_rows = rows.len();
+    let total_rows: usize = (0..ng).map(|g| binned.group_size(g)).sum();
     let norm = |g: usize| if per_group { binned.group_size(g) } else { total_rows };
     let counts_of = |g: usize, selected: Option<&Highlight>| -> Vec<usize> {
-        binned.rows[g]
-            .iter()
-            .map(|b| selected.map_or(b.len(), |h| b.iter().filter(|&&r| h.contains(r)).count()))
-            .collect()
+        match selected {
+            None => binned.counts[g].clone(),
+            Some(h) => binned.rows[g].iter().map(|b| b.iter().filter(|&&r| h.contains(r)).count()).collect(),
+        }
     };
     let group_heights: Vec<Vec<f64>> = (0..ng).map(|g| heights.of(&counts_of(g, None), &widths, norm(g))).collect();
 
@@ -396,7 +412,12 @@ fn shared_bins(chart: &Chart, options: &HistogramOptions, table: &Table) -> Resu
         .filter(|&r| values.get(r as usize).is_some_and(|v| v.is_finite()))
         .filter(|&r| x_opts.domain.is_none_or(|[a, b]| (a.min(b)..=a.max(b)).contains(&values[r as usize])))
         .collect();
-    let edges = edges(options, values, &rows, x_opts.domain)?;
+    let (lo, hi) = match x_opts.domain {
+        Some([a, b]) => (a.min(b), a.max(b)),
+        None => encode::extent(values, &rows).unwrap_or((0.0, 1.0)),
+    };
+    let mut kept: Vec<f64> = rows.iter().map(|&r| values[r as usize]).collect();
+    let edges = edges(options, lo, hi, kept.len(), || crate::enrich::distribution::quartiles_in_place(&mut kept))?;
     let (Some(&first), Some(&last)) = (edges.first(), edges.last()) else { return Ok(options.clone()) };
     let mut shared = options.clone();
     if edges.len() >= 2 {
@@ -409,17 +430,15 @@ fn shared_bins(chart: &Chart, options: &HistogramOptions, table: &Table) -> Resu
     Ok(shared)
 }
 
-/// The bin edges: from `step` or the bin rule, nice or exact, over the domain or the data.
+/// The bin edges over `[lo, hi]` (the domain, or the values' extent) for `n` values whose
+/// quartiles `quartiles` gives: from `step` or the bin rule, nice or exact.
 fn edges(
     options: &HistogramOptions,
-    values: &[f64],
-    rows: &[u32],
-    domain: Option<[f64; 2]>,
+    lo: f64,
+    hi: f64,
+    n: usize,
+    quartiles: impl FnOnce() -> Option<(f64, f64)>,
 ) -> Result<Vec<f64>, MarkError> {
-    let (lo, hi) = match domain {
-        Some([a, b]) => (a.min(b), a.max(b)),
-        None => encode::extent(values, rows).unwrap_or((0.0, 1.0)),
-    };
     let nice = options.nice.unwrap_or(true);
     if let Some(step) = options.step {
         // A span that is a whole number of steps up to rounding is that many bins.
@@ -444,8 +463,7 @@ fn edges(
         Some(BinCount::Rule(BinRuleName::Sturges)) => BinRule::Sturges,
         Some(BinCount::Count(c)) => BinRule::Count(c as usize),
     };
-    let mut kept: Vec<f64> = rows.iter().filter_map(|&r| values.get(r as usize).copied()).collect();
-    let count = bin_count(rule, &mut kept, lo, hi, MAX_BINS);
+    let count = bin_count_of(rule, n, quartiles, lo, hi, MAX_BINS);
     Ok(if nice {
         let b = Bins::nice(lo, hi, count as u32, None);
         stepped_edges(b.start, b.stop, b.step)
@@ -472,7 +490,134 @@ fn bin_rows(edges: Vec<f64>, values: &[f64], rows: &[u32], group_of_row: &[usize
             binned[g][k as usize].push(r);
         }
     }
-    Binned { edges, rows: binned }
+    let counts = binned.iter().map(|group| group.iter().map(Vec::len).collect()).collect();
+    Binned { edges, rows: binned, counts }
+}
+
+/// The bins of a histogram whose rows stay in their source's plan, counted by streaming scans
+/// (the extent unless a domain is given, a first tally, the quartiles when the rule needs them,
+/// the counts): the edges and counts the same rows give in memory, and the same warnings.
+fn counted_bins(
+    chart: &Chart,
+    options: &HistogramOptions,
+    plan: &PlanRows,
+) -> Result<(Binned, Vec<Warning>), MarkError> {
+    let x_opts = options.x.options();
+    let field = x_opts.field.as_str();
+    let scanned = |message: String| {
+        MarkError::at(&["data"], message, "`dataink data SPEC NAME` shows the rows after the source's transforms")
+    };
+    let extent = match x_opts.domain {
+        Some([a, b]) => Some((a.min(b), a.max(b))),
+        None => plan.extent(field, field, [false, false]).map_err(scanned)?.x,
+    };
+    let (lo, hi) = extent.unwrap_or((0.0, 1.0));
+    // A count or a width needs only the range; the rules size the bins by the values' number
+    // (and quartiles), which a first tally gives.
+    let by_values = options.step.is_none() && !matches!(options.bins, Some(BinCount::Count(_)));
+    let mut first = None;
+    let edges = if by_values {
+        // A single value (lo = hi) has no range to split; any bin around it places it.
+        let whole = TallyBins::new(lo, hi, OPENING_BINS, false).or_else(|| TallyBins::new(lo, lo.next_up(), 1, false));
+        let whole = whole.ok_or_else(|| scanned(format!("`{field}` has no finite range to bin")))?;
+        let tally = plan.tally(field, vec![Tally::new(whole).keeping(lo, hi)]).map_err(scanned)?.remove(0);
+        let n = placed_or_error(chart, field, plan, &tally, (lo, hi))?;
+        let mut failed = None;
+        let quartiles = || {
+            let ((i1, f1), (i3, f3)) = (type7_position(0.25, n), type7_position(0.75, n));
+            let next = |i: usize| (i + 1).min(n - 1) as u64;
+            match plan.order_statistics(field, &tally, &[i1 as u64, next(i1), i3 as u64, next(i3)]) {
+                Ok(v) => {
+                    let at = |v0: f64, v1: f64, frac: f64| if frac > 0.0 { v0 + frac * (v1 - v0) } else { v0 };
+                    Some((at(v[0], v[1], f1), at(v[2], v[3], f3)))
+                }
+                Err(e) => {
+                    failed = Some(e);
+                    None
+                }
+            }
+        };
+        let edges = edges(options, lo, hi, n, quartiles)?;
+        if let Some(message) = failed {
+            return Err(scanned(message));
+        }
+        first = Some(tally);
+        edges
+    } else {
+        edges(options, lo, hi, 0, || None)?
+    };
+    let bins =
+        TallyBins::from_edges(edges.clone()).ok_or_else(|| scanned(format!("the bins of `{field}` span no range")))?;
+    let counted = plan.tally(field, vec![Tally::new(bins).keeping(lo, hi)]).map_err(scanned)?.remove(0);
+    let n = placed_or_error(chart, field, plan, &counted, (lo, hi))?;
+    let tally = first.as_ref().unwrap_or(&counted);
+    let mut warnings = Vec::new();
+    let dropped = (tally.missing + tally.infinite) as usize;
+    if dropped > 0 {
+        warnings.push(Warning::DroppedRows {
+            chart: chart.name.clone(),
+            dropped,
+            rows: plan.rows() as usize,
+            columns: vec![crate::mark::warning::ColumnLoss {
+                field: field.to_string(),
+                missing: tally.missing as usize,
+                infinite: tally.infinite as usize,
+                non_positive: 0,
+            }],
+        });
+    }
+    warnings.extend(left_out_of_domain(tally.outside as usize, n + tally.outside as usize, field, lo, hi));
+    let counts: Vec<usize> = counted.counts().into_iter().map(|c| c as usize).collect();
+    let rows = vec![vec![Vec::new(); counts.len()]];
+    Ok((Binned { edges, rows, counts: vec![counts] }, warnings))
+}
+
+/// How many values `tally` (over the histogram's range `[lo, hi]`) placed; the error a table
+/// of the same rows gives when it placed none.
+fn placed_or_error(
+    chart: &Chart,
+    field: &str,
+    plan: &PlanRows,
+    tally: &Tally,
+    (lo, hi): (f64, f64),
+) -> Result<usize, MarkError> {
+    let n = tally.placed() as usize;
+    if n > 0 {
+        return Ok(n);
+    }
+    Err(if tally.outside > 0 {
+        empty_domain(field, lo, hi)
+    } else if plan.rows() == 0 {
+        MarkError::at(
+            &["data"],
+            format!("data \"{}\" has no rows", chart.data),
+            "the source has a header but no records; check the file",
+        )
+    } else {
+        MarkError::at(
+            &[],
+            format!("no rows left to plot out of {}: every row's `{field}` is missing or not finite", plan.rows()),
+            "rows with missing or non-finite values in the charted columns are dropped; check those columns",
+        )
+    })
+}
+
+/// The error for a domain that holds none of the values.
+fn empty_domain(field: &str, lo: f64, hi: f64) -> MarkError {
+    MarkError::at(
+        &["x", "domain"],
+        format!("no value of `{field}` lies in the domain [{lo}, {hi}]"),
+        "widen `domain` to cover the data, or remove it",
+    )
+}
+
+/// The note for `left_out` of `before` rows left out by the domain, if any.
+fn left_out_of_domain(left_out: usize, before: usize, field: &str, lo: f64, hi: f64) -> Option<Warning> {
+    (left_out > 0).then(|| {
+        Warning::from(format!(
+            "left out {left_out} of {before} rows whose `{field}` lies outside the domain [{lo}, {hi}]"
+        ))
+    })
 }
 
 /// Where the bars of a histogram go.
@@ -532,9 +677,13 @@ impl BarLayout<'_> {
                 } else {
                     Style::fill(fill)
                 };
-                let rows: Vec<u32> = match selected {
-                    Some(h) => binned.rows[g][k].iter().copied().filter(|&r| h.contains(r)).collect(),
-                    None => binned.rows[g][k].clone(),
+                let (rows, count): (Vec<u32>, usize) = match selected {
+                    Some(h) => {
+                        let rows: Vec<u32> = binned.rows[g][k].iter().copied().filter(|&r| h.contains(r)).collect();
+                        let count = rows.len();
+                        (rows, count)
+                    }
+                    None => (binned.rows[g][k].clone(), binned.counts[g][k]),
                 };
                 let label = format!(
                     "[{}, {}{}: {}{}",
@@ -544,7 +693,7 @@ impl BarLayout<'_> {
                     format_value(h),
                     if what.is_empty() { String::new() } else { format!(" ({what})") }
                 );
-                let tooltip = self.tooltip(k, g, h, rows.len(), what);
+                let tooltip = self.tooltip(k, g, h, count, what);
                 items.push(
                     Item::new(Role::DataMark, Shape::Rect(rect), style)
                         .with_rows(rows)
@@ -623,12 +772,12 @@ fn derived_table(binned: &Binned, heights: &[Vec<f64>], groups: Option<(&str, &[
     let mut group = Vec::new();
     let mut count = Vec::new();
     let mut height = Vec::new();
-    for (g, bins) in binned.rows.iter().enumerate() {
-        for (k, rows) in bins.iter().enumerate() {
+    for (g, bins) in binned.counts.iter().enumerate() {
+        for (k, &rows) in bins.iter().enumerate() {
             start.push(binned.edges[k]);
             end.push(binned.edges[k + 1]);
             group.push(groups.and_then(|(_, labels)| labels.get(g)).map(|(l, _)| l.clone()).unwrap_or_default());
-            count.push(rows.len() as f64);
+            count.push(rows as f64);
             height.push(heights[g][k]);
         }
     }
@@ -655,7 +804,7 @@ impl Technique for HistogramOptions {
     }
 
     fn draw(&self, cx: &ChartContext<'_>) -> Result<ChartOutput, MarkError> {
-        draw(&cx.chart, self, cx.table, cx.highlight)
+        draw(&cx.chart, self, cx.table, cx.highlight, cx.plan)
     }
 
     fn facet_shared(&self, chart: &Chart, table: &Table) -> Result<Option<crate::spec::ChartKind>, MarkError> {

@@ -1,0 +1,30 @@
+#!/usr/bin/env bash
+# A histogram of 10⁸ values (the x column of benches/data/points_1e8.parquet, made by
+# make_big_points.py), "auto" bins, to PNG: counted while the rows stream through the source's
+# plan, against the same chart with its rows held in memory (`rug = false` keeps the histogram
+# the same but makes the source read its rows), same run; then each one's peak memory.
+#   bash benches/histogram.sh [ROWS]     ROWS: 1e7, 1e8 or 1e9 (default 1e8)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+. benches/big_points.sh "${1:-1e8}"
+out=target/bench/histogram
+mkdir -p "$out"
+for kind in streamed held; do
+    cat > "$out/$kind.toml" <<SPEC
+[data.points]
+path = "$data"
+
+[[chart]]
+name = "hist"
+kind = "histogram"
+data = "points"
+x = "x"
+$([ "$kind" = held ] && echo 'rug = false')
+SPEC
+done
+run() { echo "target/release/dataink render $out/$1.toml --format png --out $out/$1 --quiet --allow-outside-paths"; }
+hyperfine --warmup 1 --runs 4 -n streamed "$(run streamed)" -n held "$(run held)"
+for kind in streamed held; do
+    /usr/bin/time -f "$kind: peak resident %M KB" $(run $kind)
+done
+cmp "$out/streamed/hist.png" "$out/held/hist.png" && echo "the two PNGs are identical"
