@@ -273,16 +273,16 @@ pub fn load(spec_path: &Path, policy: PathPolicy) -> Result<Loaded, Failed> {
 /// Where a source's rows would be counted.
 #[derive(Clone, Copy, PartialEq, Eq)]
 enum Counting {
-    /// In this process, by scans of its lazy plan: density scatters and histograms.
+    /// In this process, by scans of its lazy plan.
     InProcess,
-    /// On its engine: density scatters.
+    /// On its engine.
     OnEngine,
 }
 
-/// The sources whose rows no chart needs one by one: each of their charts is a scatter that may
-/// be drawn as a density (`mode` "density" or "auto", with nothing drawn per row: no colour,
-/// size, trend, selection, tooltip or facet) or, counted in-process, a histogram of one group
-/// (no colour, rug, selection, tooltip or facet); and no selection reads them.
+/// The sources whose rows no chart needs one by one: each of their charts is of a kind that
+/// can count its rows there, with none of the keys that make it need them (the registry's
+/// [`mark::registry::RowCounting`]: density scatters, and in-process histograms of one group);
+/// and no selection reads them.
 fn counted_only(json: &Value, counting: Counting) -> BTreeSet<String> {
     let selected: BTreeSet<&str> = json
         .get("selection")
@@ -293,17 +293,12 @@ fn counted_only(json: &Value, counting: Counting) -> BTreeSet<String> {
     let mut verdicts: BTreeMap<String, bool> = BTreeMap::new();
     for chart in json.get("chart").and_then(Value::as_array).into_iter().flatten() {
         let Some(data) = chart.get("data").and_then(Value::as_str) else { continue };
-        let none_of = |keys: &[&str]| keys.iter().all(|k| chart.get(*k).is_none());
-        let counts = match chart.get("kind").and_then(Value::as_str) {
-            Some("scatter") => {
-                matches!(chart.get("mode").and_then(Value::as_str), None | Some("density" | "auto"))
-                    && none_of(&["color", "point_size", "trend", "highlight", "tooltip", "facet"])
-            }
-            Some("histogram") => {
-                counting == Counting::InProcess && none_of(&["color", "rug", "highlight", "tooltip", "facet"])
-            }
-            _ => false,
-        };
+        let counts = chart
+            .get("kind")
+            .and_then(Value::as_str)
+            .and_then(mark::registry::kind_info)
+            .and_then(|info| info.counts_rows)
+            .is_some_and(|rule| rule.counts(chart, counting == Counting::OnEngine));
         *verdicts.entry(data.to_string()).or_insert(true) &= counts;
     }
     verdicts.into_iter().filter(|(name, counts)| *counts && !selected.contains(name.as_str())).map(|(n, _)| n).collect()

@@ -44,6 +44,35 @@ pub struct KindInfo {
     pub faceting: Faceting,
     /// Whether the kind draws a volume source (the others draw tables and refuse volumes).
     pub draws_volumes: bool,
+    /// Whether, and when, a chart of the kind can be drawn from rows that stay in their
+    /// source's plan, only counted.
+    pub counts_rows: Option<RowCounting>,
+}
+
+/// When a kind's chart only counts its rows, so they can stay in their source's plan (see
+/// `ChartContext::plan`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct RowCounting {
+    /// The `mode` values under which it counts (the key left out counts too); `None`: the kind
+    /// has no `mode`.
+    pub modes: Option<&'static [&'static str]>,
+    /// Keys any of which makes the chart need its rows one by one.
+    pub unless: &'static [&'static str],
+    /// Whether a query engine can count them too (else only polars' plan in this process).
+    pub on_engine: bool,
+}
+
+impl RowCounting {
+    /// Whether `chart` (the spec's table of it) only counts its rows (`engine`: on an engine).
+    pub fn counts(&self, chart: &serde_json::Value, engine: bool) -> bool {
+        let mode = chart.get("mode").and_then(serde_json::Value::as_str);
+        let mode_counts = match (self.modes, mode) {
+            (_, None) => true,
+            (Some(modes), Some(mode)) => modes.contains(&mode),
+            (None, Some(_)) => false,
+        };
+        (self.on_engine || !engine) && mode_counts && self.unless.iter().all(|k| chart.get(*k).is_none())
+    }
 }
 
 /// How a kind's charts split into small multiples.
@@ -72,7 +101,14 @@ impl KindInfo {
             draws_annotations: false,
             faceting: Faceting::Not,
             draws_volumes: false,
+            counts_rows: None,
         }
+    }
+
+    /// Drawn from rows left in their source's plan when `counting` says.
+    pub const fn counting_rows(mut self, counting: RowCounting) -> KindInfo {
+        self.counts_rows = Some(counting);
+        self
     }
 
     /// Drawn as facet panels in the given way.
@@ -474,6 +510,23 @@ pub fn names_where(keep: impl Fn(&KindInfo) -> bool) -> Vec<&'static str> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_kinds_that_count_rows_say_when() {
+        let counts = |chart: serde_json::Value, engine: bool| {
+            let kind = chart["kind"].as_str().unwrap();
+            kind_info(kind).and_then(|k| k.counts_rows).is_some_and(|rule| rule.counts(&chart, engine))
+        };
+        use serde_json::json;
+        assert!(counts(json!({"kind": "scatter", "x": "a", "y": "b"}), true));
+        assert!(counts(json!({"kind": "scatter", "mode": "density"}), false));
+        assert!(!counts(json!({"kind": "scatter", "mode": "points"}), false));
+        assert!(!counts(json!({"kind": "scatter", "color": "c"}), false));
+        assert!(counts(json!({"kind": "histogram", "x": "a"}), false));
+        assert!(!counts(json!({"kind": "histogram", "x": "a"}), true), "histograms are counted in-process only");
+        assert!(!counts(json!({"kind": "histogram", "rug": false}), false));
+        assert!(!counts(json!({"kind": "line", "x": "a"}), false));
+    }
 
     #[test]
     fn every_kind_is_listed_once_under_the_name_serde_reads() {

@@ -794,6 +794,11 @@ fn derived_table(binned: &Binned, heights: &[Vec<f64>], groups: Option<(&str, &[
 
 /// `kind = "histogram"`.
 pub static KIND: KindInfo = KindInfo::new("histogram", &["x", "color"])
+    .counting_rows(crate::mark::registry::RowCounting {
+        modes: None,
+        unless: &["color", "rug", "highlight", "tooltip", "facet"],
+        on_engine: false,
+    })
     .drawing_selections()
     .faceted(crate::mark::registry::Faceting::Frame)
     .drawing_annotations();

@@ -239,6 +239,12 @@ pub fn draw(
 
 /// `kind = "scatter"`.
 pub static KIND: KindInfo = KindInfo::new("scatter", &["x", "y", "color", "point_size"])
+    .counting_rows(crate::mark::registry::RowCounting {
+        modes: Some(&["density", "auto"]),
+        // `color` categories are counted from rows in memory.
+        unless: &["color", "point_size", "trend", "highlight", "tooltip", "facet"],
+        on_engine: true,
+    })
     .drawing_selections()
     .taking_aspect()
     .faceted(crate::mark::registry::Faceting::Frame)
