@@ -276,3 +276,22 @@ fn a_streamed_histogram_names_a_column_it_cannot_bin() {
     let err = draw_err(&csv, "x = { field = \"x\", domain = [20, 30] }\n");
     assert!(err.contains("no value of `x` lies in the domain [20, 30]"), "{err}");
 }
+
+#[test]
+fn rows_left_out_by_a_domain_are_linted_when_the_rows_stay_in_the_plan() {
+    let csv = many_rows(240_000);
+    let extra = "x = { field = \"x\", domain = [1.3, 7.7] }\nstep = 0.5\n";
+    let (streamed, held) = streamed_and_held(&csv, extra);
+    let left_out = |out: &ChartOutput| {
+        out.warnings.iter().find_map(|w| match w {
+            dataink::mark::Warning::OutsideDomain { outside, rows, .. } => Some((*outside, *rows)),
+            _ => None,
+        })
+    };
+    assert_eq!(left_out(&streamed), left_out(&held));
+    let (outside, rows) = left_out(&streamed).expect("the domain leaves rows out");
+    let findings = crate::common::lint_findings(&spec(extra), &[("d.csv", csv.as_bytes())], "DI005");
+    assert_eq!(findings.len(), 1, "{findings:?}");
+    let said = format!("{outside} of {rows} rows lie outside the fixed domain [1.3, 7.7]");
+    assert!(findings[0].message.contains(&said), "{}", findings[0].message);
+}

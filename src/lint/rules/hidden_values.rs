@@ -6,6 +6,7 @@
 use crate::lint::chart_info::cartesian_axes;
 use crate::lint::{Category, Issue, Rule, Severity, Subject};
 use crate::mark::derived::DerivedColumn;
+use crate::mark::warning::Warning;
 use crate::spec::{ChartKind, ScaleKind};
 
 /// DI003.
@@ -135,6 +136,9 @@ fn caption_states_count(s: &Subject<'_>, dropped: usize) -> bool {
 }
 
 fn check_domain(s: &Subject<'_>) -> Vec<Issue> {
+    if s.table.rows == 0 {
+        return counted_outside_domain(s);
+    }
     cartesian_axes(s.chart)
         .into_iter()
         .filter_map(|a| {
@@ -163,6 +167,30 @@ fn check_domain(s: &Subject<'_>) -> Vec<Issue> {
                 let hint = format!("widen `domain` to cover [{min}, {max}], or remove it");
                 Issue::new(a.name, format!("{}.domain", a.key), message, hint)
             })
+        })
+        .collect()
+}
+
+/// DI005 for a chart whose rows stayed in their source's plan (its table has none): the rows
+/// outside a domain as the chart counted them.
+fn counted_outside_domain(s: &Subject<'_>) -> Vec<Issue> {
+    let axes = cartesian_axes(s.chart);
+    s.output
+        .warnings
+        .iter()
+        .filter_map(|w| {
+            let Warning::OutsideDomain { field, outside, rows, .. } = w else { return None };
+            let axis = axes.iter().find(|a| a.options.field == *field)?;
+            let [lo, hi] = axis.options.domain?;
+            Some(Issue::new(
+                axis.name,
+                format!("{}.domain", axis.key),
+                format!(
+                    "{outside} of {rows} rows lie outside the fixed domain [{lo}, {hi}] of the {} and are not shown",
+                    axis.name
+                ),
+                "widen `domain` to cover the data, or remove it",
+            ))
         })
         .collect()
 }

@@ -613,10 +613,11 @@ fn empty_domain(field: &str, lo: f64, hi: f64) -> MarkError {
 
 /// The note for `left_out` of `before` rows left out by the domain, if any.
 fn left_out_of_domain(left_out: usize, before: usize, field: &str, lo: f64, hi: f64) -> Option<Warning> {
-    (left_out > 0).then(|| {
-        Warning::from(format!(
-            "left out {left_out} of {before} rows whose `{field}` lies outside the domain [{lo}, {hi}]"
-        ))
+    (left_out > 0).then(|| Warning::OutsideDomain {
+        field: field.to_string(),
+        outside: left_out,
+        rows: before,
+        text: format!("left out {left_out} of {before} rows whose `{field}` lies outside the domain [{lo}, {hi}]"),
     })
 }
 

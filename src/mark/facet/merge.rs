@@ -232,10 +232,12 @@ pub fn merge_warnings(
                         }
                     }
                 }
-                Warning::Note(text) => match notes.iter_mut().find(|(t, _)| t == text) {
-                    Some((_, panels)) => panels.push(i),
-                    None => notes.push((text.clone(), vec![i])),
-                },
+                Warning::OutsideDomain { text, .. } | Warning::Note(text) => {
+                    match notes.iter_mut().find(|(t, _)| t == text) {
+                        Some((_, panels)) => panels.push(i),
+                        None => notes.push((text.clone(), vec![i])),
+                    }
+                }
             }
         }
     }

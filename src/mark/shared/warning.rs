@@ -18,6 +18,18 @@ pub enum Warning {
         /// What each column lacked (columns lacking nothing are not listed).
         columns: Vec<ColumnLoss>,
     },
+    /// Rows left out because their value lies outside a fixed axis domain, as counted by a chart
+    /// whose rows stay in their source's plan (the lint reads the numbers; the reader the text).
+    OutsideDomain {
+        /// The axis' column.
+        field: String,
+        /// Rows left out.
+        outside: usize,
+        /// Rows with a value, inside the domain or not.
+        rows: usize,
+        /// The note as written for the reader.
+        text: String,
+    },
     /// Anything else, worded for the reader (it names its chart).
     Note(String),
 }
@@ -40,7 +52,7 @@ impl Warning {
     pub fn dropped_rows(&self) -> Option<(usize, usize)> {
         match self {
             Warning::DroppedRows { dropped, rows, .. } => Some((*dropped, *rows)),
-            Warning::Note(_) => None,
+            Warning::OutsideDomain { .. } | Warning::Note(_) => None,
         }
     }
 
@@ -50,7 +62,7 @@ impl Warning {
             Warning::DroppedRows { dropped, rows, .. } => {
                 format!("dropped {dropped} of {rows} rows with {}", self.what_rows_lack().unwrap_or_default())
             }
-            Warning::Note(text) => text.clone(),
+            Warning::OutsideDomain { text, .. } | Warning::Note(text) => text.clone(),
         }
     }
 
@@ -88,7 +100,7 @@ impl fmt::Display for Warning {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
             Warning::DroppedRows { chart, .. } => write!(f, "chart \"{chart}\": {}", self.message()),
-            Warning::Note(text) => f.write_str(text),
+            Warning::OutsideDomain { text, .. } | Warning::Note(text) => f.write_str(text),
         }
     }
 }
