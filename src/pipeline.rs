@@ -317,7 +317,7 @@ fn keep_in_plan(
     if let Some(path) = parquet {
         plan = plan.scanning_only(path);
     }
-    kept_if_all_density(plan, name, json)
+    kept_if_only_counted(plan, name, json)
 }
 
 /// The sources that live on an engine, apart from the others; a source that starts from or
@@ -362,7 +362,7 @@ fn load_from_engine(
 ) -> Result<(Table, Option<data::density::plan::PlanRows>), String> {
     if counted {
         let plan = data::density::plan::PlanRows::on_engine(query.clone(), name)?;
-        if let Some((table, plan)) = kept_if_all_density(plan, name, json)? {
+        if let Some((table, plan)) = kept_if_only_counted(plan, name, json)? {
             return Ok((table, Some(plan)));
         }
     }
@@ -376,7 +376,7 @@ fn load_from_engine(
 /// only counts rows at the plan's row count (a density scatter, or a histogram of more rows than
 /// [`mark::density::AUTO_DENSITY_ROWS`]); `None` when some chart would draw points or bin rows it
 /// holds.
-fn kept_if_all_density(
+fn kept_if_only_counted(
     plan: data::density::plan::PlanRows,
     name: &str,
     json: &Value,

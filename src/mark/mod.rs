@@ -153,7 +153,7 @@ pub fn draw_in(cx: &ChartContext<'_>) -> Result<ChartOutput, MarkError> {
     };
     let mut output = drawn.map_err(|e| e.in_chart(cx.index, name))?;
     for warning in &mut output.warnings {
-        if let Warning::Note(text) = warning {
+        if let Warning::Note(text) | Warning::OutsideDomain { text, .. } = warning {
             *text = format!("chart \"{name}\": {text}");
         }
     }

@@ -290,6 +290,10 @@ fn rows_left_out_by_a_domain_are_linted_when_the_rows_stay_in_the_plan() {
     };
     assert_eq!(left_out(&streamed), left_out(&held));
     let (outside, rows) = left_out(&streamed).expect("the domain leaves rows out");
+    for out in [&streamed, &held] {
+        let note = out.warnings.iter().map(|w| w.to_string()).find(|w| w.contains("outside the domain")).unwrap();
+        assert!(note.starts_with("chart \"h\": left out"), "the note names its chart: {note}");
+    }
     let findings = crate::common::lint_findings(&spec(extra), &[("d.csv", csv.as_bytes())], "DI005");
     assert_eq!(findings.len(), 1, "{findings:?}");
     let said = format!("{outside} of {rows} rows lie outside the fixed domain [1.3, 7.7]");

@@ -261,16 +261,7 @@ pub fn draw(
     let ng = groups.len();
     let binned = match counted {
         Some((binned, _)) => binned,
-        None => {
-            let (lo, hi) = match x_opts.domain {
-                Some([a, b]) => (a.min(b), a.max(b)),
-                None => encode::extent(values, &rows).unwrap_or((0.0, 1.0)),
-            };
-            let mut kept: Vec<f64> = rows.iter().filter_map(|&r| values.get(r as usize).copied()).collect();
-            let n = kept.len();
-            let edges = edges(options, lo, hi, n, || crate::enrich::distribution::quartiles_in_place(&mut kept))?;
-            bin_rows(edges, values, &rows, &group_of_row, ng)
-        }
+        None => bin_rows(edges_of_rows(options, values, &rows, x_opts.domain)?, values, &rows, &group_of_row, ng),
     };
 
     let position = if ng > 1 { options.position.unwrap_or_default() } else { GroupPosition::Stack };
@@ -412,12 +403,7 @@ fn shared_bins(chart: &Chart, options: &HistogramOptions, table: &Table) -> Resu
         .filter(|&r| values.get(r as usize).is_some_and(|v| v.is_finite()))
         .filter(|&r| x_opts.domain.is_none_or(|[a, b]| (a.min(b)..=a.max(b)).contains(&values[r as usize])))
         .collect();
-    let (lo, hi) = match x_opts.domain {
-        Some([a, b]) => (a.min(b), a.max(b)),
-        None => encode::extent(values, &rows).unwrap_or((0.0, 1.0)),
-    };
-    let mut kept: Vec<f64> = rows.iter().map(|&r| values[r as usize]).collect();
-    let edges = edges(options, lo, hi, kept.len(), || crate::enrich::distribution::quartiles_in_place(&mut kept))?;
+    let edges = edges_of_rows(options, values, &rows, x_opts.domain)?;
     let (Some(&first), Some(&last)) = (edges.first(), edges.last()) else { return Ok(options.clone()) };
     let mut shared = options.clone();
     if edges.len() >= 2 {
@@ -428,6 +414,21 @@ fn shared_bins(chart: &Chart, options: &HistogramOptions, table: &Table) -> Resu
         shared.x = Channel::Detailed(x_opts);
     }
     Ok(shared)
+}
+
+/// The bin edges of the finite `values` at `rows`, over the domain or their extent.
+fn edges_of_rows(
+    options: &HistogramOptions,
+    values: &[f64],
+    rows: &[u32],
+    domain: Option<[f64; 2]>,
+) -> Result<Vec<f64>, MarkError> {
+    let (lo, hi) = match domain {
+        Some([a, b]) => (a.min(b), a.max(b)),
+        None => encode::extent(values, rows).unwrap_or((0.0, 1.0)),
+    };
+    let mut kept: Vec<f64> = rows.iter().filter_map(|&r| values.get(r as usize).copied()).collect();
+    edges(options, lo, hi, kept.len(), || crate::enrich::distribution::quartiles_in_place(&mut kept))
 }
 
 /// The bin edges over `[lo, hi]` (the domain, or the values' extent) for `n` values whose
@@ -515,7 +516,6 @@ fn counted_bins(
     // A count or a width needs only the range; the rules size the bins by the values' number
     // (and quartiles), which a first tally gives.
     let by_values = options.step.is_none() && !matches!(options.bins, Some(BinCount::Count(_)));
-    let mut first = None;
     let edges = if by_values {
         // A single value (lo = hi) has no range to split; any bin around it places it.
         let whole = TallyBins::new(lo, hi, OPENING_BINS, false).or_else(|| TallyBins::new(lo, lo.next_up(), 1, false));
@@ -541,7 +541,6 @@ fn counted_bins(
         if let Some(message) = failed {
             return Err(scanned(message));
         }
-        first = Some(tally);
         edges
     } else {
         edges(options, lo, hi, 0, || None)?
@@ -550,26 +549,27 @@ fn counted_bins(
         TallyBins::from_edges(edges.clone()).ok_or_else(|| scanned(format!("the bins of `{field}` span no range")))?;
     let counted = plan.tally(field, vec![Tally::new(bins).keeping(lo, hi)]).map_err(scanned)?.remove(0);
     let n = placed_or_error(chart, field, plan, &counted, (lo, hi))?;
-    let tally = first.as_ref().unwrap_or(&counted);
-    let mut warnings = Vec::new();
-    let dropped = (tally.missing + tally.infinite) as usize;
-    if dropped > 0 {
-        warnings.push(Warning::DroppedRows {
-            chart: chart.name.clone(),
-            dropped,
-            rows: plan.rows() as usize,
-            columns: vec![crate::mark::warning::ColumnLoss {
-                field: field.to_string(),
-                missing: tally.missing as usize,
-                infinite: tally.infinite as usize,
-                non_positive: 0,
-            }],
-        });
-    }
-    warnings.extend(left_out_of_domain(tally.outside as usize, n + tally.outside as usize, field, lo, hi));
+    let mut warnings: Vec<Warning> = dropped_rows(chart, field, plan, &counted).into_iter().collect();
+    warnings.extend(left_out_of_domain(counted.outside as usize, n + counted.outside as usize, field, lo, hi));
     let counts: Vec<usize> = counted.counts().into_iter().map(|c| c as usize).collect();
     let rows = vec![vec![Vec::new(); counts.len()]];
     Ok((Binned { edges, rows, counts: vec![counts] }, warnings))
+}
+
+/// The shared warning for the rows `tally` found no value in (missing or not finite), if any.
+fn dropped_rows(chart: &Chart, field: &str, plan: &PlanRows, tally: &Tally) -> Option<Warning> {
+    let dropped = (tally.missing + tally.infinite) as usize;
+    (dropped > 0).then(|| Warning::DroppedRows {
+        chart: chart.name.clone(),
+        dropped,
+        rows: plan.rows() as usize,
+        columns: vec![crate::mark::warning::ColumnLoss {
+            field: field.to_string(),
+            missing: tally.missing as usize,
+            infinite: tally.infinite as usize,
+            non_positive: 0,
+        }],
+    })
 }
 
 /// How many values `tally` (over the histogram's range `[lo, hi]`) placed; the error a table
@@ -581,25 +581,11 @@ fn placed_or_error(
     tally: &Tally,
     (lo, hi): (f64, f64),
 ) -> Result<usize, MarkError> {
-    let n = tally.placed() as usize;
-    if n > 0 {
-        return Ok(n);
+    match tally.placed() as usize {
+        0 if tally.outside > 0 => Err(empty_domain(field, lo, hi)),
+        0 => Err(encode::no_rows_of(chart, plan.rows() as usize, dropped_rows(chart, field, plan, tally).as_ref())),
+        n => Ok(n),
     }
-    Err(if tally.outside > 0 {
-        empty_domain(field, lo, hi)
-    } else if plan.rows() == 0 {
-        MarkError::at(
-            &["data"],
-            format!("data \"{}\" has no rows", chart.data),
-            "the source has a header but no records; check the file",
-        )
-    } else {
-        MarkError::at(
-            &[],
-            format!("no rows left to plot out of {}: every row's `{field}` is missing or not finite", plan.rows()),
-            "rows with missing or non-finite values in the charted columns are dropped; check those columns",
-        )
-    })
 }
 
 /// The error for a domain that holds none of the values.

@@ -142,7 +142,12 @@ pub fn drawn_rows<'a>(
 /// The error for a chart left with no rows: an empty table, or every row dropped by the
 /// non-finite policy (`dropped` is that warning, which names the columns).
 pub fn no_rows(chart: &crate::spec::Chart, table: &Table, dropped: Option<&Warning>) -> MarkError {
-    if table.rows == 0 {
+    no_rows_of(chart, table.rows, dropped)
+}
+
+/// [`no_rows`] for a source of `rows` rows that are not held in a table.
+pub fn no_rows_of(chart: &crate::spec::Chart, rows: usize, dropped: Option<&Warning>) -> MarkError {
+    if rows == 0 {
         return MarkError::at(
             &["data"],
             format!("data \"{}\" has no rows", chart.data),
@@ -153,7 +158,7 @@ pub fn no_rows(chart: &crate::spec::Chart, table: &Table, dropped: Option<&Warni
         dropped.and_then(Warning::what_rows_lack).map(|lack| format!(": every row has {lack}")).unwrap_or_default();
     MarkError::at(
         &[],
-        format!("no rows left to plot out of {}{why}", table.rows),
+        format!("no rows left to plot out of {rows}{why}"),
         "rows with missing or non-finite values in the charted columns are dropped; check those columns",
     )
 }
