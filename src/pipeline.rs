@@ -281,8 +281,8 @@ enum Counting {
 
 /// The sources whose rows no chart needs one by one: each of their charts is of a kind that
 /// can count its rows there, with none of the keys that make it need them (the registry's
-/// [`mark::registry::RowCounting`]: density scatters, and in-process histograms of one group);
-/// and no selection reads them.
+/// [`mark::registry::RowCounting`]: density scatters; in-process histograms of one group, bar
+/// charts and heatmaps); and no selection reads them.
 fn counted_only(json: &Value, counting: Counting) -> BTreeSet<String> {
     let selected: BTreeSet<&str> = json
         .get("selection")
@@ -373,9 +373,9 @@ fn load_from_engine(
 }
 
 /// The plan kept, with the source's table (columns, no rows), when every chart of source `name`
-/// only counts rows at the plan's row count (a density scatter, or a histogram of more rows than
-/// [`mark::density::AUTO_DENSITY_ROWS`]); `None` when some chart would draw points or bin rows it
-/// holds.
+/// only counts rows at the plan's row count (a density scatter, or a histogram, bar chart or
+/// heatmap of more rows than [`mark::density::AUTO_DENSITY_ROWS`]); `None` when some chart would
+/// draw points, or bin or group rows it holds.
 fn kept_if_only_counted(
     plan: data::density::plan::PlanRows,
     name: &str,

@@ -5,6 +5,7 @@
 //! grid bit for bit.
 
 pub mod footer;
+pub mod groups;
 pub mod plan;
 pub mod remote;
 pub mod tally;

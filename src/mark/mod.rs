@@ -19,8 +19,8 @@ pub mod volume;
 
 pub use shared::{
     annotate, axis3d, bands, categorical, density, derived, encode, frame, geojson, geometry, gridded, grouped,
-    highlight, level_labels, network_input, node_link, overplot, panel, raster, size, spread, tooltip, tree_input,
-    trend, warning,
+    highlight, level_labels, network_input, node_link, overplot, panel, plan_groups, raster, size, spread, tooltip,
+    tree_input, trend, warning,
 };
 
 use std::fmt;

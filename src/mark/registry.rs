@@ -525,6 +525,11 @@ mod tests {
         assert!(counts(json!({"kind": "histogram", "x": "a"}), false));
         assert!(!counts(json!({"kind": "histogram", "x": "a"}), true), "histograms are counted in-process only");
         assert!(!counts(json!({"kind": "histogram", "rug": false}), false));
+        assert!(counts(json!({"kind": "bar", "x": "a", "y": "b", "color": "c", "error": "ci95"}), false));
+        assert!(!counts(json!({"kind": "bar", "x": "a", "highlight": "s"}), false));
+        assert!(!counts(json!({"kind": "bar", "x": "a"}), true), "bars are grouped in-process only");
+        assert!(counts(json!({"kind": "heatmap", "x": "a", "y": "b", "z": "c"}), false));
+        assert!(!counts(json!({"kind": "heatmap", "x": "a", "facet": "f"}), false));
         assert!(!counts(json!({"kind": "line", "x": "a"}), false));
     }
 

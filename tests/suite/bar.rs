@@ -348,3 +348,113 @@ fn horizontal_normalised_stacks_fill_the_plot_and_di001_reads_their_lengths() {
     );
     assert!(honest.is_empty(), "{honest:?}");
 }
+
+/// `n` seeded rows: a text category `k` (first seen in a row whose `v` is missing; some cells
+/// empty), a colour `c`, a numeric key `g` (with NaN), a date `day` and whole-number values `v`
+/// (sums exact in any order), every 101st cell empty and every 499th `inf`.
+fn many_rows(n: usize) -> String {
+    let mut next = crate::common::seeded_uniform();
+    let names = ["zeta", "alpha", "mid", "", "beta", "alpha", "mid"];
+    let mut csv = String::from("k,c,g,day,v\n");
+    for i in 0..n {
+        let k = if i == 0 { "zeta" } else { names[(next() * 7.0) as usize] };
+        let c = ["red", "blue", "green"][i % 3];
+        let g = if i % 997 == 0 { "NaN".to_string() } else { format!("{}", (i % 5) as f64 * 0.5 - 1.0) };
+        let day = format!("2024-{:02}-01", 1 + i % 12);
+        let v = match i {
+            0 => String::new(),
+            _ if i % 101 == 0 => String::new(),
+            _ if i % 499 == 0 => "inf".to_string(),
+            _ => format!("{}", (next() * 100.0).floor() - 20.0),
+        };
+        csv.push_str(&format!("{k},{c},{g},{day},{v}\n"));
+    }
+    csv
+}
+
+#[test]
+fn bars_of_rows_left_in_the_plan_equal_the_bars_of_rows_in_memory() {
+    // More rows than the count from which a source's rows stay in its plan.
+    let csv = many_rows(240_000);
+    for extra in [
+        "x = \"k\"\ny = \"v\"\n",
+        "x = \"k\"\ny = \"v\"\ncolor = \"c\"\nstack = \"stack\"\nlabels = true\n",
+        "x = \"g\"\ny = \"v\"\naggregate = \"mean\"\nerror = \"ci95\"\n",
+        "x = \"k\"\ny = \"v\"\naggregate = \"median\"\nerror = \"minmax\"\norientation = \"horizontal\"\n",
+        "x = \"day\"\ny = \"v\"\naggregate = \"count\"\ncolor = \"g\"\nsort = \"descending\"\n",
+    ] {
+        let (streamed, held) = crate::common::streamed_and_held(&spec(extra), &csv, "v", extra);
+        let field = |out: &ChartOutput, name: &str| match derived_column(out, name) {
+            DerivedColumn::Text(v) => v.clone(),
+            DerivedColumn::Number(v) => v.iter().map(|x| format!("{x}")).collect(),
+            other => panic!("{other:?}"),
+        };
+        for name in
+            ["k", "g", "day", "c", "rows"].into_iter().filter(|n| extra.contains(&format!("\"{n}\"")) || *n == "rows")
+        {
+            assert_eq!(field(&streamed, name), field(&held, name), "{extra}: column {name}");
+        }
+        for name in ["v", "lower", "upper"].into_iter().filter(|n| *n == "v" || extra.contains("error")) {
+            let (a, b) = (numbers(&streamed, name), numbers(&held, name));
+            assert_eq!(a.len(), b.len(), "{extra}: column {name}");
+            for (x, y) in a.iter().zip(&b) {
+                assert!(
+                    (x - y).abs() <= 1e-9 * y.abs().max(1.0) || (x.is_nan() && y.is_nan()),
+                    "{extra}: {name} {x} vs {y}"
+                );
+            }
+        }
+        let notes = |out: &ChartOutput| out.warnings.iter().map(|w| w.to_string()).collect::<Vec<_>>();
+        assert_eq!(notes(&streamed), notes(&held), "{extra}");
+        assert!(notes(&streamed).iter().any(|w| w.contains("dropped ") && w.contains("of 240000 rows")), "{extra}");
+        let (a, b) = (bars(&streamed), bars(&held));
+        assert_eq!(a.len(), b.len(), "{extra}");
+        for ((la, ra, _), (lb, rb, _)) in a.iter().zip(&b) {
+            assert_eq!(la, lb, "{extra}");
+            assert!(
+                (ra.x - rb.x).abs() < 1e-6 && (ra.w - rb.w).abs() < 1e-6 && (ra.h - rb.h).abs() < 1e-6,
+                "{extra}: {la}"
+            );
+        }
+    }
+}
+
+#[test]
+fn a_bar_chart_of_rows_left_in_the_plan_sums_what_a_hand_count_gives() {
+    // 300,000 rows: category i % 3, value i % 10 (a fifth of them missing), so each sum is known.
+    let mut csv = String::from("k,v\n");
+    for i in 0..300_000u64 {
+        let v = if i % 5 == 4 { String::new() } else { (i % 10).to_string() };
+        csv.push_str(&format!("k{},{v}\n", i % 3));
+    }
+    let (streamed, _) = crate::common::streamed_and_held(&spec("x = \"k\"\ny = \"v\"\n"), &csv, "v", "sums");
+    let expected: Vec<f64> = (0..3u64)
+        .map(|k| (0..300_000u64).filter(|i| i % 3 == k && i % 5 != 4).map(|i| (i % 10) as f64).sum())
+        .collect();
+    assert_eq!(numbers(&streamed, "v"), expected);
+    assert_eq!(numbers(&streamed, "rows"), [80_000.0; 3]);
+    let note = streamed.warnings.iter().map(|w| w.to_string()).collect::<Vec<_>>().join("\n");
+    assert!(note.contains("dropped 60000 of 300000 rows") && note.contains("`v`: 60000 missing"), "{note}");
+    // DI001 reads the values of bars that carry no rows from the chart's derived table.
+    let cut = spec("x = \"k\"\ny = { field = \"v\", zero = false }\n");
+    let findings = crate::common::lint_findings(&cut, &[("d.csv", csv.as_bytes())], "DI001");
+    assert_eq!(findings.len(), 1, "{findings:?}");
+}
+
+#[test]
+fn bars_of_rows_left_in_the_plan_refuse_what_bars_of_rows_in_memory_refuse() {
+    let mut csv = String::from("k,t,v\n");
+    for i in 0..210_000 {
+        csv.push_str(&format!("k{},w{},{}\n", i % 4, i % 3, if i % 2 == 0 { "" } else { "1" }));
+    }
+    // A text value column: named, whether the rows are held or not.
+    let err = draw_err(&csv, "x = \"k\"\ny = \"t\"\n");
+    assert!(err.contains("`t`"), "{err}");
+    // Every row dropped: the no-rows error with what the rows lack.
+    let none = csv.replace(",1\n", ",inf\n");
+    let err = draw_err(&none, "x = \"k\"\ny = \"v\"\n");
+    assert!(err.contains("no rows left to plot out of 210000") && err.contains("`v`"), "{err}");
+    // `normalize` without colour groups is refused before any scan.
+    let err = draw_err(&csv, "x = \"k\"\ny = \"v\"\nstack = \"normalize\"\n");
+    assert!(err.contains("has no `color`"), "{err}");
+}

@@ -264,3 +264,23 @@ pub fn seeded_uniform() -> impl FnMut() -> f64 {
         (state >> 11) as f64 / (1u64 << 53) as f64
     }
 }
+
+/// The first chart of `spec` (over source `d`, read from `d.csv` = `csv`) drawn with its rows
+/// left in the source's plan, and drawn from the same rows held in memory (a selection over the
+/// source needs them held: its range is over the numeric column `field`); `what` names the
+/// case in failures.
+pub fn streamed_and_held(spec: &str, csv: &str, field: &str, what: &str) -> (ChartOutput, ChartOutput) {
+    let draw = |text: String| {
+        let fixture = Fixture::new(&text, &[("d.csv", csv.as_bytes())]);
+        let loaded = fixture.load().unwrap_or_else(|e| panic!("{e}"));
+        let in_plan = loaded.plans.contains_key("d");
+        let out = dataink::pipeline::draw_chart(&loaded, 0, &loaded.spec.chart[0])
+            .unwrap_or_else(|e| panic!("{}", loaded.source.render(&dataink::pipeline::mark_diagnostic(&loaded, &e))));
+        (out, in_plan)
+    };
+    let (streamed, in_plan) = draw(spec.to_string());
+    let (held, held_in_plan) =
+        draw(format!("[selection.some]\ndata = \"d\"\nrange = {{ {field} = [0, 1] }}\n\n{spec}"));
+    assert!(in_plan && !held_in_plan, "{what}: in plan {in_plan}, held in plan {held_in_plan}");
+    (streamed, held)
+}

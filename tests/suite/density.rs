@@ -148,7 +148,7 @@ fn text_columns_and_facets_are_refused_with_the_fix() {
     let csv = rows_csv(500);
     let fixture = Fixture::new(&spec("", "").replace("y = \"y\"", "y = \"word\""), &[("p.csv", csv.as_bytes())]);
     let err = fixture.draw().expect_err("text cannot be counted in bins");
-    assert!(err.contains("column `word`") && err.contains("density view places numbers or times"), "{err}");
+    assert!(err.contains("column `word`") && err.contains("not numbers or times"), "{err}");
     let faceted = spec("", "facet = \"word\"");
     let err = Fixture::new(&faceted, &[("p.csv", csv.as_bytes())]).draw().expect_err("faceted density");
     assert!(err.contains("faceted scatter cannot be drawn in density mode"), "{err}");

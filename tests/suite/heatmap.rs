@@ -91,3 +91,60 @@ fn bad_input_gets_clear_errors() {
     let wide = draw(&many, "").unwrap_err();
     assert!(wide.contains("more than 500 distinct values"), "{wide}");
 }
+
+/// `n` seeded rows: text `c` (some cells empty; first seen in a row whose `v` is missing),
+/// numbers `r` (with NaN and `inf`, which are the category "(missing)", and −0), whole-number
+/// values `v` with every 101st empty and every 499th `inf`.
+fn many_rows(n: usize) -> String {
+    let mut next = crate::common::seeded_uniform();
+    let names = ["zeta", "alpha", "", "mid", "beta"];
+    let mut csv = String::from("c,r,v\n");
+    for i in 0..n {
+        let c = if i == 0 { "zeta" } else { names[(next() * 5.0) as usize] };
+        let r = match i % 13 {
+            0 => "NaN".to_string(),
+            1 => "inf".to_string(),
+            2 => "-0".to_string(),
+            k => format!("{}", k % 6),
+        };
+        let v = match i {
+            0 => String::new(),
+            _ if i % 101 == 0 => String::new(),
+            _ if i % 499 == 0 => "inf".to_string(),
+            _ => format!("{}", (next() * 50.0).floor()),
+        };
+        csv.push_str(&format!("{c},{r},{v}\n"));
+    }
+    csv
+}
+
+#[test]
+fn cells_of_rows_left_in_the_plan_equal_the_cells_of_rows_in_memory() {
+    let csv = many_rows(240_000);
+    for extra in [
+        "",
+        "z = \"v\"\n",
+        "z = \"v\"\naggregate = \"median\"\norder_y = \"value\"\n",
+        "z = \"v\"\naggregate = \"sum\"\norder_x = \"label\"\n",
+        "z = \"v\"\naggregate = \"min\"\n",
+        "z = \"v\"\naggregate = \"max\"\n",
+    ] {
+        let spec = format!(
+            "[data.d]\npath = \"d.csv\"\n\n[[chart]]\nname = \"h\"\nkind = \"heatmap\"\ndata = \"d\"\nsize = [500, 400]\nx = \"c\"\ny = \"r\"\n{extra}"
+        );
+        let (streamed, held) = crate::common::streamed_and_held(&spec, &csv, "v", extra);
+        for name in ["c", "r"] {
+            assert_eq!(texts(&streamed, name), texts(&held, name), "{extra}: column {name}");
+        }
+        assert_eq!(numbers(&streamed, "rows"), numbers(&held, "rows"), "{extra}");
+        let (a, b) = (numbers(&streamed, "value"), numbers(&held, "value"));
+        for (x, y) in a.iter().zip(&b) {
+            assert!((x - y).abs() <= 1e-9 * y.abs().max(1.0), "{extra}: {x} vs {y}");
+        }
+        let notes = |out: &ChartOutput| out.warnings.iter().map(|w| w.to_string()).collect::<Vec<_>>();
+        assert_eq!(notes(&streamed), notes(&held), "{extra}");
+        assert_eq!(bars(&streamed).len(), bars(&held).len(), "{extra}");
+        assert!(texts(&streamed, "r").iter().any(|r| r == "(missing)"), "{extra}");
+        assert!(!texts(&held, "r").iter().any(|r| r == "-0"), "{extra}: −0 and 0 are one category");
+    }
+}

@@ -224,21 +224,9 @@ fn many_rows(n: usize) -> String {
 }
 
 /// The histogram drawn with its rows streamed through the source's plan, and drawn from the
-/// same rows held in memory (a selection over the source needs them held).
+/// same rows held in memory.
 fn streamed_and_held(csv: &str, extra: &str) -> (ChartOutput, ChartOutput) {
-    let draw = |text: String| {
-        let fixture = Fixture::new(&text, &[("d.csv", csv.as_bytes())]);
-        let loaded = fixture.load().unwrap_or_else(|e| panic!("{e}"));
-        let in_plan = loaded.plans.contains_key("d");
-        let out = dataink::pipeline::draw_chart(&loaded, 0, &loaded.spec.chart[0])
-            .unwrap_or_else(|e| panic!("{}", loaded.source.render(&dataink::pipeline::mark_diagnostic(&loaded, &e))));
-        (out, in_plan)
-    };
-    let (streamed, in_plan) = draw(spec(extra));
-    let held_spec = format!("[selection.some]\ndata = \"d\"\nrange = {{ x = [0, 1] }}\n\n{}", spec(extra));
-    let (held, held_in_plan) = draw(held_spec);
-    assert!(in_plan && !held_in_plan, "{extra}: in plan {in_plan}, held in plan {held_in_plan}");
-    (streamed, held)
+    crate::common::streamed_and_held(&spec(extra), csv, "x", extra)
 }
 
 #[test]

@@ -96,7 +96,7 @@ impl PlanRows {
     }
 
     /// The plan, when the rows are counted in this process.
-    fn frame(&self) -> Result<&LazyFrame, String> {
+    pub(super) fn frame(&self) -> Result<&LazyFrame, String> {
         match &self.backend {
             Backend::Lazy { frame, .. } => Ok(frame),
             Backend::Engine { .. } => Err(format!("data \"{}\": the rows are on the engine", self.source)),
@@ -108,6 +108,16 @@ impl PlanRows {
         let dtype =
             self.schema.get(field).ok_or_else(|| format!("data \"{}\" has no column `{field}`", self.source))?;
         Ok((field, dtype))
+    }
+
+    /// The type of column `field`.
+    pub(super) fn dtype_of(&self, field: &str) -> Result<&DataType, String> {
+        self.schema.get(field).ok_or_else(|| format!("data \"{}\" has no column `{field}`", self.source))
+    }
+
+    /// The source's name.
+    pub(super) fn source(&self) -> &str {
+        &self.source
     }
 
     /// How many rows the plan yields.
@@ -123,6 +133,11 @@ impl PlanRows {
             }
             Backend::Engine { columns, .. } => Ok(columns.clone()),
         }
+    }
+
+    /// Whether `field` holds numbers or instants (what a table holds as numbers).
+    pub fn is_number(&self, field: &str) -> bool {
+        self.schema.get(field).is_some_and(|d| d.is_primitive_numeric() || d.is_temporal())
     }
 
     /// Whether `field` holds instants (a date or date-time column).
@@ -219,7 +234,7 @@ impl PlanRows {
 
     /// Column `field` as numbers: `f32` and `f64` as they are, other numbers cast to `f64`,
     /// times in milliseconds since the epoch.
-    fn number(&self, field: &str) -> Result<Expr, String> {
+    pub(super) fn number(&self, field: &str) -> Result<Expr, String> {
         let dtype =
             self.schema.get(field).ok_or_else(|| format!("data \"{}\" has no column `{field}`", self.source))?;
         let column = col(field);
@@ -237,7 +252,7 @@ impl PlanRows {
             DataType::Date => column.cast(DataType::Int32).cast(DataType::Float64) * lit(86_400_000.0),
             other => {
                 return Err(format!(
-                    "column `{field}` of data \"{}\" holds {other}; a density view places numbers or times",
+                    "column `{field}` of data \"{}\" holds {other}, not numbers or times",
                     self.source
                 ));
             }
@@ -296,7 +311,7 @@ impl Coords {
 }
 
 /// An engine error's first line, naming the source.
-fn engine_error(source: &str, error: &PolarsError) -> String {
+pub(super) fn engine_error(source: &str, error: &PolarsError) -> String {
     format!("data \"{source}\": {}", crate::data::transform::first_line(&error.to_string()))
 }
 

@@ -1,14 +1,18 @@
 //! DI001 `nonzero-baseline`: a bar's length is its value only when the bars start at zero. A
 //! value axis that leaves zero out stretches every difference between bars.
 //!
-//! The rule reads the drawn bars (data-mark rectangles with their source rows), sums each bar's
-//! rows from the table, and compares the drawn lengths with the values. It reports Tufte's lie
+//! The rule reads the drawn bars (data-mark rectangles), combines each bar's source rows from
+//! the table as the chart does (or, for bars of rows left in their source's plan, which carry
+//! none, takes the bar's value from the chart's derived table), and compares the drawn lengths with the values. It reports Tufte's lie
 //! factor (*The Visual Display of Quantitative Information*, 1983): the size of the effect shown
 //! divided by the size of the effect in the data, where the size of an effect between the
 //! smallest and the largest bar is `(largest − smallest) / smallest`. Bars from zero have a lie
 //! factor of 1; with the axis starting at `b` it is `smallest / (smallest − b)`.
 
+use std::collections::HashMap;
+
 use crate::lint::{Category, Issue, Rule, Severity, Subject};
+use crate::mark::DerivedColumn;
 use crate::scene::{Role, Shape};
 use crate::spec::ChartKind;
 
@@ -44,19 +48,47 @@ pub fn lie_factor(small_value: f64, large_value: f64, small_length: f64, large_l
     Some(if small_length <= 0.0 { f64::INFINITY } else { shown / data })
 }
 
+/// Each bar's value by its label in the scene (its category, and its colour group when there are
+/// several), from the chart's derived table: for bars whose rows stay in their source's plan.
+fn counted_values(s: &Subject<'_>, x: &str, color: Option<&str>, y: &str) -> HashMap<String, f64> {
+    if s.table.rows > 0 {
+        return HashMap::new();
+    }
+    let column = |name: &str| s.output.derived.columns.iter().find(|(n, _)| n == name).map(|(_, c)| c);
+    let (Some(DerivedColumn::Text(categories)), Some(DerivedColumn::Number(values))) = (column(x), column(y)) else {
+        return HashMap::new();
+    };
+    let groups = match color.and_then(column) {
+        Some(DerivedColumn::Text(groups)) => groups.clone(),
+        _ => vec![String::new(); categories.len()],
+    };
+    let several = groups.iter().any(|g| g != &groups[0]);
+    categories
+        .iter()
+        .zip(&groups)
+        .zip(values)
+        .map(|((c, g), v)| (if several { format!("{c}, {g}") } else { c.clone() }, *v))
+        .collect()
+}
+
 fn check(s: &Subject<'_>) -> Vec<Issue> {
     let ChartKind::Bar(options) = &s.chart.kind else { return Vec::new() };
     let y = options.y.options();
     let Some(values) = s.table.column(&y.field).and_then(|c| c.numbers()) else { return Vec::new() };
     let horizontal = options.orientation == Some(crate::mark::grouped::Orientation::Horizontal);
+    let counted = counted_values(s, &options.x.options().field, options.color.as_ref().map(|c| c.field()), &y.field);
     let mut bars = Vec::new();
     s.output.scene.walk(|item| {
         if item.role == Role::DataMark
             && let Shape::Rect(r) = &item.shape
-            && !item.rows.is_empty()
         {
-            let rows = item.rows.iter().filter_map(|&row| values.get(row as usize).copied());
-            let value = options.aggregate.unwrap_or_default().value_of(rows).unwrap_or(0.0);
+            let value = if item.rows.is_empty() {
+                let Some(value) = item.label.as_ref().and_then(|l| counted.get(l)) else { return };
+                *value
+            } else {
+                let rows = item.rows.iter().filter_map(|&row| values.get(row as usize).copied());
+                options.aggregate.unwrap_or_default().value_of(rows).unwrap_or(0.0)
+            };
             // A horizontal bar's ends, mirrored so that "up" is away from the baseline as for
             // a vertical one.
             let (top, bottom) = if horizontal { (-r.right(), -r.x) } else { (r.y, r.bottom()) };

@@ -7,6 +7,8 @@
 //! fixed `domain` that excludes it); then they are drawn honestly from the end of the axis nearest
 //! zero, and lint rule DI001 reports the exaggeration. Negative sums hang below zero.
 
+use crate::data::density::groups::GroupQuery;
+use crate::data::density::plan::PlanRows;
 use crate::data::{Column, Table};
 use crate::guide::axis::title_with_unit;
 use crate::guide::layout::{Domain, PositionAxis};
@@ -16,6 +18,7 @@ use crate::mark::derived::{Derived, DerivedColumn};
 use crate::mark::encode;
 use crate::mark::geometry::{self, Plot};
 use crate::mark::grouped::Orientation;
+use crate::mark::plan_groups::PlanGroups;
 use crate::mark::registry::{AxisSpec, ChartContext, KindInfo, Technique};
 use crate::mark::spread::{Spread, Summary};
 use crate::mark::warning::Warning;
@@ -202,6 +205,11 @@ struct Bar {
     from: f64,
     to: f64,
     interval: Option<(f64, f64)>,
+    /// How many rows it combines.
+    n: usize,
+    /// The row of the drawn table whose colour group it is in.
+    color_row: u32,
+    /// Its rows in the source's table (none when they stay in the plan).
     rows: Vec<u32>,
 }
 
@@ -225,13 +233,20 @@ struct Placed {
     cut: bool,
 }
 
-/// Draw a bar chart.
-pub fn draw(chart: &Chart, options: &BarOptions, table: &Table) -> Result<ChartOutput, MarkError> {
+/// Draw a bar chart (`plan`: its source's rows, when they stay in the plan and the table
+/// holds none).
+pub fn draw(
+    chart: &Chart,
+    options: &BarOptions,
+    table: &Table,
+    plan: Option<&PlanRows>,
+) -> Result<ChartOutput, MarkError> {
     let x_opts = options.x.options();
     let y_opts = options.y.options();
-    let x_col = encode::column(chart, "x", &x_opts.field, table)?;
+    encode::column(chart, "x", &x_opts.field, table)?;
     let y_col = encode::column(chart, "y", &y_opts.field, table)?;
-    if table.rows == 0 {
+    let plan = plan.filter(|_| table.rows == 0);
+    if table.rows == 0 && plan.is_none() {
         return Err(encode::no_rows(chart, table, None));
     }
     check_scales(options, y_col)?;
@@ -249,17 +264,28 @@ pub fn draw(chart: &Chart, options: &BarOptions, table: &Table) -> Result<ChartO
     let error = check_error(options.error, aggregate, stack)?;
     let label_plan = check_labels(options.labels.as_ref(), stacked)?;
     let color = bands::grouping_channel(chart, options.color.as_ref(), table, "bars")?;
+
+    // The rows are those of the table, or one per group of the rows left in the plan.
+    let grouped = match plan {
+        Some(plan) => Some(plan_groups(chart, plan, (&x_opts.field, y_col), color.as_ref(), aggregate)?),
+        None => None,
+    };
+    let table = grouped.as_ref().map_or(table, |g| &g.table);
+    let x_col = encode::column(chart, "x", &x_opts.field, table)?;
     let color_col = match &color {
         Some(c) => Some(encode::column(chart, "color", c.field(), table)?),
         None => None,
     };
-
-    let mut numeric: Vec<(&str, &Column)> = vec![(y_opts.field.as_str(), y_col)];
-    if x_col.numbers().is_some() {
-        numeric.push((x_opts.field.as_str(), x_col));
-    }
-    let (rows, warnings) = encode::drawn_rows(chart, table, numeric, color.as_ref())?;
-    let mut warnings = warnings;
+    let (rows, mut warnings) = match &grouped {
+        Some(g) => (g.rows.clone(), g.warnings.clone()),
+        None => {
+            let mut numeric: Vec<(&str, &Column)> = vec![(y_opts.field.as_str(), y_col)];
+            if x_col.numbers().is_some() {
+                numeric.push((x_opts.field.as_str(), x_col));
+            }
+            encode::drawn_rows(chart, table, numeric, color.as_ref())?
+        }
+    };
 
     let mut x_keys = bands::keys(x_col, &rows);
     let groups = match color_col {
@@ -289,8 +315,7 @@ pub fn draw(chart: &Chart, options: &BarOptions, table: &Table) -> Result<ChartO
         ));
     }
 
-    // Combine the rows of each (category, group) slot.
-    let values = y_col.numbers().unwrap_or(&[]);
+    // Combine the rows of each (category, group) slot: the source's rows, or a group's statistics.
     let mut slot_rows: Vec<Vec<u32>> = vec![Vec::new(); slots];
     for (k, &r) in rows.iter().enumerate() {
         let (xi, gi) = (x_keys.of_row.get(k).copied().unwrap_or(0), groups.of_row.get(k).copied().unwrap_or(0));
@@ -298,18 +323,34 @@ pub fn draw(chart: &Chart, options: &BarOptions, table: &Table) -> Result<ChartO
             slot.push(r);
         }
     }
+    let values = y_col.numbers().unwrap_or(&[]);
     let mut bars: Vec<Bar> = slot_rows
         .into_iter()
         .enumerate()
         .filter_map(|(slot, rows)| {
-            let summary = Summary::of(rows.iter().filter_map(|&r| values.get(r as usize).copied()))?;
+            let (summary, rows) = match &grouped {
+                Some(g) => (g.summary(*rows.first()?)?, rows),
+                None => (Summary::of(rows.iter().filter_map(|&r| values.get(r as usize).copied()))?, rows),
+            };
             let value = aggregate.of(&summary);
             let interval = error.and_then(|e| e.interval(&summary, value));
-            Some(Bar { x: slot / ng, group: slot % ng, value, from: 0.0, to: value, interval, rows })
+            let color_row = *rows.first()?;
+            let rows = if grouped.is_some() { Vec::new() } else { rows };
+            Some(Bar {
+                x: slot / ng,
+                group: slot % ng,
+                value,
+                from: 0.0,
+                to: value,
+                interval,
+                n: summary.n,
+                color_row,
+                rows,
+            })
         })
         .collect();
     if error.is_some() {
-        let single = bars.iter().filter(|b| b.rows.len() < 2).count();
+        let single = bars.iter().filter(|b| b.n < 2).count();
         if single > 0 {
             warnings.push(Warning::from(format!(
                 "{single} of {} bars combine a single row and have no whisker: a spread needs at least two rows",
@@ -322,7 +363,7 @@ pub fn draw(chart: &Chart, options: &BarOptions, table: &Table) -> Result<ChartO
     }
     sort_categories(&mut bars, &mut x_keys, options.sort.unwrap_or_default());
 
-    let summed = bars.iter().any(|b| b.rows.len() > 1);
+    let summed = bars.iter().any(|b| b.n > 1);
     let value_axis = value_axis(&y_opts, &bars, summed, stack, aggregate, error);
     let mut category_labels = x_keys.labels.clone();
     if horizontal {
@@ -345,7 +386,7 @@ pub fn draw(chart: &Chart, options: &BarOptions, table: &Table) -> Result<ChartO
         Orientation::Vertical => frame::cartesian(chart, x_axis.clone(), value_axis, legends.clone()),
         Orientation::Horizontal => frame::cartesian(chart, value_axis, x_axis.clone(), legends.clone()),
     };
-    let fill_of = |b: &Bar| b.rows.first().map_or(encode::DEFAULT_MARK_COLOR, |&r| colors.color_of(r));
+    let fill_of = |b: &Bar| colors.color_of(b.color_row);
     let label_texts = label_plan.map(|plan| label_texts(&bars, plan, stack == BarStack::Normalize));
     let label_size = (chart.font_size.unwrap_or(12.0) * LABEL_SCALE).max(crate::guide::theme::MIN_TEXT_SIZE);
 
@@ -405,8 +446,8 @@ pub fn draw(chart: &Chart, options: &BarOptions, table: &Table) -> Result<ChartO
             tooltip.push_str(&format!("{}: {g}\n", c.field()));
         }
         tooltip.push_str(&format!("{}: {}", y_opts.field, b.value));
-        if b.rows.len() > 1 {
-            tooltip.push_str(&format!(" ({} of {} rows)", aggregate.name(), b.rows.len()));
+        if b.n > 1 {
+            tooltip.push_str(&format!(" ({} of {} rows)", aggregate.name(), b.n));
         }
         if let (Some(e), Some((l, u))) = (error, b.interval) {
             tooltip.push_str(&format!("\n{}: [{l}, {u}]", e.name()));
@@ -494,7 +535,7 @@ pub fn draw(chart: &Chart, options: &BarOptions, table: &Table) -> Result<ChartO
         derived.push(c.field(), DerivedColumn::Text(bars.iter().map(|b| label_of(&groups.labels, b.group)).collect()));
     }
     derived.push(&y_opts.field, DerivedColumn::Number(bars.iter().map(|b| b.value).collect()));
-    derived.push("rows", DerivedColumn::Number(bars.iter().map(|b| b.rows.len() as f64).collect()));
+    derived.push("rows", DerivedColumn::Number(bars.iter().map(|b| b.n as f64).collect()));
     if stacked {
         derived.push("from", DerivedColumn::Number(bars.iter().map(|b| b.from).collect()));
         derived.push("to", DerivedColumn::Number(bars.iter().map(|b| b.to).collect()));
@@ -505,6 +546,37 @@ pub fn draw(chart: &Chart, options: &BarOptions, table: &Table) -> Result<ChartO
         derived.push("upper", DerivedColumn::Number(end(|(_, u)| u)));
     }
     Ok(ChartOutput { scene, derived, warnings, meshes: Vec::new(), geojson: None, volume: None, geometry })
+}
+
+/// The groups of the rows left in `plan`: one per category of `x` (and colour group), with the
+/// statistics of `y` over the rows that are finite in `y`, in a numeric `x` and in a numeric
+/// colour column (the policy for rows in memory).
+fn plan_groups(
+    chart: &Chart,
+    plan: &PlanRows,
+    (x_field, y_col): (&str, &Column),
+    color: Option<&ColorChannel>,
+    aggregate: BarAggregate,
+) -> Result<PlanGroups, MarkError> {
+    let numeric = |field: &str| plan.is_number(field);
+    let mut keys = vec![x_field];
+    let mut required = vec![y_col.name.as_str()];
+    if numeric(x_field) {
+        required.push(x_field);
+    }
+    if let Some(c) = color {
+        keys.push(c.field());
+        if numeric(c.field()) {
+            required.push(c.field());
+        }
+    }
+    let query = GroupQuery {
+        keys: &keys,
+        value: Some(&y_col.name),
+        required: &required,
+        median: aggregate == BarAggregate::Median,
+    };
+    PlanGroups::of(chart, plan, query)
 }
 
 /// A bar's name in the scene: its category, and its group when there are several.
@@ -986,8 +1058,14 @@ fn sort_categories(bars: &mut [Bar], keys: &mut bands::Keys, sort: BarSort) {
 }
 
 /// `kind = "bar"`.
-pub static KIND: KindInfo =
-    KindInfo::new("bar", &["x", "y", "color"]).faceted(crate::mark::registry::Faceting::Frame).drawing_annotations();
+pub static KIND: KindInfo = KindInfo::new("bar", &["x", "y", "color"])
+    .counting_rows(crate::mark::registry::RowCounting {
+        modes: None,
+        unless: &["highlight", "tooltip", "facet"],
+        on_engine: false,
+    })
+    .faceted(crate::mark::registry::Faceting::Frame)
+    .drawing_annotations();
 
 impl Technique for BarOptions {
     fn info(&self) -> &'static KindInfo {
@@ -995,7 +1073,7 @@ impl Technique for BarOptions {
     }
 
     fn draw(&self, cx: &ChartContext<'_>) -> Result<ChartOutput, MarkError> {
-        draw(&cx.chart, self, cx.table)
+        draw(&cx.chart, self, cx.table, cx.plan)
     }
 
     fn cartesian_axes(&self) -> Vec<AxisSpec> {

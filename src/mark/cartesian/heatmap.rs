@@ -11,6 +11,8 @@ use std::collections::HashMap;
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
+use crate::data::density::groups::GroupQuery;
+use crate::data::density::plan::PlanRows;
 use crate::data::{Column, Table};
 use crate::guide::axis::title_with_unit;
 use crate::guide::color::text_color_on;
@@ -20,6 +22,7 @@ use crate::guide::scale::Scale;
 use crate::mark::derived::{Derived, DerivedColumn};
 use crate::mark::encode::{self, MISSING_LABEL};
 use crate::mark::geometry::{Geometry, Plot};
+use crate::mark::plan_groups::PlanGroups;
 use crate::mark::registry::{AxisSpec, ChartContext, ColourSpec, KindInfo, Technique};
 use crate::mark::{ChartOutput, MarkError, frame};
 use crate::scene::{Anchor, Baseline, Item, Rect, Role, Shape, Style, Text};
@@ -98,11 +101,17 @@ struct Side {
     of_row: Vec<usize>,
 }
 
-/// Draw a heatmap.
-pub fn draw(chart: &Chart, options: &HeatmapOptions, table: &Table) -> Result<ChartOutput, MarkError> {
+/// Draw a heatmap (`plan`: its source's rows, when they stay in the plan and the table holds
+/// none).
+pub fn draw(
+    chart: &Chart,
+    options: &HeatmapOptions,
+    table: &Table,
+    plan: Option<&PlanRows>,
+) -> Result<ChartOutput, MarkError> {
     let (x_opts, y_opts) = (options.x.options(), options.y.options());
-    let x_col = encode::column(chart, "x", &x_opts.field, table)?;
-    let y_col = encode::column(chart, "y", &y_opts.field, table)?;
+    encode::column(chart, "x", &x_opts.field, table)?;
+    encode::column(chart, "y", &y_opts.field, table)?;
     let z_opts = options.z.as_ref().map(ColorChannel::options);
     let z_col = match &z_opts {
         Some(z) => Some(encode::column(chart, "z", &z.field, table)?),
@@ -128,28 +137,52 @@ pub fn draw(chart: &Chart, options: &HeatmapOptions, table: &Table) -> Result<Ch
             "name a numeric column in `z`, or remove `aggregate` to count rows",
         ));
     }
-    if table.rows == 0 {
+    let plan = plan.filter(|_| table.rows == 0);
+    if table.rows == 0 && plan.is_none() {
         return Err(encode::no_rows(chart, table, None));
     }
-    let mut numeric: Vec<(&str, &Column)> = Vec::new();
-    if let (Some(z), Some(col)) = (&z_opts, z_col)
-        && aggregate != CellAggregate::Count
-    {
-        numeric.push((z.field.as_str(), col));
-    }
-    let (rows, mut warnings) = encode::drawn_rows(chart, table, numeric, None)?;
+    // The value, when a cell's rows need a finite one.
+    let valued = z_opts.as_ref().filter(|_| aggregate != CellAggregate::Count).map(|z| z.field.as_str());
+    // The rows are those of the table, or one per cell of the rows left in the plan.
+    let grouped = match plan {
+        Some(plan) => {
+            let required: Vec<&str> = valued.into_iter().collect();
+            let keys = [x_opts.field.as_str(), y_opts.field.as_str()];
+            let query = GroupQuery {
+                keys: &keys,
+                value: valued,
+                required: &required,
+                median: aggregate == CellAggregate::Median,
+            };
+            Some(PlanGroups::of(chart, plan, query)?)
+        }
+        None => None,
+    };
+    let table = grouped.as_ref().map_or(table, |g| &g.table);
+    let x_col = encode::column(chart, "x", &x_opts.field, table)?;
+    let y_col = encode::column(chart, "y", &y_opts.field, table)?;
+    let (rows, mut warnings) = match &grouped {
+        Some(g) => (g.rows.clone(), g.warnings.clone()),
+        None => {
+            let numeric: Vec<(&str, &Column)> = valued.zip(z_col).into_iter().collect();
+            encode::drawn_rows(chart, table, numeric, None)?
+        }
+    };
 
     let mut x_side = side(x_col, &rows, "x")?;
     let mut y_side = side(y_col, &rows, "y")?;
-    let z_values = z_col.and_then(Column::numbers).unwrap_or(&[]);
-    let mut cells = cell_values(&x_side, &y_side, &rows, z_values, aggregate);
+    let mut cells = match &grouped {
+        Some(g) => grouped_cells(&x_side, &y_side, &rows, g, aggregate),
+        None => cell_values(&x_side, &y_side, &rows, z_col.and_then(Column::numbers).unwrap_or(&[]), aggregate),
+    };
     let x_order = order(&x_side, options.order_x.unwrap_or_default(), |i| cells.column_mean(i));
     let y_order = order(&y_side, options.order_y.unwrap_or_default(), |j| cells.row_mean(j));
     x_side = reorder(x_side, &x_order);
     y_side = reorder(y_side, &y_order);
     cells = cells.permuted(&x_order, &y_order);
 
-    let (lo, hi) = encode::finite_extent(cells.values.iter().flatten().flatten().map(|c| c.0)).unwrap_or((0.0, 1.0));
+    let (lo, hi) =
+        encode::finite_extent(cells.values.iter().flatten().flatten().map(|c| c.value)).unwrap_or((0.0, 1.0));
     // Facet panels share one colour range.
     let (lo, hi) = chart.panel.as_ref().and_then(|p| p.color).unwrap_or((lo, hi));
     let scheme = z_opts.as_ref().and_then(|z| z.scheme.as_deref());
@@ -200,7 +233,9 @@ pub fn draw(chart: &Chart, options: &HeatmapOptions, table: &Table) -> Result<Ch
     let texts: Vec<Vec<String>> = cells
         .values
         .iter()
-        .map(|row| row.iter().map(|c| c.as_ref().map_or(String::new(), |(v, _)| format!("{v:.decimals$}"))).collect())
+        .map(|row| {
+            row.iter().map(|c| c.as_ref().map_or(String::new(), |c| format!("{:.decimals$}", c.value))).collect()
+        })
         .collect();
     let fits =
         texts.iter().flatten().all(|t| crate::text::measure(t, label_size).width + 4.0 <= w) && label_size + 2.0 <= h;
@@ -210,16 +245,12 @@ pub fn draw(chart: &Chart, options: &HeatmapOptions, table: &Table) -> Result<Ch
     let mut labels = Vec::new();
     for (j, row) in cells.values.iter().enumerate() {
         for (i, cell) in row.iter().enumerate() {
-            let Some((value, members)) = cell else { continue };
+            let Some(Cell { value, n, rows: members }) = cell else { continue };
             let fill = map.at(((value - c_lo) / span).clamp(0.0, 1.0));
             let rect = Rect::new(plot.x + w * column_of(i) as f64, plot.y + h * row_of(j) as f64, w, h);
             let tooltip = format!(
                 "{}: {}\n{}: {}\n{value_name}: {value} ({} rows)",
-                x_opts.field,
-                x_side.labels[i],
-                y_opts.field,
-                y_side.labels[j],
-                members.len()
+                x_opts.field, x_side.labels[i], y_opts.field, y_side.labels[j], n
             );
             marks.push(
                 Item::new(Role::DataMark, Shape::Rect(rect), Style::fill(fill))
@@ -342,16 +373,24 @@ fn reorder(side: Side, order: &[usize]) -> Side {
 
 /// The value and rows of every cell, `values[row][column]`; `None` for a cell without rows.
 struct Cells {
-    values: Vec<Vec<Option<(f64, Vec<u32>)>>>,
+    values: Vec<Vec<Option<Cell>>>,
+}
+
+/// One cell: its value, how many rows it combines, and those rows of the source's table (none
+/// when they stay in the plan).
+struct Cell {
+    value: f64,
+    n: usize,
+    rows: Vec<u32>,
 }
 
 impl Cells {
     fn row_mean(&self, j: usize) -> f64 {
-        mean(self.values[j].iter().flatten().map(|c| c.0))
+        mean(self.values[j].iter().flatten().map(|c| c.value))
     }
 
     fn column_mean(&self, i: usize) -> f64 {
-        mean(self.values.iter().filter_map(|row| row[i].as_ref().map(|c| c.0)))
+        mean(self.values.iter().filter_map(|row| row[i].as_ref().map(|c| c.value)))
     }
 
     /// The cells with columns and rows in the orders given (old indices, new order).
@@ -399,11 +438,31 @@ fn cell_values(x: &Side, y: &Side, rows: &[u32], z: &[f64], aggregate: CellAggre
                             if n % 2 == 1 { v[n / 2] } else { (v[n / 2 - 1] + v[n / 2]) / 2.0 }
                         }
                     };
-                    Some((value, rows))
+                    Some(Cell { value, n: rows.len(), rows })
                 })
                 .collect()
         })
         .collect();
+    Cells { values }
+}
+
+/// Each cell's aggregate from the statistics of its group of rows left in the plan (`rows`: the
+/// groups, in the order the sides' `of_row` follow).
+fn grouped_cells(x: &Side, y: &Side, rows: &[u32], groups: &PlanGroups, aggregate: CellAggregate) -> Cells {
+    let mut values: Vec<Vec<Option<Cell>>> =
+        (0..y.labels.len()).map(|_| (0..x.labels.len()).map(|_| None).collect()).collect();
+    for (k, &r) in rows.iter().enumerate() {
+        let Some(s) = groups.summary(r) else { continue };
+        let value = match aggregate {
+            CellAggregate::Count => s.n as f64,
+            CellAggregate::Sum => s.sum,
+            CellAggregate::Mean => s.mean,
+            CellAggregate::Min => s.min,
+            CellAggregate::Max => s.max,
+            CellAggregate::Median => s.median,
+        };
+        values[y.of_row[k]][x.of_row[k]] = Some(Cell { value, n: s.n, rows: Vec::new() });
+    }
     Cells { values }
 }
 
@@ -423,11 +482,11 @@ fn derived_table(x_field: &str, y_field: &str, x: &Side, y: &Side, cells: &Cells
     let (mut xs, mut ys, mut values, mut counts) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
     for (j, row) in cells.values.iter().enumerate() {
         for (i, cell) in row.iter().enumerate() {
-            if let Some((v, rows)) = cell {
+            if let Some(cell) = cell {
                 xs.push(x.labels[i].clone());
                 ys.push(y.labels[j].clone());
-                values.push(*v);
-                counts.push(rows.len() as f64);
+                values.push(cell.value);
+                counts.push(cell.n as f64);
             }
         }
     }
@@ -440,8 +499,10 @@ fn derived_table(x_field: &str, y_field: &str, x: &Side, y: &Side, cells: &Cells
 }
 
 /// `kind = "heatmap"`.
-pub static KIND: KindInfo =
-    KindInfo::new("heatmap", &["x", "y", "z"]).faceted(crate::mark::registry::Faceting::Frame).drawing_annotations();
+pub static KIND: KindInfo = KindInfo::new("heatmap", &["x", "y", "z"])
+    .counting_rows(crate::mark::registry::RowCounting { modes: None, unless: &["tooltip", "facet"], on_engine: false })
+    .faceted(crate::mark::registry::Faceting::Frame)
+    .drawing_annotations();
 
 impl Technique for HeatmapOptions {
     fn info(&self) -> &'static KindInfo {
@@ -449,7 +510,7 @@ impl Technique for HeatmapOptions {
     }
 
     fn draw(&self, cx: &ChartContext<'_>) -> Result<ChartOutput, MarkError> {
-        draw(&cx.chart, self, cx.table)
+        draw(&cx.chart, self, cx.table, cx.plan)
     }
 
     fn cartesian_axes(&self) -> Vec<AxisSpec> {

@@ -22,6 +22,7 @@ pub mod network_input;
 pub mod node_link;
 pub mod overplot;
 pub mod panel;
+pub mod plan_groups;
 pub mod raster;
 pub mod size;
 pub mod spread;

@@ -112,7 +112,8 @@ pub fn cell_text(column: &Column, row: usize) -> String {
                 let t = format_timestamp(*v);
                 t.strip_suffix(" 00:00:00").map(str::to_string).unwrap_or(t)
             } else {
-                format!("{v}")
+                // −0 + 0 = +0: the two zeros are one value, written "0".
+                format!("{}", v + 0.0)
             }
         }
         _ => MISSING_LABEL.to_string(),

@@ -1,0 +1,47 @@
+#!/usr/bin/env bash
+# A bar chart (mean of y ± 95% CI per whole x) and a heatmap (rows per whole x and whole y) of
+# 10⁸ rows (benches/data/points_1e8.parquet, made by make_big_points.py; the keys computed by a
+# `calculate` step), to PNG: grouped while the rows stream through the source's plan, against
+# the same charts with their rows held in memory (a selection over the source makes it read its
+# rows), same run; then each one's peak memory.
+#   bash benches/groups.sh [ROWS]     ROWS: 1e7, 1e8 or 1e9 (default 1e8)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+. benches/big_points.sh "${1:-1e8}"
+out=target/bench/groups
+mkdir -p "$out"
+for kind in streamed held; do
+    cat > "$out/$kind.toml" <<SPEC
+[data.points]
+path = "$data"
+transform = [
+  { calculate = "round(x)", as = "kx" },
+  { calculate = "round(y)", as = "ky" },
+]
+$([ "$kind" = held ] && printf '[selection.some]\ndata = "points"\nrange = { x = [0, 1] }\n')
+
+[[chart]]
+name = "bars"
+kind = "bar"
+data = "points"
+x = { field = "kx", title = "x (rounded)" }
+y = { field = "y", title = "y" }
+aggregate = "mean"
+error = "ci95"
+
+[[chart]]
+name = "cells"
+kind = "heatmap"
+data = "points"
+x = { field = "kx", title = "x (rounded)" }
+y = { field = "ky", title = "y (rounded)" }
+SPEC
+done
+run() { echo "target/release/dataink render $out/$1.toml --format png --out $out/$1 --quiet --allow-outside-paths"; }
+hyperfine --warmup 1 --runs 4 -n streamed "$(run streamed)" -n held "$(run held)"
+for kind in streamed held; do
+    /usr/bin/time -f "$kind: peak resident %M KB" $(run $kind)
+done
+for chart in bars cells; do
+    cmp "$out/streamed/$chart.png" "$out/held/$chart.png" && echo "the two $chart PNGs are identical"
+done
