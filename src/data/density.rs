@@ -4,6 +4,7 @@
 //! from a source's lazy plan ([`plan`]) — the same arithmetic either way, so both give the same
 //! grid bit for bit.
 
+pub mod columns;
 pub mod footer;
 pub mod groups;
 pub mod plan;

@@ -166,16 +166,35 @@ pub fn box_stats(values: &[f64], method: QuantileMethod, whisker: f64) -> Option
 /// 2·IQR·n^(−1/3)), clamped to `[min_bins, max_bins]`; Sturges' rule when the IQR is zero.
 pub fn freedman_diaconis_bins(values: &[f64], lo: f64, hi: f64, min_bins: usize, max_bins: usize) -> usize {
     let n = values.iter().filter(|v| v.is_finite()).count();
+    freedman_diaconis_bins_of(n, || quartiles(values), (lo, hi), (min_bins, max_bins))
+}
+
+/// [`freedman_diaconis_bins`] of `n` finite values whose quartiles `quartiles` gives (asked only
+/// when the rule needs them).
+pub fn freedman_diaconis_bins_of(
+    n: usize,
+    quartiles: impl FnOnce() -> Option<(f64, f64)>,
+    (lo, hi): (f64, f64),
+    (min_bins, max_bins): (usize, usize),
+) -> usize {
     if n == 0 || hi <= lo {
         return min_bins;
     }
     let sturges = ((n as f64).log2().ceil() as usize + 1).clamp(min_bins, max_bins);
-    let Some((q1, q3)) = quartiles(values) else { return sturges };
+    let Some((q1, q3)) = quartiles() else { return sturges };
     let width = 2.0 * (q3 - q1) / (n as f64).cbrt();
     if width <= 0.0 || !width.is_finite() {
         return sturges;
     }
     (((hi - lo) / width).ceil() as usize).clamp(min_bins, max_bins)
+}
+
+/// Whether [`freedman_diaconis_bins_of`] gives `max_bins` for `n` values spread over `range`
+/// (their largest minus smallest) in bins over `[lo, hi]` whatever their quartiles, as long as
+/// these differ: the width 2·IQR/∛n is then at most 2·range/∛n, so there are at least
+/// (hi − lo)·∛n / (2·range) bins (one spare for rounding).
+pub fn freedman_diaconis_saturates(n: usize, range: f64, (lo, hi): (f64, f64), max_bins: usize) -> bool {
+    range > 0.0 && (hi - lo) * (n as f64).cbrt() / (2.0 * range) >= (max_bins + 1) as f64
 }
 
 /// Counts of `values` in `bins` equal bins over `[lo, hi]`; values outside or non-finite are
@@ -187,13 +206,18 @@ pub fn bin_counts(values: impl IntoIterator<Item = f64>, lo: f64, hi: f64, bins:
     }
     let scale = bins as f64 / (hi - lo);
     for v in values {
-        if !(v >= lo && v <= hi) {
-            continue;
+        if let Some(k) = bin_index(v, (lo, hi), scale, bins) {
+            counts[k] += 1.0;
         }
-        let k = (((v - lo) * scale) as usize).min(bins - 1);
-        counts[k] += 1.0;
     }
     counts
+}
+
+/// The bin of `v` among `bins` equal bins over `[lo, hi]`, `scale` = bins / (hi − lo)
+/// ([`bin_counts`]'s placing: `hi` in the last bin); `None` outside or for a non-finite value.
+#[inline]
+pub fn bin_index(v: f64, (lo, hi): (f64, f64), scale: f64, bins: usize) -> Option<usize> {
+    (v >= lo && v <= hi).then(|| (((v - lo) * scale) as usize).min(bins - 1))
 }
 
 /// Silverman's rule-of-thumb bandwidth 0.9·min(σ, IQR/1.34)·n^(−1/5) (`None` for fewer than two
@@ -314,6 +338,35 @@ fn kde_at(values: &[f64], h: f64, x: f64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn saturation_gives_the_bins_the_quartiles_would() {
+        // A golden-ratio sequence: spread evenly over [0, 1), in no order.
+        let mut k = 0u64;
+        let mut next = || {
+            k += 1;
+            (k as f64 * 0.618_033_988_749_894_9).fract()
+        };
+        let n = 1_000_000;
+        let spread: Vec<f64> = (0..n).map(|_| next() * 10.0).collect();
+        // A long tail: the quartiles are close together, the range wide.
+        let tail: Vec<f64> = (0..n).map(|_| (1.0 - next()).ln().abs().powi(3)).collect();
+        // More than half the values equal: the quartiles agree.
+        let ties: Vec<f64> = (0..n).map(|i| if i % 10 < 6 { 1.0 } else { next() * 10.0 }).collect();
+        for values in [spread, tail, ties] {
+            let (min, max) = values.iter().fold((f64::MAX, f64::MIN), |(a, b), &v| (a.min(v), b.max(v)));
+            for (lo, hi) in [(min, max), (min - 1.0, max + 1.0), (min, min + (max - min) / 1000.0)] {
+                let (q1, q3) = quartiles(&values).unwrap();
+                let bins = freedman_diaconis_bins(&values, lo, hi, 8, 50);
+                if freedman_diaconis_saturates(n, max - min, (lo, hi), 50) && q1 < q3 {
+                    assert_eq!(bins, 50, "[{lo}, {hi}]");
+                }
+            }
+        }
+        assert!(!freedman_diaconis_saturates(1000, 1.0, (0.0, 1.0), 50), "few values do not");
+        assert!(freedman_diaconis_saturates(2_000_000, 1.0, (0.0, 1.0), 50));
+        assert!(!freedman_diaconis_saturates(2_000_000, 1.0, (0.0, 0.001), 50), "a narrow domain does not");
+    }
 
     #[test]
     fn quartiles_interpolate_like_numpy() {

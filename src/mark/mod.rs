@@ -19,7 +19,7 @@ pub mod volume;
 
 pub use shared::{
     annotate, axis3d, bands, categorical, density, derived, encode, frame, geojson, geometry, gridded, grouped,
-    highlight, level_labels, network_input, node_link, overplot, panel, plan_groups, raster, size, spread, tooltip,
+    highlight, level_labels, network_input, node_link, overplot, panel, plan_rows, raster, size, spread, tooltip,
     tree_input, trend, warning,
 };
 

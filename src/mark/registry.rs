@@ -530,6 +530,9 @@ mod tests {
         assert!(!counts(json!({"kind": "bar", "x": "a"}), true), "bars are grouped in-process only");
         assert!(counts(json!({"kind": "heatmap", "x": "a", "y": "b", "z": "c"}), false));
         assert!(!counts(json!({"kind": "heatmap", "x": "a", "facet": "f"}), false));
+        assert!(counts(json!({"kind": "splom", "columns": ["a", "b"], "bins": 20}), false));
+        assert!(!counts(json!({"kind": "splom", "mode": "points"}), false));
+        assert!(!counts(json!({"kind": "splom", "diagonal": "density"}), false));
         assert!(!counts(json!({"kind": "line", "x": "a"}), false));
     }
 

@@ -394,3 +394,107 @@ color = "species"
         assert!(texts.iter().any(|t| t == category), "{category} is labelled: {texts:?}");
     }
 }
+
+/// `n` seeded rows of three columns: `a` continuous with a long tail, `b` on a lattice (ties,
+/// values on bin edges), `c` a date; every 101st `a` empty, every 499th `b` `inf`.
+fn many_rows(n: usize) -> String {
+    let mut next = crate::common::seeded_uniform();
+    let mut csv = String::from("a,b,c\n");
+    for i in 0..n {
+        let a = if i % 101 == 0 { String::new() } else { format!("{}", -next().ln() * 3.0 - 1.0) };
+        let b = if i % 499 == 0 { "inf".to_string() } else { format!("{}", (next() * 40.0).floor() / 4.0) };
+        let c = format!("2020-{:02}-{:02}", 1 + i % 12, 1 + i % 28);
+        csv.push_str(&format!("{a},{b},{c}\n"));
+    }
+    csv
+}
+
+#[test]
+fn a_density_splom_of_rows_left_in_the_plan_equals_the_one_of_rows_in_memory() {
+    let csv = many_rows(240_000);
+    for extra in [
+        "columns = [\"a\", \"b\", \"c\"]\n",
+        "columns = [\"a\", \"b\"]\nbins = 17\nlayout = \"lower\"\nshading = \"log\"\n",
+        "columns = [\"c\", \"b\"]\nmode = \"density\"\n",
+    ] {
+        let spec = format!(
+            "[data.d]\npath = \"d.csv\"\n\n[[chart]]\nname = \"m\"\nkind = \"splom\"\ndata = \"d\"\nsize = [600, 600]\n{extra}"
+        );
+        let (streamed, held) = crate::common::streamed_and_held(&spec, &csv, "a", extra);
+        let notes = |out: &ChartOutput| out.warnings.iter().map(|w| w.to_string()).collect::<Vec<_>>();
+        assert_eq!(notes(&streamed), notes(&held), "{extra}");
+        assert!(notes(&streamed).iter().any(|w| w.contains("dropped ") && w.contains("of 240000 rows")), "{extra}");
+        let rasters = |out: &ChartOutput| {
+            let mut found = Vec::new();
+            out.scene.walk(|item: &Item| {
+                if let Shape::Image(r) = &item.shape {
+                    found.push((r.width, r.height, r.rgba.clone()));
+                }
+            });
+            found
+        };
+        let (a, b) = (rasters(&streamed), rasters(&held));
+        assert!(
+            !a.is_empty() && a == b,
+            "{extra}: {} rasters streamed, {} held, or their pixels differ",
+            a.len(),
+            b.len()
+        );
+        // Everything drawn is the same; only the rows the held histograms carry are not there.
+        let items = |out: &ChartOutput| {
+            let mut found = Vec::new();
+            out.scene.walk(|item: &Item| found.push(format!("{:?} {:?} {:?}", item.role, item.label, item.shape)));
+            found
+        };
+        let (a, b) = (items(&streamed), items(&held));
+        let first = a.iter().zip(&b).position(|(x, y)| x != y);
+        let cut = |s: Option<&String>| s.map(|s| s.chars().take(300).collect::<String>());
+        assert!(
+            a == b,
+            "{extra}: the two scenes differ ({} and {} items); first at {first:?}:\n{:?}\n{:?}",
+            a.len(),
+            b.len(),
+            cut(first.and_then(|k| a.get(k))),
+            cut(first.and_then(|k| b.get(k)))
+        );
+    }
+}
+
+#[test]
+fn with_a_million_rows_the_diagonals_of_a_counted_splom_skip_the_quartiles_and_still_agree() {
+    // Enough rows that Freedman–Diaconis gives 50 bins whenever the quartiles differ, which the
+    // first tally shows: the streamed matrix finds no quartile, and must still equal the held one.
+    let mut next = crate::common::seeded_uniform();
+    let mut csv = String::from("a,b\n");
+    for _ in 0..1_000_000 {
+        csv.push_str(&format!("{},{}\n", (next() * 1000.0).floor(), next().powi(3)));
+    }
+    let spec = "[data.d]\npath = \"d.csv\"\n\n[[chart]]\nname = \"m\"\nkind = \"splom\"\ndata = \"d\"\ncolumns = [\"a\", \"b\"]\n";
+    let (streamed, held) = crate::common::streamed_and_held(spec, &csv, "a", "a million rows");
+    let histograms = |out: &ChartOutput| {
+        let mut found = Vec::new();
+        out.scene.walk(|item: &Item| {
+            if item.label.as_deref() == Some("histogram") {
+                found.push(format!("{:?}", item.shape));
+            }
+        });
+        found
+    };
+    assert_eq!(histograms(&streamed).len(), 2);
+    assert_eq!(histograms(&streamed), histograms(&held));
+}
+
+#[test]
+fn a_splom_left_in_the_plan_says_what_it_cannot_count() {
+    let mut csv = String::from("a,t\n");
+    for i in 0..210_000 {
+        csv.push_str(&format!("{},w{}\n", i % 7, i % 3));
+    }
+    let spec = |columns: &str| {
+        format!(
+            "[data.d]\npath = \"d.csv\"\n\n[[chart]]\nname = \"m\"\nkind = \"splom\"\ndata = \"d\"\ncolumns = {columns}\n"
+        )
+    };
+    let err = Fixture::new(&spec("[\"a\", \"t\"]"), &[("d.csv", csv.as_bytes())]).draw().expect_err("text column");
+    assert!(err.contains("`t`"), "{err}");
+}

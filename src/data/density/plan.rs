@@ -203,19 +203,33 @@ impl PlanRows {
     /// batch into `fold`.
     pub(super) fn scan<F: Fold>(&self, x: &str, y: &str, fold: F) -> Result<F, String> {
         let placed = self.frame()?.clone().select([self.number(x)?.alias(X), self.number(y)?.alias(Y)]);
+        self.run_batches(placed, fold, |fold: &mut F, batch: &DataFrame| {
+            let (xs, ys) = (Coords::of(batch.column(X)?)?, Coords::of(batch.column(Y)?)?);
+            match (xs.values()?, ys.values()?) {
+                (Values::F32(a), Values::F32(b)) => fold.fold(a, b),
+                (Values::F32(a), Values::F64(b)) => fold.fold(a, b),
+                (Values::F64(a), Values::F32(b)) => fold.fold(a, b),
+                (Values::F64(a), Values::F64(b)) => fold.fold(a, b),
+            }
+            Ok(())
+        })
+    }
+
+    /// Run `placed` (the plan with some columns selected) on the streaming engine, handing each
+    /// batch it yields to `each` with `fold`, and counting the rows for the progress bar.
+    fn run_batches<F: Send + 'static>(
+        &self,
+        placed: LazyFrame,
+        fold: F,
+        each: impl Fn(&mut F, &DataFrame) -> PolarsResult<()> + Send + Sync + 'static,
+    ) -> Result<F, String> {
         let shared = Arc::new(Mutex::new(fold));
         let sink = Arc::clone(&shared);
         PROGRESS.total.fetch_add(self.rows, Ordering::Relaxed);
         let callback = PlanCallback::new(move |batch: DataFrame| {
-            let (xs, ys) = (Coords::of(batch.column(X)?)?, Coords::of(batch.column(Y)?)?);
             // A poisoned lock means an earlier batch panicked; that panic is reported instead.
             if let Ok(mut fold) = sink.lock() {
-                match (xs.values()?, ys.values()?) {
-                    (Values::F32(a), Values::F32(b)) => fold.fold(a, b),
-                    (Values::F32(a), Values::F64(b)) => fold.fold(a, b),
-                    (Values::F64(a), Values::F32(b)) => fold.fold(a, b),
-                    (Values::F64(a), Values::F64(b)) => fold.fold(a, b),
-                }
+                each(&mut fold, &batch)?;
             }
             PROGRESS.scanned.fetch_add(batch.height() as u64, Ordering::Relaxed);
             Ok(false)
@@ -225,6 +239,40 @@ impl PlanRows {
             .map_err(|e| engine_error(source, &e))?;
         let fold = Arc::try_unwrap(shared).map_err(|_| format!("data \"{source}\": the scan did not finish"))?;
         fold.into_inner().map_err(|_| format!("data \"{source}\": the scan failed part way"))
+    }
+
+    /// Run the plan with only `fields` selected, each as `f64` numbers (times in milliseconds
+    /// since the epoch, missing cells NaN), folding each batch into `fold`: for views that count
+    /// several columns at once.
+    pub fn scan_columns<F: ColumnsFold>(&self, fields: &[&str], fold: F) -> Result<F, String> {
+        let names: Vec<String> = (0..fields.len()).map(|i| format!("__dataink_c{i}")).collect();
+        let mut selected = Vec::with_capacity(fields.len());
+        for (field, name) in fields.iter().zip(&names) {
+            selected.push(self.number(field)?.cast(DataType::Float64).alias(name.as_str()));
+        }
+        let placed = self.frame()?.clone().select(selected);
+        self.run_batches(placed, fold, move |fold: &mut F, batch: &DataFrame| {
+            let mut columns = Vec::with_capacity(names.len());
+            for name in &names {
+                let ca = batch.column(name)?.f64()?;
+                let ca = if ca.null_count() > 0 { ca.fill_null_with_values(f64::NAN)? } else { ca.clone() };
+                columns.push(ca.rechunk().into_owned());
+            }
+            let slices = columns.iter().map(|c| c.cont_slice()).collect::<PolarsResult<Vec<&[f64]>>>()?;
+            fold.fold(&slices);
+            Ok(())
+        })
+    }
+
+    /// The same source with only the rows `keep` is true for, of which there are `rows`.
+    pub(super) fn filtered(&self, keep: Expr, rows: u64) -> Result<PlanRows, String> {
+        let frame = self.frame()?.clone().filter(keep);
+        Ok(PlanRows {
+            source: self.source.clone(),
+            schema: self.schema.clone(),
+            rows,
+            backend: Backend::Lazy { frame, parquet: None },
+        })
     }
 
     /// An engine's error, naming the source.
@@ -258,6 +306,12 @@ impl PlanRows {
             }
         })
     }
+}
+
+/// What [`PlanRows::scan_columns`] folds its batches into.
+pub trait ColumnsFold: Send + 'static {
+    /// Count one batch: `columns[k][r]` is row `r`'s value of the `k`-th field.
+    fn fold(&mut self, columns: &[&[f64]]);
 }
 
 /// What a scan folds its batches into.

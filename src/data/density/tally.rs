@@ -3,8 +3,22 @@
 //! is made of) found by narrowing tallies — a few streaming scans, whatever the row count, and
 //! memory for the bins only.
 
-use super::plan::{Fold, PlanRows};
+use super::plan::{ColumnsFold, Fold, PlanRows};
 use super::{Bins, Coord};
+
+/// One tally per column, each filled on its own thread.
+struct ColumnTallies(Vec<Tally>);
+
+impl ColumnsFold for ColumnTallies {
+    fn fold(&mut self, columns: &[&[f64]]) {
+        use rayon::prelude::*;
+        self.0.par_iter_mut().zip(columns.par_iter()).for_each(|(tally, values)| {
+            for &v in *values {
+                tally.add(v);
+            }
+        });
+    }
+}
 
 /// One bin of a [`Tally`].
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -72,6 +86,13 @@ impl Tally {
         Tally { bins, per_bin, missing: 0, infinite: 0, outside: 0, kept: None }
     }
 
+    /// The first tally of values in `[lo, hi]`: [`OPENING_BINS`] bins over the range (one bin
+    /// around a single value), values outside it counted apart; `None` for no finite range.
+    pub fn opening(lo: f64, hi: f64) -> Option<Tally> {
+        let whole = Bins::new(lo, hi, OPENING_BINS, false).or_else(|| Bins::new(lo, lo.next_up(), 1, false))?;
+        Some(Tally::new(whole).keeping(lo, hi))
+    }
+
     /// The same tally placing only values from `lo` to `hi` (a histogram's domain, narrower
     /// than its rounded edges); the others count as outside.
     pub fn keeping(mut self, lo: f64, hi: f64) -> Tally {
@@ -113,6 +134,19 @@ impl Tally {
     /// Values the bins hold.
     pub fn placed(&self) -> u64 {
         self.per_bin.iter().map(|b| b.count).sum()
+    }
+
+    /// Whether the placed values of 0-based ranks `a` < `b` surely differ: they lie in
+    /// different bins. `false` when the bins cannot tell.
+    pub fn ranks_differ(&self, a: u64, b: u64) -> bool {
+        let bin_of = |rank: u64| {
+            let mut seen = 0u64;
+            self.per_bin.iter().position(|bin| {
+                seen += bin.count;
+                seen > rank
+            })
+        };
+        a < b && matches!((bin_of(a), bin_of(b)), (Some(x), Some(y)) if x != y)
     }
 }
 
@@ -229,6 +263,41 @@ impl PlanRows {
         Ok(fold.merged())
     }
 
+    /// The first tally of `field` for its order statistics: [`OPENING_BINS`] bins over its range
+    /// `[lo, hi]` (one bin around a single value), values outside the range counted apart.
+    pub fn opening_tally(&self, field: &str, (lo, hi): (f64, f64)) -> Result<Tally, String> {
+        let opening = Tally::opening(lo, hi).ok_or_else(|| format!("`{field}` has no finite range to bin"))?;
+        Ok(self.tally(field, vec![opening])?.remove(0))
+    }
+
+    /// [`PlanRows::opening_tally`] of several columns over their ranges, in one scan (each
+    /// column tallied on its own thread).
+    pub fn opening_tallies(&self, fields: &[&str], ranges: &[(f64, f64)]) -> Result<Vec<Tally>, String> {
+        let mut tallies = Vec::with_capacity(fields.len());
+        for (field, &(lo, hi)) in fields.iter().zip(ranges) {
+            tallies.push(Tally::opening(lo, hi).ok_or_else(|| format!("`{field}` has no finite range to bin"))?);
+        }
+        let label = format!("tallies of {} columns over {OPENING_BINS} bins", fields.len());
+        Ok(crate::timing::timed(&label, || self.scan_columns(fields, ColumnTallies(tallies)))?.0)
+    }
+
+    /// The values at fractional 0-based ranks among those `first` placed: `(i, frac)` is the
+    /// value of rank `i` plus `frac` of the way to the next one (how quantiles interpolate).
+    pub fn at_ranks(&self, field: &str, first: &Tally, positions: &[(usize, f64)]) -> Result<Vec<f64>, String> {
+        let n = first.placed() as usize;
+        if n == 0 {
+            return Err(format!("`{field}` has no values to rank"));
+        }
+        let next = |i: usize| (i + 1).min(n - 1) as u64;
+        let ranks: Vec<u64> = positions.iter().flat_map(|&(i, _)| [i as u64, next(i)]).collect();
+        let v = self.order_statistics(field, first, &ranks)?;
+        Ok(positions
+            .iter()
+            .zip(v.chunks(2))
+            .map(|(&(_, frac), pair)| if frac > 0.0 { pair[0] + frac * (pair[1] - pair[0]) } else { pair[0] })
+            .collect())
+    }
+
     /// The values at 0-based `ranks` among the finite values of `field` that `first` (a tally of
     /// them over bins) placed, in ascending order: each rank is searched in the bin that holds
     /// it, by tallies over that bin's range until the rank falls on the smallest value of a bin.
@@ -317,6 +386,26 @@ mod tests {
         let a = 1.0f64;
         let near: Vec<Option<f64>> = (0..1000).map(|i| Some(if i % 3 == 0 { a } else { a.next_up() })).collect();
         check(near, a, a.next_up());
+    }
+
+    #[test]
+    fn ranks_differ_when_their_bins_do_and_fractional_ranks_interpolate() {
+        let spread: Vec<Option<f64>> = (0..10_000).map(|i| Some(i as f64)).collect();
+        let ties: Vec<Option<f64>> = (0..10_000).map(|i| Some(if i % 10 < 6 { 5000.0 } else { i as f64 })).collect();
+        for (values, differ) in [(spread, true), (ties, false)] {
+            let plan = plan_of(values);
+            let first = plan.opening_tally("v", (0.0, 9999.0)).unwrap();
+            assert_eq!(first.ranks_differ(2500, 7499), differ);
+            let v = plan.at_ranks("v", &first, &[(2500, 0.0), (7499, 0.0)]).unwrap();
+            assert_eq!(v[0] < v[1], differ, "{v:?}");
+        }
+        let plan =
+            PlanRows::new(df!("a" => [1.0, 2.0, 3.0, 4.0], "b" => [5.0, 5.0, 5.0, 6.0]).unwrap().lazy(), "t").unwrap();
+        let both = plan.opening_tallies(&["a", "b"], &[(1.0, 4.0), (5.0, 6.0)]).unwrap();
+        assert_eq!(both.iter().map(Tally::placed).collect::<Vec<_>>(), [4, 4]);
+        // numpy.percentile([1, 2, 3, 4], [25, 75]) == [1.75, 3.25]: ranks 0.75 and 2.25.
+        assert_eq!(plan.at_ranks("a", &both[0], &[(0, 0.75), (2, 0.25)]).unwrap(), [1.75, 3.25]);
+        assert!(!both[1].ranks_differ(0, 2) && both[1].ranks_differ(2, 3));
     }
 
     #[test]

@@ -18,7 +18,7 @@ use crate::mark::derived::{Derived, DerivedColumn};
 use crate::mark::encode;
 use crate::mark::geometry::{self, Plot};
 use crate::mark::grouped::Orientation;
-use crate::mark::plan_groups::PlanGroups;
+use crate::mark::plan_rows::PlanGroups;
 use crate::mark::registry::{AxisSpec, ChartContext, KindInfo, Technique};
 use crate::mark::spread::{Spread, Summary};
 use crate::mark::warning::Warning;
@@ -267,7 +267,7 @@ pub fn draw(
 
     // The rows are those of the table, or one per group of the rows left in the plan.
     let grouped = match plan {
-        Some(plan) => Some(plan_groups(chart, plan, (&x_opts.field, y_col), color.as_ref(), aggregate)?),
+        Some(plan) => Some(grouped_in_plan(chart, plan, (&x_opts.field, y_col), color.as_ref(), aggregate)?),
         None => None,
     };
     let table = grouped.as_ref().map_or(table, |g| &g.table);
@@ -551,7 +551,7 @@ pub fn draw(
 /// The groups of the rows left in `plan`: one per category of `x` (and colour group), with the
 /// statistics of `y` over the rows that are finite in `y`, in a numeric `x` and in a numeric
 /// colour column (the policy for rows in memory).
-fn plan_groups(
+fn grouped_in_plan(
     chart: &Chart,
     plan: &PlanRows,
     (x_field, y_col): (&str, &Column),

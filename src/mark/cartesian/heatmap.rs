@@ -22,7 +22,7 @@ use crate::guide::scale::Scale;
 use crate::mark::derived::{Derived, DerivedColumn};
 use crate::mark::encode::{self, MISSING_LABEL};
 use crate::mark::geometry::{Geometry, Plot};
-use crate::mark::plan_groups::PlanGroups;
+use crate::mark::plan_rows::PlanGroups;
 use crate::mark::registry::{AxisSpec, ChartContext, ColourSpec, KindInfo, Technique};
 use crate::mark::{ChartOutput, MarkError, frame};
 use crate::scene::{Anchor, Baseline, Item, Rect, Role, Shape, Style, Text};

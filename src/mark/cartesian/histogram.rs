@@ -11,10 +11,9 @@ use serde::{Deserialize, Serialize};
 
 use crate::data::density::Bins as TallyBins;
 use crate::data::density::plan::PlanRows;
-use crate::data::density::tally::{OPENING_BINS, Tally};
+use crate::data::density::tally::Tally;
 use crate::data::transform::bin::Bins;
 use crate::data::{Column, Table};
-use crate::enrich::distribution::type7_position;
 use crate::enrich::histogram::{BinRule, OUTSIDE, bin_count_of, bins_of_rows, equal_edges, stepped_edges};
 use crate::guide::axis::title_with_unit;
 use crate::guide::format::format_value;
@@ -517,24 +516,14 @@ fn counted_bins(
     // (and quartiles), which a first tally gives.
     let by_values = options.step.is_none() && !matches!(options.bins, Some(BinCount::Count(_)));
     let edges = if by_values {
-        // A single value (lo = hi) has no range to split; any bin around it places it.
-        let whole = TallyBins::new(lo, hi, OPENING_BINS, false).or_else(|| TallyBins::new(lo, lo.next_up(), 1, false));
-        let whole = whole.ok_or_else(|| scanned(format!("`{field}` has no finite range to bin")))?;
-        let tally = plan.tally(field, vec![Tally::new(whole).keeping(lo, hi)]).map_err(scanned)?.remove(0);
+        let tally = plan.opening_tally(field, (lo, hi)).map_err(scanned)?;
         let n = placed_or_error(chart, field, plan, &tally, (lo, hi))?;
         let mut failed = None;
-        let quartiles = || {
-            let ((i1, f1), (i3, f3)) = (type7_position(0.25, n), type7_position(0.75, n));
-            let next = |i: usize| (i + 1).min(n - 1) as u64;
-            match plan.order_statistics(field, &tally, &[i1 as u64, next(i1), i3 as u64, next(i3)]) {
-                Ok(v) => {
-                    let at = |v0: f64, v1: f64, frac: f64| if frac > 0.0 { v0 + frac * (v1 - v0) } else { v0 };
-                    Some((at(v[0], v[1], f1), at(v[2], v[3], f3)))
-                }
-                Err(e) => {
-                    failed = Some(e);
-                    None
-                }
+        let quartiles = || match crate::mark::plan_rows::quartiles(plan, field, &tally) {
+            Ok(q) => Some(q),
+            Err(e) => {
+                failed = Some(e);
+                None
             }
         };
         let edges = edges(options, lo, hi, n, quartiles)?;

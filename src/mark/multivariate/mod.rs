@@ -7,3 +7,4 @@ pub mod faces;
 pub mod parallel;
 pub mod segments;
 pub mod splom;
+mod splom_counted;

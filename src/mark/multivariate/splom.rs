@@ -4,6 +4,8 @@
 
 use rayon::prelude::*;
 
+use super::splom_counted::{CellBins, CountedCells, CountedRows, DiagonalBins};
+use crate::data::density::plan::PlanRows;
 use crate::data::{Column, Table};
 use crate::enrich::distribution::{bin_counts, freedman_diaconis_bins, kde, silverman_bandwidth};
 use crate::guide::Theme;
@@ -99,11 +101,13 @@ const DENSITY_BIN_PX: f64 = 3.0;
 
 /// Draw a scatter-plot matrix.
 /// Also returns the interactive geometry (for brushing and zooming).
+/// `plan`: the source's rows, when they stay in its plan and the table holds none (density mode).
 pub fn draw(
     chart: &Chart,
     options: &SplomOptions,
     table: &Table,
     highlight: Option<&Highlight>,
+    plan: Option<&PlanRows>,
 ) -> Result<ChartOutput, MarkError> {
     let chart = &with_default_size(chart);
     let columns = encode::columns(chart, "columns", &options.columns, table)?;
@@ -116,9 +120,21 @@ pub fn draw(
         )?;
     }
     let fields: Vec<(&str, &Column)> = columns.iter().map(|(o, c)| (o.field.as_str(), *c)).collect();
-    let (rows, mut warnings) = encode::drawn_rows(chart, table, fields, options.color.as_ref())?;
-    let n = rows.len();
-    let density = options.mode.unwrap_or_default().is_density(n as u64);
+    let plan = plan.filter(|_| table.rows == 0);
+    let counted = match plan {
+        Some(plan) => {
+            let names: Vec<&str> = fields.iter().map(|(f, _)| *f).collect();
+            let asked = options.mode == Some(PointMode::Density);
+            Some((plan, CountedRows::of(chart, plan, &names, asked)?))
+        }
+        None => None,
+    };
+    let (rows, mut warnings) = match &counted {
+        Some((_, c)) => (Vec::new(), c.warnings.clone()),
+        None => encode::drawn_rows(chart, table, fields, options.color.as_ref())?,
+    };
+    let n = counted.as_ref().map_or(rows.len(), |(_, c)| c.rows());
+    let density = counted.is_some() || options.mode.unwrap_or_default().is_density(n as u64);
     if density && options.color.is_some() {
         warnings.push(Warning::from(format!("`color` is not drawn in density mode (bins count rows of every colour)")));
     }
@@ -136,8 +152,11 @@ pub fn draw(
     let look = DensityLook::new(options.shading, None, None, None);
 
     let mut axes = Vec::with_capacity(columns.len());
-    for (opts, col) in &columns {
-        let mut axis = encode::position_axis("columns", opts, col, &rows)?;
+    for (k, (opts, col)) in columns.iter().enumerate() {
+        let mut axis = match &counted {
+            Some((plan, c)) => c.axis(k, opts, plan.is_time(&opts.field))?,
+            None => encode::position_axis("columns", opts, col, &rows)?,
+        };
         axis.inset = radius + 1.0;
         // Small multiples: the data's extent plus a margin, so end ticks sit inside the cells
         // rather than on the edges where neighbouring labels would meet.
@@ -176,18 +195,27 @@ pub fn draw(
         .flat_map(|i| (0..columns.len()).map(move |j| (i, j)))
         .filter(|&(i, j)| i != j && shown(i, j))
         .collect();
-    let mut cells: std::collections::HashMap<(usize, usize), CellMarks> = pairs
-        .par_iter()
-        .map(|&(i, j)| {
-            let (x, y) = (&grid.x[j], &grid.y[i]);
-            let marks = if density {
-                CellMarks::Density(density_counts(grid.cell(i, j), x, y, values[j], values[i], &rows, highlight))
-            } else {
-                CellMarks::Points(paint.points(x, y, values[j], values[i]))
-            };
-            ((i, j), marks)
-        })
-        .collect();
+    let mut counted_cells = match &counted {
+        Some((_, c)) => Some(count_cells(c, options, &grid, &pairs, columns.len())?),
+        None => None,
+    };
+    let mut cells: std::collections::HashMap<(usize, usize), CellMarks> = match &mut counted_cells {
+        Some(counted) => {
+            std::mem::take(&mut counted.cells).into_iter().map(|(k, c)| (k, CellMarks::Density(c))).collect()
+        }
+        None => pairs
+            .par_iter()
+            .map(|&(i, j)| {
+                let (x, y) = (&grid.x[j], &grid.y[i]);
+                let marks = if density {
+                    CellMarks::Density(density_counts(grid.cell(i, j), x, y, values[j], values[i], &rows, highlight))
+                } else {
+                    CellMarks::Points(paint.points(x, y, values[j], values[i]))
+                };
+                ((i, j), marks)
+            })
+            .collect(),
+    };
     // Density rasters share one shading, of every cell's counts.
     let shown_counts: Vec<u64> = cells
         .values()
@@ -222,7 +250,16 @@ pub fn draw(
             }
             items.push(Item::new(Role::Grid, Shape::Rect(cell), Style::stroke(theme.grid, 1.0)).labelled("cell"));
             if i == j {
-                items.extend(diagonal_cell(options, cell, &grid.x[i], &columns[i].0, values[i], &paint, &theme));
+                let counts = counted_cells.as_ref().and_then(|c| c.diagonals.get(i)).and_then(Option::as_deref);
+                items.extend(diagonal_cell(
+                    options,
+                    cell,
+                    &grid.x[i],
+                    &columns[i].0,
+                    (values[i], counts),
+                    &paint,
+                    &theme,
+                ));
                 continue;
             }
             items.extend(axis::grid(&grid.x[j], Side::Bottom, cell, &theme));
@@ -337,7 +374,7 @@ impl RedrawnCells for Diagonals {
                     }
                 });
                 let options = SplomOptions { bins, ..self.options.clone() };
-                diagonal_cell(&options, *rect, scale, channel, values, &paint, &self.theme)
+                diagonal_cell(&options, *rect, scale, channel, (values, None), &paint, &self.theme)
                     .into_iter()
                     .filter(|item| item.role == Role::DataMark)
                     .collect()
@@ -531,13 +568,14 @@ impl CellPaint<'_> {
 }
 
 /// A diagonal cell: the column's histogram or density (stacked by colour group, selected rows
-/// over grey context), or just its name.
+/// over grey context), or just its name. `values`: the column, and its histogram's counts when
+/// they were counted where the rows are (then the cell draws those, in one colour).
 fn diagonal_cell(
     options: &SplomOptions,
     cell: Rect,
     scale: &Scale,
     channel: &ChannelOptions,
-    values: &[f64],
+    (values, counted): (&[f64], Option<&[f64]>),
     paint: &CellPaint,
     theme: &Theme,
 ) -> Vec<Item> {
@@ -559,8 +597,15 @@ fn diagonal_cell(
         Diagonal::Histogram => {
             let at = |rows: &[u32]| rows.iter().map(|&r| values[r as usize]).collect::<Vec<f64>>();
             let all = at(paint.rows);
-            let bins = options.bins.map_or_else(|| freedman_diaconis_bins(&all, lo, hi, 8, 50), |b| b as usize);
-            let total = bin_counts(all.iter().copied(), lo, hi, bins);
+            let bins = match counted {
+                Some(counts) => counts.len(),
+                None => options.bins.map_or_else(|| freedman_diaconis_bins(&all, lo, hi, 8, 50), |b| b as usize),
+            };
+            let count = |rows: &[u32]| match counted {
+                Some(counts) => counts.to_vec(),
+                None => bin_counts(rows.iter().map(|&r| values[r as usize]), lo, hi, bins),
+            };
+            let total = count(paint.rows);
             let max = total.iter().copied().fold(1.0, f64::max);
             let bar = |k: usize, from: f64, count: f64| {
                 let x0 = scale.map(lo + (hi - lo) * k as f64 / bins as f64);
@@ -578,7 +623,7 @@ fn diagonal_cell(
             }
             let mut stacked = vec![0.0; bins];
             for (color, rows) in &groups {
-                let counts = bin_counts(rows.iter().map(|&r| values[r as usize]), lo, hi, bins);
+                let counts = count(rows);
                 let rects: Vec<[f64; 4]> = counts
                     .iter()
                     .enumerate()
@@ -662,12 +707,12 @@ fn rect_path(rects: &[[f64; 4]], color: Color, label: &str) -> Item {
 }
 
 /// Row counts in small square bins of one cell: all rows, and the selected ones.
-struct DensityCounts {
-    cell: Rect,
-    nx: usize,
-    ny: usize,
-    all: Vec<u32>,
-    selected: Option<Vec<u32>>,
+pub(super) struct DensityCounts {
+    pub cell: Rect,
+    pub nx: usize,
+    pub ny: usize,
+    pub all: Vec<u32>,
+    pub selected: Option<Vec<u32>>,
 }
 
 impl DensityCounts {
@@ -712,29 +757,79 @@ fn density_counts(
     rows: &[u32],
     highlight: Option<&Highlight>,
 ) -> DensityCounts {
-    let nx = ((cell.w / DENSITY_BIN_PX).round() as usize).max(1);
-    let ny = ((cell.h / DENSITY_BIN_PX).round() as usize).max(1);
+    let (nx, ny) = density_bins(cell);
     let mut all = vec![0u32; nx * ny];
     let mut selected = highlight.map(|_| vec![0u32; nx * ny]);
     for &r in rows {
-        let px = (x.map(xs[r as usize]) - cell.x) / cell.w * nx as f64;
-        let py = (y.map(ys[r as usize]) - cell.y) / cell.h * ny as f64;
-        if !(px >= 0.0 && py >= 0.0) {
-            continue;
-        }
-        let (bx, by) = ((px as usize).min(nx - 1), (py as usize).min(ny - 1));
-        all[by * nx + bx] += 1;
+        let Some(bin) = density_bin(cell, (nx, ny), (x, y), xs[r as usize], ys[r as usize]) else { continue };
+        all[bin] += 1;
         if let (Some(sel), Some(h)) = (selected.as_mut(), highlight)
             && h.contains(r)
         {
-            sel[by * nx + bx] += 1;
+            sel[bin] += 1;
         }
     }
     DensityCounts { cell, nx, ny, all, selected }
 }
 
+/// How many density bins of about [`DENSITY_BIN_PX`] pixels a cell has across and up.
+pub(super) fn density_bins(cell: Rect) -> (usize, usize) {
+    (((cell.w / DENSITY_BIN_PX).round() as usize).max(1), ((cell.h / DENSITY_BIN_PX).round() as usize).max(1))
+}
+
+/// The density bin (row-major from the cell's top left) of the point `(xv, yv)` placed by the
+/// scales `x` and `y` in `cell` of `nx` × `ny` bins; `None` when it falls before the cell.
+#[inline]
+pub(super) fn density_bin(
+    cell: Rect,
+    (nx, ny): (usize, usize),
+    (x, y): (&Scale, &Scale),
+    xv: f64,
+    yv: f64,
+) -> Option<usize> {
+    let px = (x.map(xv) - cell.x) / cell.w * nx as f64;
+    let py = (y.map(yv) - cell.y) / cell.h * ny as f64;
+    if !(px >= 0.0 && py >= 0.0) {
+        return None;
+    }
+    Some((py as usize).min(ny - 1) * nx + (px as usize).min(nx - 1))
+}
+
+/// Every shown off-diagonal cell and diagonal histogram of a matrix over rows left in the plan,
+/// counted in one scan.
+fn count_cells(
+    counted: &CountedRows,
+    options: &SplomOptions,
+    grid: &Grid,
+    pairs: &[(usize, usize)],
+    columns: usize,
+) -> Result<CountedCells, MarkError> {
+    let cells = pairs
+        .iter()
+        .map(|&(i, j)| {
+            let cell = grid.cell(i, j);
+            let (nx, ny) = density_bins(cell);
+            CellBins { i, j, cell, nx, ny, x: grid.x[j].clone(), y: grid.y[i].clone() }
+        })
+        .collect();
+    let mut diagonals = Vec::new();
+    if options.diagonal.unwrap_or(Diagonal::Histogram) == Diagonal::Histogram {
+        let domains: Vec<(f64, f64)> = (0..columns).map(|k| grid.x[k].domain()).collect();
+        let bins = counted.diagonal_bins(options.bins, &domains)?;
+        for (column, (&(lo, hi), bins)) in domains.iter().zip(bins).enumerate() {
+            diagonals.push(DiagonalBins { column, lo, hi, bins });
+        }
+    }
+    counted.count(columns, cells, diagonals)
+}
+
 /// `kind = "splom"`.
 pub static KIND: KindInfo = KindInfo::new("splom", &["columns", "color"])
+    .counting_rows(crate::mark::registry::RowCounting {
+        modes: Some(&["density", "auto"]),
+        unless: &["color", "diagonal", "highlight", "facet"],
+        on_engine: false,
+    })
     .sized(DEFAULT_SIZE)
     .drawing_selections()
     .faceted(crate::mark::registry::Faceting::Canvas);
@@ -745,7 +840,7 @@ impl Technique for SplomOptions {
     }
 
     fn draw(&self, cx: &ChartContext<'_>) -> Result<ChartOutput, MarkError> {
-        draw(&cx.chart, self, cx.table, cx.highlight)
+        draw(&cx.chart, self, cx.table, cx.highlight, cx.plan)
     }
 
     crate::mark::registry::color_key!();

@@ -22,7 +22,7 @@ pub mod network_input;
 pub mod node_link;
 pub mod overplot;
 pub mod panel;
-pub mod plan_groups;
+pub mod plan_rows;
 pub mod raster;
 pub mod size;
 pub mod spread;

@@ -1,15 +1,18 @@
-//! A chart's groups of rows left in their source's plan ([`PlanRows::groups`]): one table row
-//! per group (its keys as the source holds them, its row count and value statistics), the
-//! groups that kept rows, and the dropped-rows warning the same rows in memory give. Kinds that
-//! draw one mark per group (bars, heatmap cells) read their categories from this table with the
-//! same [`super::bands`] functions as from rows, so labels and orders come out the same.
+//! What kinds read of rows left in their source's plan. A chart's groups ([`PlanRows::groups`]):
+//! one table row per group (its keys as the source holds them, its row count and value
+//! statistics), the groups that kept rows, and the dropped-rows warning the same rows in memory
+//! give; kinds that draw one mark per group (bars, heatmap cells) read their categories from this
+//! table with the same [`super::bands`] functions as from rows, so labels and orders come out
+//! the same. And a column's quartiles (type 7) from tallies, for bin-width rules.
 
 use super::encode;
 use super::spread::Summary;
 use super::warning::{ColumnLoss, Warning};
 use crate::data::Table;
-use crate::data::density::groups::{self, GroupQuery};
+use crate::data::density::groups::{self, GroupQuery, Loss};
 use crate::data::density::plan::PlanRows;
+use crate::data::density::tally::Tally;
+use crate::enrich::distribution::type7_position;
 use crate::mark::MarkError;
 use crate::spec::Chart;
 
@@ -22,6 +25,41 @@ pub struct PlanGroups {
     pub rows: Vec<u32>,
     /// The dropped-rows warning, when rows were dropped.
     pub warnings: Vec<Warning>,
+}
+
+/// The first and third quartiles (type 7, numpy's default) of the values `first` (a tally of
+/// `field` in `plan`) placed.
+pub fn quartiles(plan: &PlanRows, field: &str, first: &Tally) -> Result<(f64, f64), String> {
+    let n = first.placed() as usize;
+    let v = plan.at_ranks(field, first, &[type7_position(0.25, n), type7_position(0.75, n)])?;
+    Ok((v[0], v[1]))
+}
+
+/// Whether the quartiles of the values `first` placed surely differ, from its bins alone:
+/// q1 ≤ v[i1 + 1] ≤ v[i3] ≤ q3, so two values of those ranks in different bins separate them.
+pub fn quartiles_differ(first: &Tally) -> bool {
+    let n = first.placed() as usize;
+    let ((i1, _), (i3, _)) = (type7_position(0.25, n), type7_position(0.75, n));
+    n > 0 && first.ranks_differ(i1 as u64 + 1, i3 as u64)
+}
+
+/// The shared warning for `dropped` of `rows` rows left in a plan, dropped for the cells
+/// counted in `losses`; `None` when none was dropped.
+pub fn dropped_rows(chart: &Chart, dropped: u64, rows: u64, losses: &[Loss]) -> Option<Warning> {
+    (dropped > 0).then(|| Warning::DroppedRows {
+        chart: chart.name.clone(),
+        dropped: dropped as usize,
+        rows: rows as usize,
+        columns: losses
+            .iter()
+            .map(|l| ColumnLoss {
+                field: l.field.clone(),
+                missing: l.missing as usize,
+                infinite: l.infinite as usize,
+                non_positive: 0,
+            })
+            .collect(),
+    })
 }
 
 impl PlanGroups {
@@ -42,21 +80,7 @@ impl PlanGroups {
             let at = |r: u32| first.get(r as usize).copied().unwrap_or(f64::INFINITY);
             at(a).total_cmp(&at(b))
         });
-        let warning = (grouped.dropped > 0).then(|| Warning::DroppedRows {
-            chart: chart.name.clone(),
-            dropped: grouped.dropped as usize,
-            rows: plan.rows() as usize,
-            columns: grouped
-                .losses
-                .iter()
-                .map(|l| ColumnLoss {
-                    field: l.field.clone(),
-                    missing: l.missing as usize,
-                    infinite: l.infinite as usize,
-                    non_positive: 0,
-                })
-                .collect(),
-        });
+        let warning = dropped_rows(chart, grouped.dropped, plan.rows(), &grouped.losses);
         if rows.is_empty() {
             return Err(encode::no_rows_of(chart, plan.rows() as usize, warning.as_ref()));
         }
