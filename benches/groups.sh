@@ -18,7 +18,7 @@ transform = [
   { calculate = "round(x)", as = "kx" },
   { calculate = "round(y)", as = "ky" },
 ]
-$([ "$kind" = held ] && printf '[selection.some]\ndata = "points"\nrange = { x = [0, 1] }\n')
+$(held_selection "$kind")
 
 [[chart]]
 name = "bars"
@@ -37,11 +37,4 @@ x = { field = "kx", title = "x (rounded)" }
 y = { field = "ky", title = "y (rounded)" }
 SPEC
 done
-run() { echo "target/release/dataink render $out/$1.toml --format png --out $out/$1 --quiet --allow-outside-paths"; }
-hyperfine --warmup 1 --runs 4 -n streamed "$(run streamed)" -n held "$(run held)"
-for kind in streamed held; do
-    /usr/bin/time -f "$kind: peak resident %M KB" $(run $kind)
-done
-for chart in bars cells; do
-    cmp "$out/streamed/$chart.png" "$out/held/$chart.png" && echo "the two $chart PNGs are identical"
-done
+compare_streamed_and_held 4 1 bars cells

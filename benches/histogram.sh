@@ -22,9 +22,4 @@ x = "x"
 $([ "$kind" = held ] && echo 'rug = false')
 SPEC
 done
-run() { echo "target/release/dataink render $out/$1.toml --format png --out $out/$1 --quiet --allow-outside-paths"; }
-hyperfine --warmup 1 --runs 4 -n streamed "$(run streamed)" -n held "$(run held)"
-for kind in streamed held; do
-    /usr/bin/time -f "$kind: peak resident %M KB" $(run $kind)
-done
-cmp "$out/streamed/hist.png" "$out/held/hist.png" && echo "the two PNGs are identical"
+compare_streamed_and_held 4 1 hist

@@ -15,7 +15,7 @@ for kind in streamed held; do
 [data.points]
 path = "$data"
 transform = [{ calculate = "sqrt(x * x + y * y)", as = "r" }]
-$([ "$kind" = held ] && printf '[selection.some]\ndata = "points"\nrange = { x = [0, 1] }\n')
+$(held_selection "$kind")
 
 [[chart]]
 name = "matrix"
@@ -24,9 +24,4 @@ data = "points"
 columns = ["x", "y", "r"]
 SPEC
 done
-run() { echo "target/release/dataink render $out/$1.toml --format png --out $out/$1 --quiet --allow-outside-paths"; }
-hyperfine --warmup 0 --runs 3 -n streamed "$(run streamed)" -n held "$(run held)"
-for kind in streamed held; do
-    /usr/bin/time -f "$kind: peak resident %M KB" $(run $kind)
-done
-cmp "$out/streamed/matrix.png" "$out/held/matrix.png" && echo "the two PNGs are identical"
+compare_streamed_and_held 3 0 matrix
