@@ -439,6 +439,11 @@ fn a_bar_chart_of_rows_left_in_the_plan_sums_what_a_hand_count_gives() {
     let cut = spec("x = \"k\"\ny = { field = \"v\", zero = false }\n");
     let findings = crate::common::lint_findings(&cut, &[("d.csv", csv.as_bytes())], "DI001");
     assert_eq!(findings.len(), 1, "{findings:?}");
+    // DI005 reads the totals from the derived table, rows held or not: each sum is 320,000.
+    let capped = spec("x = \"k\"\ny = { field = \"v\", domain = [0, 300000] }\n");
+    let findings = crate::common::lint_findings(&capped, &[("d.csv", csv.as_bytes())], "DI005");
+    assert_eq!(findings.len(), 1, "{findings:?}");
+    assert!(findings[0].message.contains("3 of 3 bars have totals outside"), "{}", findings[0].message);
 }
 
 #[test]

@@ -136,39 +136,40 @@ fn caption_states_count(s: &Subject<'_>, dropped: usize) -> bool {
 }
 
 fn check_domain(s: &Subject<'_>) -> Vec<Issue> {
-    if s.table.rows == 0 {
-        return counted_outside_domain(s);
-    }
-    cartesian_axes(s.chart)
-        .into_iter()
-        .filter_map(|a| {
-            let [lo, hi] = a.options.domain?;
-            let (lo, hi) = (lo.min(hi), lo.max(hi));
-            let totals = bar_totals(s, a.key, &a.options.field);
-            let values = totals.clone().unwrap_or_else(|| finite(s, &a.options.field));
-            let outside = values.iter().filter(|v| **v < lo || **v > hi).count();
-            (outside > 0).then(|| {
-                let (min, max) =
-                    values.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| (a.min(v), b.max(v)));
-                let n = values.len();
-                let message = if totals.is_some() {
-                    format!(
-                        "{outside} of {n} bars have totals outside the fixed domain [{lo}, {hi}] of the {} \
+    // Rows left in their source's plan: the chart counted those outside a domain; bar totals
+    // are in its derived table either way.
+    let counted = s.table.rows == 0;
+    let mut issues = if counted { counted_outside_domain(s) } else { Vec::new() };
+    issues.extend(cartesian_axes(s.chart).into_iter().filter_map(|a| {
+        let [lo, hi] = a.options.domain?;
+        let (lo, hi) = (lo.min(hi), lo.max(hi));
+        let totals = bar_totals(s, a.key, &a.options.field);
+        if counted && totals.is_none() {
+            return None;
+        }
+        let values = totals.clone().unwrap_or_else(|| finite(s, &a.options.field));
+        let outside = values.iter().filter(|v| **v < lo || **v > hi).count();
+        (outside > 0).then(|| {
+            let (min, max) = values.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| (a.min(v), b.max(v)));
+            let n = values.len();
+            let message = if totals.is_some() {
+                format!(
+                    "{outside} of {n} bars have totals outside the fixed domain [{lo}, {hi}] of the {} \
                          (totals: {min} to {max}) and are cut at its end",
-                        a.name
-                    )
-                } else {
-                    format!(
-                        "{outside} of {n} rows lie outside the fixed domain [{lo}, {hi}] of the {} \
+                    a.name
+                )
+            } else {
+                format!(
+                    "{outside} of {n} rows lie outside the fixed domain [{lo}, {hi}] of the {} \
                          (data: {min} to {max}) and are not shown",
-                        a.name
-                    )
-                };
-                let hint = format!("widen `domain` to cover [{min}, {max}], or remove it");
-                Issue::new(a.name, format!("{}.domain", a.key), message, hint)
-            })
+                    a.name
+                )
+            };
+            let hint = format!("widen `domain` to cover [{min}, {max}], or remove it");
+            Issue::new(a.name, format!("{}.domain", a.key), message, hint)
         })
-        .collect()
+    }));
+    issues
 }
 
 /// DI005 for a chart whose rows stayed in their source's plan (its table has none): the rows
