@@ -1,9 +1,8 @@
 //! DI001 `nonzero-baseline`: a bar's length is its value only when the bars start at zero. A
 //! value axis that leaves zero out stretches every difference between bars.
 //!
-//! The rule reads the drawn bars (data-mark rectangles), combines each bar's source rows from
-//! the table as the chart does (or, for bars of rows left in their source's plan, which carry
-//! none, takes the bar's value from the chart's derived table), and compares the drawn lengths with the values. It reports Tufte's lie
+//! The rule reads the drawn bars (data-mark rectangles), finds each one's value in the chart's
+//! derived table by its name (whether its rows are held or stayed in the plan), and compares the drawn lengths with the values. It reports Tufte's lie
 //! factor (*The Visual Display of Quantitative Information*, 1983): the size of the effect shown
 //! divided by the size of the effect in the data, where the size of an effect between the
 //! smallest and the largest bar is `(largest − smallest) / smallest`. Bars from zero have a lie
@@ -13,6 +12,7 @@ use std::collections::HashMap;
 
 use crate::lint::{Category, Issue, Rule, Severity, Subject};
 use crate::mark::DerivedColumn;
+use crate::mark::cartesian::bar::bar_name;
 use crate::scene::{Role, Shape};
 use crate::spec::ChartKind;
 
@@ -29,7 +29,7 @@ pub static RULE: Rule = Rule {
 /// Lie factors this close to 1 count as honest (floating-point noise in pixel positions).
 const TOLERANCE: f64 = 0.005;
 
-/// One drawn bar: its label, the sum of its rows and its rectangle's top and bottom edges.
+/// One drawn bar: its label, its value and its rectangle's top and bottom edges.
 struct DrawnBar {
     label: String,
     value: f64,
@@ -48,12 +48,9 @@ pub fn lie_factor(small_value: f64, large_value: f64, small_length: f64, large_l
     Some(if small_length <= 0.0 { f64::INFINITY } else { shown / data })
 }
 
-/// Each bar's value by its label in the scene (its category, and its colour group when there are
-/// several), from the chart's derived table: for bars whose rows stay in their source's plan.
-fn counted_values(s: &Subject<'_>, x: &str, color: Option<&str>, y: &str) -> HashMap<String, f64> {
-    if s.table.rows > 0 {
-        return HashMap::new();
-    }
+/// Each bar's value by its name in the scene, from the chart's derived table (one row per bar:
+/// its category, colour group and value), whether its rows are held or stayed in the plan.
+fn bar_values(s: &Subject<'_>, x: &str, color: Option<&str>, y: &str) -> HashMap<String, f64> {
     let column = |name: &str| s.output.derived.columns.iter().find(|(n, _)| n == name).map(|(_, c)| c);
     let (Some(DerivedColumn::Text(categories)), Some(DerivedColumn::Number(values))) = (column(x), column(y)) else {
         return HashMap::new();
@@ -67,28 +64,21 @@ fn counted_values(s: &Subject<'_>, x: &str, color: Option<&str>, y: &str) -> Has
         .iter()
         .zip(&groups)
         .zip(values)
-        .map(|((c, g), v)| (if several { format!("{c}, {g}") } else { c.clone() }, *v))
+        .map(|((c, g), v)| (bar_name(c, several.then_some(g.as_str())), *v))
         .collect()
 }
 
 fn check(s: &Subject<'_>) -> Vec<Issue> {
     let ChartKind::Bar(options) = &s.chart.kind else { return Vec::new() };
     let y = options.y.options();
-    let Some(values) = s.table.column(&y.field).and_then(|c| c.numbers()) else { return Vec::new() };
     let horizontal = options.orientation == Some(crate::mark::grouped::Orientation::Horizontal);
-    let counted = counted_values(s, &options.x.options().field, options.color.as_ref().map(|c| c.field()), &y.field);
+    let values = bar_values(s, &options.x.options().field, options.color.as_ref().map(|c| c.field()), &y.field);
     let mut bars = Vec::new();
     s.output.scene.walk(|item| {
         if item.role == Role::DataMark
             && let Shape::Rect(r) = &item.shape
+            && let Some(&value) = item.label.as_ref().and_then(|l| values.get(l))
         {
-            let value = if item.rows.is_empty() {
-                let Some(value) = item.label.as_ref().and_then(|l| counted.get(l)) else { return };
-                *value
-            } else {
-                let rows = item.rows.iter().filter_map(|&row| values.get(row as usize).copied());
-                options.aggregate.unwrap_or_default().value_of(rows).unwrap_or(0.0)
-            };
             // A horizontal bar's ends, mirrored so that "up" is away from the baseline as for
             // a vertical one.
             let (top, bottom) = if horizontal { (-r.right(), -r.x) } else { (r.y, r.bottom()) };

@@ -103,12 +103,6 @@ impl BarAggregate {
         }
     }
 
-    /// The value of a bar of these rows' values (non-finite ones left out); `None` for none.
-    /// Lint rules measure drawn bars against it.
-    pub fn value_of(self, values: impl IntoIterator<Item = f64>) -> Option<f64> {
-        Summary::of(values).map(|s| self.of(&s))
-    }
-
     /// The bar's value from its rows' statistics.
     fn of(self, s: &Summary) -> f64 {
         match self {
@@ -328,9 +322,9 @@ pub fn draw(
         .into_iter()
         .enumerate()
         .filter_map(|(slot, rows)| {
-            let (summary, rows) = match &grouped {
-                Some(g) => (g.summary(*rows.first()?)?, rows),
-                None => (Summary::of(rows.iter().filter_map(|&r| values.get(r as usize).copied()))?, rows),
+            let summary = match &grouped {
+                Some(g) => g.summary(*rows.first()?)?,
+                None => Summary::of(rows.iter().filter_map(|&r| values.get(r as usize).copied()))?,
             };
             let value = aggregate.of(&summary);
             let interval = error.and_then(|e| e.interval(&summary, value));
@@ -582,7 +576,13 @@ fn grouped_in_plan(
 /// A bar's name in the scene: its category, and its group when there are several.
 fn bar_label(b: &Bar, categories: &[String], groups: &[String]) -> String {
     let category = categories.get(b.x).map_or("", String::as_str);
-    match groups.get(b.group).filter(|_| groups.len() > 1) {
+    bar_name(category, groups.get(b.group).filter(|_| groups.len() > 1).map(String::as_str))
+}
+
+/// The name of the bar of `category` (and colour `group`, given when the chart has several) in
+/// the scene: what lint rules find a bar of the derived table by.
+pub fn bar_name(category: &str, group: Option<&str>) -> String {
+    match group {
         Some(g) => format!("{category}, {g}"),
         None => category.to_string(),
     }
