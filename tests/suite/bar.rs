@@ -404,7 +404,7 @@ fn bars_of_rows_left_in_the_plan_equal_the_bars_of_rows_in_memory() {
                 );
             }
         }
-        let notes = |out: &ChartOutput| out.warnings.iter().map(|w| w.to_string()).collect::<Vec<_>>();
+        let notes = crate::common::warning_texts;
         assert_eq!(notes(&streamed), notes(&held), "{extra}");
         assert!(notes(&streamed).iter().any(|w| w.contains("dropped ") && w.contains("of 240000 rows")), "{extra}");
         let (a, b) = (bars(&streamed), bars(&held));

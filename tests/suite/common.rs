@@ -284,3 +284,8 @@ pub fn streamed_and_held(spec: &str, csv: &str, field: &str, what: &str) -> (Cha
     assert!(in_plan && !held_in_plan, "{what}: in plan {in_plan}, held in plan {held_in_plan}");
     (streamed, held)
 }
+
+/// A chart's warnings as the reader sees them.
+pub fn warning_texts(out: &ChartOutput) -> Vec<String> {
+    out.warnings.iter().map(|w| w.to_string()).collect()
+}

@@ -141,7 +141,7 @@ fn cells_of_rows_left_in_the_plan_equal_the_cells_of_rows_in_memory() {
         for (x, y) in a.iter().zip(&b) {
             assert!((x - y).abs() <= 1e-9 * y.abs().max(1.0), "{extra}: {x} vs {y}");
         }
-        let notes = |out: &ChartOutput| out.warnings.iter().map(|w| w.to_string()).collect::<Vec<_>>();
+        let notes = crate::common::warning_texts;
         assert_eq!(notes(&streamed), notes(&held), "{extra}");
         assert_eq!(bars(&streamed).len(), bars(&held).len(), "{extra}");
         assert!(texts(&streamed, "r").iter().any(|r| r == "(missing)"), "{extra}");

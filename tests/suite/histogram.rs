@@ -244,7 +244,7 @@ fn a_histogram_of_rows_left_in_the_plan_equals_the_one_of_rows_in_memory() {
         for column in ["bin_start", "bin_end", "count", "height"] {
             assert_eq!(numbers(&streamed, column), numbers(&held, column), "{extra}: column {column}");
         }
-        let notes = |out: &ChartOutput| out.warnings.iter().map(|w| w.to_string()).collect::<Vec<_>>();
+        let notes = crate::common::warning_texts;
         assert_eq!(notes(&streamed), notes(&held), "{extra}");
         let dropped = (0..240_000).filter(|i| i % 101 == 0 || i % 499 == 0).count();
         let said = format!("dropped {dropped} of 240000 rows");

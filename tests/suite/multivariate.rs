@@ -421,7 +421,7 @@ fn a_density_splom_of_rows_left_in_the_plan_equals_the_one_of_rows_in_memory() {
             "[data.d]\npath = \"d.csv\"\n\n[[chart]]\nname = \"m\"\nkind = \"splom\"\ndata = \"d\"\nsize = [600, 600]\n{extra}"
         );
         let (streamed, held) = crate::common::streamed_and_held(&spec, &csv, "a", extra);
-        let notes = |out: &ChartOutput| out.warnings.iter().map(|w| w.to_string()).collect::<Vec<_>>();
+        let notes = crate::common::warning_texts;
         assert_eq!(notes(&streamed), notes(&held), "{extra}");
         assert!(notes(&streamed).iter().any(|w| w.contains("dropped ") && w.contains("of 240000 rows")), "{extra}");
         let rasters = |out: &ChartOutput| {
