@@ -160,13 +160,77 @@ pub struct CountGrid {
     pub missing: u64,
     /// Placeable rows outside the grid's extent (a `domain` narrower than the data).
     pub outside: u64,
+    /// What kept those rows out, per axis.
+    pub losses: GridLosses,
+}
+
+/// Why rows missed a grid, per axis (`[x, y]`): the cells of each column that could not be
+/// placed, and the rows placeable on both axes whose value lay outside one axis' bins. A row
+/// lacking both values counts for both axes, so the sums can exceed the rows left out.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct GridLosses {
+    /// Missing or NaN cells.
+    pub missing: [u64; 2],
+    /// Infinite cells.
+    pub infinite: [u64; 2],
+    /// Finite values ≤ 0 on a log axis.
+    pub non_positive: [u64; 2],
+    /// Rows placeable on both axes whose value lies outside the axis' bins.
+    pub outside: [u64; 2],
+}
+
+/// Why a value cannot be placed on an axis, if it cannot.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Unplaced {
+    /// Missing or NaN.
+    Missing,
+    /// ±∞.
+    Infinite,
+    /// Finite and ≤ 0 on a log axis.
+    NonPositive,
+}
+
+impl Unplaced {
+    /// Why `v` cannot be placed on an axis (`log`: whether it is logarithmic); `None` when it can.
+    pub fn of(v: f64, log: bool) -> Option<Unplaced> {
+        if v.is_nan() {
+            Some(Unplaced::Missing)
+        } else if v.is_infinite() {
+            Some(Unplaced::Infinite)
+        } else if log && v <= 0.0 {
+            Some(Unplaced::NonPositive)
+        } else {
+            None
+        }
+    }
+}
+
+impl GridLosses {
+    /// Count `count` cells of axis `axis` (0 for x, 1 for y) lacking for `why`.
+    pub fn lack(&mut self, axis: usize, why: Unplaced, count: u64) {
+        let slot = match why {
+            Unplaced::Missing => &mut self.missing,
+            Unplaced::Infinite => &mut self.infinite,
+            Unplaced::NonPositive => &mut self.non_positive,
+        };
+        slot[axis] += count;
+    }
+
+    fn merge(&mut self, other: &GridLosses) {
+        for axis in 0..2 {
+            self.missing[axis] += other.missing[axis];
+            self.infinite[axis] += other.infinite[axis];
+            self.non_positive[axis] += other.non_positive[axis];
+            self.outside[axis] += other.outside[axis];
+        }
+    }
 }
 
 impl CountGrid {
     /// An empty grid over `x` and `y`.
     pub fn new(x: Bins, y: Bins) -> CountGrid {
         let cells = x.len() * y.len();
-        CountGrid { x, y, counts: vec![0; cells], missing: 0, outside: 0 }
+        CountGrid { x, y, counts: vec![0; cells], missing: 0, outside: 0, losses: GridLosses::default() }
     }
 
     /// Count the rows `(xs[r], ys[r])`.
@@ -187,8 +251,7 @@ impl CountGrid {
                             cells[found] = j * nx + i;
                             found += 1;
                         }
-                        _ if vx.is_finite() && vy.is_finite() => self.outside += 1,
-                        _ => self.missing += 1,
+                        _ => self.not_placed(vx, vy),
                     }
                 }
                 for &cell in &cells[..found] {
@@ -198,12 +261,34 @@ impl CountGrid {
             return;
         }
         for (&a, &b) in xs.iter().zip(ys) {
-            match (self.x.term(a.to_f64()), self.y.term(b.to_f64())) {
-                (Some(tx), Some(ty)) => match (self.x.index_of_term(tx), self.y.index_of_term(ty)) {
-                    (Some(i), Some(j)) => self.counts[j * nx + i] += 1,
-                    _ => self.outside += 1,
-                },
-                _ => self.missing += 1,
+            let (vx, vy) = (a.to_f64(), b.to_f64());
+            match (self.x.index(vx), self.y.index(vy)) {
+                (Some(i), Some(j)) => self.counts[j * nx + i] += 1,
+                _ => self.not_placed(vx, vy),
+            }
+        }
+    }
+
+    /// Count the row `(vx, vy)` that has no bin: missing from the grid (a value that cannot be
+    /// placed) or outside it, with why, per axis.
+    #[cold]
+    pub fn not_placed(&mut self, vx: f64, vy: f64) {
+        self.not_placed_times(vx, vy, 1);
+    }
+
+    /// [`CountGrid::not_placed`] for `count` rows with the same values.
+    pub fn not_placed_times(&mut self, vx: f64, vy: f64, count: u64) {
+        let why = [Unplaced::of(vx, self.x.log), Unplaced::of(vy, self.y.log)];
+        if why == [None, None] {
+            self.outside += count;
+            self.losses.outside[0] += count * u64::from(self.x.index(vx).is_none());
+            self.losses.outside[1] += count * u64::from(self.y.index(vy).is_none());
+            return;
+        }
+        self.missing += count;
+        for (axis, why) in why.into_iter().enumerate() {
+            if let Some(why) = why {
+                self.losses.lack(axis, why, count);
             }
         }
     }
@@ -236,6 +321,7 @@ impl CountGrid {
         }
         self.missing += other.missing;
         self.outside += other.outside;
+        self.losses.merge(&other.losses);
     }
 
     /// Rows counted in bins.
@@ -323,8 +409,7 @@ pub fn count_by_category(xs: &[f64], ys: &[f64], codes: &[u32], levels: usize, x
                         let c = (codes[r] as usize).min(levels);
                         grid.by_category[cell * categories + c] += 1;
                     }
-                    _ if placeable(vx, x.is_log()) && placeable(vy, y.is_log()) => grid.totals.outside += 1,
-                    _ => grid.totals.missing += 1,
+                    _ => grid.totals.not_placed(vx, vy),
                 }
             }
             grid
@@ -436,6 +521,31 @@ mod tests {
         );
         assert!(Bins::new(1.0, 1.0, 4, false).is_none());
         assert!(Bins::new(0.0, 10.0, 4, true).is_none());
+    }
+
+    #[test]
+    fn each_axis_says_why_its_rows_missed_the_grid() {
+        // x on a linear axis over [0, 10], y on a log axis over [1, 100].
+        let (x, y) = (Bins::new(0.0, 10.0, 5, false).unwrap(), Bins::new(1.0, 100.0, 2, true).unwrap());
+        let rows = [
+            (5.0, 10.0),           // placed
+            (f64::NAN, 10.0),      // x missing
+            (f64::INFINITY, -1.0), // x infinite, y ≤ 0 on the log axis
+            (3.0, 0.0),            // y ≤ 0
+            (f64::NAN, f64::NAN),  // both missing
+            (11.0, 10.0),          // x outside
+            (-1.0, 1000.0),        // both outside
+            (2.0, 0.5),            // y outside (positive, below the log axis' 1)
+            (10.0, 100.0),         // the top corner: placed
+        ];
+        let (xs, ys): (Vec<f64>, Vec<f64>) = rows.into_iter().unzip();
+        let grid = count_columns(&xs, &ys, None, &x, &y);
+        assert_eq!((grid.placed(), grid.missing, grid.outside), (2, 4, 3));
+        let l = &grid.losses;
+        assert_eq!((l.missing, l.infinite, l.non_positive, l.outside), ([2, 1], [1, 0], [0, 2], [2, 2]));
+        // Counted by category, the same.
+        let by_category = count_by_category(&xs, &ys, &[0; 9], 1, &x, &y);
+        assert_eq!(by_category.totals, grid);
     }
 
     #[test]

@@ -74,7 +74,8 @@ fn every_row_is_counted_once_in_the_bin_its_edges_say() {
     assert_eq!(found.iter().map(|&c| c as f64).collect::<Vec<_>>(), bins.iter().map(|b| b[4]).collect::<Vec<_>>());
     let missing = rows.len() - placed;
     assert!(
-        out.warnings.iter().any(|w| w.to_string().contains(&format!("{missing} of {} rows not drawn", rows.len()))),
+        out.warnings.iter().any(|w| w.to_string()
+            == format!("chart \"d\": dropped {missing} of {} rows with missing or non-finite values (`x`: {missing} missing or NaN)", rows.len())),
         "{:?}",
         out.warnings
     );
@@ -106,13 +107,46 @@ fn the_plan_runs_the_sources_transforms_before_counting() {
 fn a_narrow_domain_counts_the_rows_outside_in_a_warning() {
     let csv = rows_csv(5_000);
     let (out, _) = draw(&spec("", "").replace("x = \"x\"", "x = { field = \"x\", domain = [0, 5] }"), &csv);
-    let outside = parsed(&csv).iter().filter(|(x, _)| x.is_some_and(|x| x > 5.0)).count();
-    assert!(
-        out.warnings.iter().any(|w| w.to_string().contains(&format!("{outside} rows lie outside"))),
-        "{:?}",
-        out.warnings
-    );
+    let rows = parsed(&csv);
+    let outside = rows.iter().filter(|(x, _)| x.is_some_and(|x| x > 5.0)).count();
+    let placeable = rows.iter().filter(|(x, _)| x.is_some()).count();
+    let text = format!("chart \"d\": left out {outside} of {placeable} rows whose `x` lies outside the domain [0, 5]");
+    assert!(out.warnings.iter().any(|w| w.to_string() == text), "{:?}", out.warnings);
     assert!(bins(&out).iter().all(|b| b[1] <= 5.0 + 1e-9));
+}
+
+#[test]
+fn rows_a_density_scatter_leaves_out_are_linted_per_column_and_axis() {
+    // 20 rows: 10 placed, x missing twice and infinite once, y ≤ 0 three times on the log axis,
+    // x outside the domain [0, 1] four times.
+    let mut csv = String::from("x,y\n");
+    for i in 0..10 {
+        csv.push_str(&format!("{},{}\n", i as f64 / 10.0, 1 + i));
+    }
+    csv.push_str(",2\n,3\ninf,4\n0.5,0\n0.5,-1\n0.5,-2\n5,2\n5,3\n6,4\n7,5\n");
+    let text = spec("", "")
+        .replace("x = \"x\"", "x = { field = \"x\", domain = [0, 1] }")
+        .replace("y = \"y\"", "y = { field = \"y\", scale = \"log\" }");
+    let (out, in_plan) = draw(&text, &csv);
+    assert!(in_plan);
+    assert_eq!(bins(&out).iter().map(|b| b[4]).sum::<f64>(), 10.0);
+    let findings = |spec: &str, code: &str| -> Vec<String> {
+        crate::common::lint_findings(spec, &[("p.csv", csv.as_bytes())], code).into_iter().map(|f| f.message).collect()
+    };
+    assert_eq!(
+        findings(&text, "DI004"),
+        ["dropped 6 of 20 rows with missing or non-finite values or values ≤ 0 on a log axis \
+          (`x`: 2 missing or NaN, 1 infinite; `y`: 3 ≤ 0 on a log axis)"]
+    );
+    let di003 = findings(&text, "DI003");
+    assert!(di003.len() == 1 && di003[0].starts_with("3 of 20 values of `y` are ≤ 0"), "{di003:?}");
+    let di005 = findings(&text, "DI005");
+    assert!(di005.len() == 1 && di005[0].starts_with("4 of 14 rows lie outside the fixed domain [0, 1]"), "{di005:?}");
+    // Held in memory (a selection needs the rows), each rule still speaks once.
+    let held = format!("{text}\n[selection.some]\ndata = \"p\"\nrange = {{ y = [0, 1] }}\n");
+    for code in ["DI003", "DI004", "DI005"] {
+        assert_eq!(findings(&held, code).len(), 1, "{code} with the rows held");
+    }
 }
 
 fn legend_labels(items: &[Item], out: &mut Vec<String>) {

@@ -139,6 +139,10 @@ fn both_grids(cluster: &Cluster, file: &Path, query: &str, x: (&str, &Bins), y: 
     let scaled: Vec<u64> = local.counts.iter().map(|c| c * repeat).collect();
     assert_eq!(grid.counts, scaled);
     assert_eq!((grid.missing, grid.outside), (local.missing * repeat, local.outside * repeat));
+    let l = &local.losses;
+    let scaled = [l.missing, l.infinite, l.non_positive, l.outside].map(|a| a.map(|v| v * repeat));
+    let r = &grid.losses;
+    assert_eq!([r.missing, r.infinite, r.non_positive, r.outside], scaled, "why rows missed the grid, per axis");
 }
 
 #[test]
@@ -157,6 +161,12 @@ fn spark_connect_sources_count_the_grid_in_process_counts() {
         ),
         ("", "x = \"t\"\ny = \"y\"\nmode = \"density\"\nbin = 3"),
         ("transform = [{ filter = \"y < 2 and x != 3\" }]", "x = \"x\"\ny = \"y\"\nmode = \"density\""),
+        // Domains that cut rows on each axis: the same counts outside, per axis.
+        (
+            "",
+            "x = { field = \"x\", domain = [1, 8] }\ny = { field = \"y\", scale = \"log\", domain = [0.1, 5] }\n\
+             mode = \"density\"",
+        ),
     ] {
         let (local, _) = draw(&spec(None, source, chart), &file).unwrap_or_else(|e| panic!("{e}"));
         let (remote, kept) = draw(&spec(Some(&url), source, chart), &file).unwrap_or_else(|e| panic!("{chart}: {e}"));

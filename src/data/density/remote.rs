@@ -9,7 +9,7 @@
 
 use polars::prelude::*;
 
-use super::{Bins, CountGrid, Extent};
+use super::{Bins, CountGrid, Extent, Unplaced};
 use crate::data::engine::EngineQuery;
 use crate::data::engine::sql::{double, ident};
 
@@ -57,6 +57,9 @@ impl EngineQuery {
         let (fx, fy) = (guess("vx", bx), guess("vy", by));
         let (nx, ny) = (bx.len() as f64, by.len() as f64);
         let inside = |f: &str, n: f64| format!("({f} > {} AND {f} < {})", double(-NEAR_EDGE), double(n + NEAR_EDGE));
+        let border = |f: &str, n: f64| {
+            format!("(abs({f}) < {eps} OR abs({f} - {n}) < {eps})", eps = double(NEAR_EDGE), n = double(n))
+        };
         let near = |f: &str, n: f64| {
             format!(
                 "({f} < {eps} OR {f} > {top} OR {f} - floor({f}) < {eps} OR {f} - floor({f}) > {one})",
@@ -66,21 +69,32 @@ impl EngineQuery {
             )
         };
         // One grouping key per row: its cell (`j · nx + i`) when the engine placed it, else
-        // −1 (missing), −2 (outside) or −4 (near an edge: its values come back as `ex`, `ey`).
+        // `LACKING − (4 · why x + why y)` (a value that cannot be placed, see `why`),
+        // `OUTSIDE − (2 · x outside + y outside)`, or `NEAR` (near an edge or the border: its
+        // values come back as `ex`, `ey`). Rows near the border are sent back before the outside
+        // ones, so "outside" per axis is exact.
         let sql = format!(
             "SELECT cell, ex, ey, count(*) AS n FROM (\
-               SELECT CASE WHEN cls = 2 THEN CAST(floor(fy) AS BIGINT) * {nx_int} + CAST(floor(fx) AS BIGINT) \
-                        ELSE -1 - cls END AS cell, \
+               SELECT CASE cls WHEN 2 THEN CAST(floor(fy) AS BIGINT) * {nx_int} + CAST(floor(fx) AS BIGINT) \
+                        WHEN 0 THEN {LACKING} - (4 * {why_x} + {why_y}) \
+                        WHEN 1 THEN {OUTSIDE} - (2 * (CASE WHEN {in_x} THEN 0 ELSE 1 END) \
+                                                + (CASE WHEN {in_y} THEN 0 ELSE 1 END)) \
+                        ELSE {NEAR} END AS cell, \
                  CASE WHEN cls = 3 THEN vx END AS ex, \
                  CASE WHEN cls = 3 THEN vy END AS ey \
                FROM (\
                  SELECT vx, vy, fx, fy, \
-                   CASE WHEN NOT ({px} AND {py}) THEN 0 WHEN NOT ({in_x} AND {in_y}) THEN 1 \
+                   CASE WHEN NOT ({px} AND {py}) THEN 0 WHEN {border_x} OR {border_y} THEN 3 \
+                        WHEN NOT ({in_x} AND {in_y}) THEN 1 \
                         WHEN {near_x} OR {near_y} THEN 3 ELSE 2 END AS cls \
                  FROM (SELECT vx, vy, {fx} AS fx, {fy} AS fy FROM \
                    (SELECT {vx} AS vx, {vy} AS vy FROM ({query}) AS rows) AS v) AS f) AS c) AS b \
              GROUP BY cell, ex, ey",
             nx_int = bx.len(),
+            why_x = why("vx", bx.is_log()),
+            why_y = why("vy", by.is_log()),
+            border_x = border("fx", nx),
+            border_y = border("fy", ny),
             near_x = near("fx", nx),
             near_y = near("fy", ny),
             px = placeable("vx", bx.is_log()),
@@ -116,6 +130,30 @@ fn value((field, dtype): (&str, &DataType)) -> Result<String, String> {
     })
 }
 
+/// Why `v` cannot be placed on an axis, as a code: 0 it can, 1 missing or NaN, 2 infinite,
+/// 3 ≤ 0 on a log axis (the order of [`Unplaced`]).
+fn why(v: &str, log: bool) -> String {
+    let non_positive = if log { format!(" WHEN {v} <= {} THEN 3", double(0.0)) } else { String::new() };
+    format!(
+        "(CASE WHEN {v} IS NULL OR isnan({v}) THEN 1 WHEN abs({v}) = CAST('Infinity' AS DOUBLE) THEN 2{non_positive} ELSE 0 END)"
+    )
+}
+
+/// The reason a [`why`] code stands for.
+fn unplaced(code: i64) -> Option<Unplaced> {
+    match code {
+        1 => Some(Unplaced::Missing),
+        2 => Some(Unplaced::Infinite),
+        3 => Some(Unplaced::NonPositive),
+        _ => None,
+    }
+}
+
+/// Group keys below the cells: rows lacking a value, rows outside, rows sent back by value.
+const LACKING: i64 = -100;
+const OUTSIDE: i64 = -200;
+const NEAR: i64 = -4;
+
 /// Whether `v` can be placed on an axis: present, finite, and positive on a log axis.
 fn placeable(v: &str, log: bool) -> String {
     let finite = format!("({v} IS NOT NULL AND NOT isnan({v}) AND abs({v}) <> CAST('Infinity' AS DOUBLE))");
@@ -146,11 +184,28 @@ fn grid_of(df: &DataFrame, bx: &Bins, by: &Bins) -> PolarsResult<CountGrid> {
                 Some(c) => *c += count,
                 None => grid.outside += count,
             },
-            Some(-1) => grid.missing += count,
-            Some(-4) => match (ex.get(r).and_then(|v| bx.index(v)), ey.get(r).and_then(|v| by.index(v))) {
-                (Some(i), Some(j)) => grid.counts[j * nx + i] += count,
+            Some(NEAR) => match (ex.get(r), ey.get(r)) {
+                (Some(vx), Some(vy)) => match (bx.index(vx), by.index(vy)) {
+                    (Some(i), Some(j)) => grid.counts[j * nx + i] += count,
+                    _ => grid.not_placed_times(vx, vy, count),
+                },
                 _ => grid.outside += count,
             },
+            Some(k) if (LACKING - 15..=LACKING).contains(&k) => {
+                let code = LACKING - k;
+                grid.missing += count;
+                for (axis, why) in [code / 4, code % 4].into_iter().enumerate() {
+                    if let Some(why) = unplaced(why) {
+                        grid.losses.lack(axis, why, count);
+                    }
+                }
+            }
+            Some(k) if (OUTSIDE - 3..=OUTSIDE).contains(&k) => {
+                let code = OUTSIDE - k;
+                grid.outside += count;
+                grid.losses.outside[0] += count * (code / 2) as u64;
+                grid.losses.outside[1] += count * (code % 2) as u64;
+            }
             _ => grid.outside += count,
         }
     }
@@ -165,7 +220,7 @@ mod tests {
     fn groups_are_placed_by_bin_or_by_value() {
         let (bx, by) = (Bins::new(0.0, 10.0, 10, false).unwrap(), Bins::new(1.0, 1000.0, 3, true).unwrap());
         let df = df!(
-            "cell" => [3i64, -4, -4, -1, -2, 11],
+            "cell" => [3i64, NEAR, NEAR, LACKING - 4, OUTSIDE - 3, 11],
             "ex" => [None, Some(5.0), Some(9.99), None, None, None],
             "ey" => [None, Some(500.0), Some(1000.0), None, None, None],
             "n" => [4i64, 2, 7, 5, 6, 1],
@@ -177,6 +232,8 @@ mod tests {
         assert_eq!(grid.counts[2 * 10 + 9], 7, "y = 1000 is the top of the last log bin");
         assert_eq!(grid.counts[10 + 1], 1);
         assert_eq!((grid.missing, grid.outside, grid.placed()), (5, 6, 14));
+        assert_eq!(grid.losses.missing, [5, 0], "code 4 · 1 + 0: x missing, y placeable");
+        assert_eq!(grid.losses.outside, [6, 6], "code 2 · 1 + 1: outside on both axes");
     }
 
     #[test]

@@ -53,24 +53,41 @@ fn check_log(s: &Subject<'_>) -> Vec<Issue> {
         .into_iter()
         .filter(|a| a.scale() == Some(ScaleKind::Log))
         .filter_map(|a| {
-            let values = finite(s, &a.options.field);
-            let bad = values.iter().filter(|v| **v <= 0.0).count();
+            let (bad, of) = non_positive(s, &a.options.field);
             (bad > 0).then(|| {
                 Issue::new(
                     a.name,
                     format!("{}.scale", a.key),
                     format!(
-                        "{bad} of {} values of `{}` are ≤ 0 and cannot be placed on the log-scaled {}: \
+                        "{bad} of {of} values of `{}` are ≤ 0 and cannot be placed on the log-scaled {}: \
                          their rows are left out",
-                        values.len(),
-                        a.options.field,
-                        a.name
+                        a.options.field, a.name
                     ),
                     "use a linear scale, or filter or transform the column so every value is positive",
                 )
             })
         })
         .collect()
+}
+
+/// The values of `field` ≤ 0, and the values looked at: the table's finite ones, or, for a chart
+/// whose rows stayed in their source's plan (its table has none), the column's count in the
+/// dropped-rows warning out of the chart's rows.
+fn non_positive(s: &Subject<'_>, field: &str) -> (usize, usize) {
+    if s.table.rows > 0 {
+        let values = finite(s, field);
+        return (values.iter().filter(|v| **v <= 0.0).count(), values.len());
+    }
+    s.output
+        .warnings
+        .iter()
+        .find_map(|w| match w {
+            Warning::DroppedRows { rows, columns, .. } => {
+                columns.iter().find(|c| c.field == field).map(|c| (c.non_positive, *rows))
+            }
+            _ => None,
+        })
+        .unwrap_or((0, 0))
 }
 
 fn check_dropped(s: &Subject<'_>) -> Vec<Issue> {

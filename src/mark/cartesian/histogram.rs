@@ -247,7 +247,7 @@ pub fn draw(
                 if rows.is_empty() {
                     return Err(empty_domain(&x_opts.field, lo, hi));
                 }
-                warnings.extend(left_out_of_domain(before - rows.len(), before, &x_opts.field, lo, hi));
+                warnings.extend(Warning::outside_domain(&x_opts.field, before - rows.len(), before, [lo, hi]));
             }
             (rows, warnings)
         }
@@ -539,7 +539,7 @@ fn counted_bins(
     let counted = plan.tally(field, vec![Tally::new(bins).keeping(lo, hi)]).map_err(scanned)?.remove(0);
     let n = placed_or_error(chart, field, plan, &counted, (lo, hi))?;
     let mut warnings: Vec<Warning> = dropped_rows(chart, field, plan, &counted).into_iter().collect();
-    warnings.extend(left_out_of_domain(counted.outside as usize, n + counted.outside as usize, field, lo, hi));
+    warnings.extend(Warning::outside_domain(field, counted.outside as usize, n + counted.outside as usize, [lo, hi]));
     let counts: Vec<usize> = counted.counts().into_iter().map(|c| c as usize).collect();
     let rows = vec![vec![Vec::new(); counts.len()]];
     Ok((Binned { edges, rows, counts: vec![counts] }, warnings))
@@ -584,16 +584,6 @@ fn empty_domain(field: &str, lo: f64, hi: f64) -> MarkError {
         format!("no value of `{field}` lies in the domain [{lo}, {hi}]"),
         "widen `domain` to cover the data, or remove it",
     )
-}
-
-/// The note for `left_out` of `before` rows left out by the domain, if any.
-fn left_out_of_domain(left_out: usize, before: usize, field: &str, lo: f64, hi: f64) -> Option<Warning> {
-    (left_out > 0).then(|| Warning::OutsideDomain {
-        field: field.to_string(),
-        outside: left_out,
-        rows: before,
-        text: format!("left out {left_out} of {before} rows whose `{field}` lies outside the domain [{lo}, {hi}]"),
-    })
 }
 
 /// Where the bars of a histogram go.

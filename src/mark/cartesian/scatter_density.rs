@@ -5,14 +5,13 @@
 use super::scatter::ScatterOptions;
 use crate::data::Table;
 use crate::data::density::{CountGrid, Extent, count_by_category, count_columns, extent_of_columns, plan::PlanRows};
-use crate::guide::format::format_value;
 use crate::guide::layout::PositionAxis;
 use crate::guide::legend::{Legend, Symbol};
 use crate::mark::density::{DensityLook, derived_bins};
 use crate::mark::encode;
 use crate::mark::encode::ColorEncoding;
 use crate::mark::geometry::{Geometry, Plot, PlotScale};
-use crate::mark::warning::Warning;
+use crate::mark::warning::{ColumnLoss, Warning};
 use crate::mark::{ChartOutput, MarkError, frame};
 use crate::scene::Color;
 use crate::selection::Highlight;
@@ -147,22 +146,7 @@ pub fn draw(
             &counted
         }
     };
-    if grid.missing > 0 {
-        warnings.push(Warning::from(format!(
-            "{} of {} rows not drawn: their `{}` or `{}` is missing, not finite{}",
-            grid.missing,
-            total,
-            x_opts.field,
-            y_opts.field,
-            if log.contains(&true) { " or not positive on a log axis" } else { "" }
-        )));
-    }
-    if grid.outside > 0 {
-        warnings.push(Warning::from(format!(
-            "{} rows lie outside the axes' `domain` and are not counted",
-            format_value(grid.outside as f64)
-        )));
-    }
+    warnings.extend(left_out(chart, grid, total, [&x_opts, &y_opts]));
     let (raster, scale) = match (&split, &mixed) {
         (Some(split), Some((_, colors, _))) => {
             let with_missing: Vec<Color> = colors.iter().copied().chain([crate::guide::color::MISSING]).collect();
@@ -180,6 +164,38 @@ pub fn draw(
     let derived = derived_bins(grid, &x_opts.field, &y_opts.field);
     let geometry = Geometry { plots: vec![plot], ..Geometry::default() };
     Ok(ChartOutput { scene, derived, warnings, meshes: Vec::new(), geojson: None, volume: None, geometry })
+}
+
+/// The warnings for the rows the grid left out: those lacking a placeable value (per column, as
+/// every chart reports dropped rows) and, per axis with a fixed `domain`, those outside it.
+fn left_out(chart: &Chart, grid: &CountGrid, total: u64, axes: [&ChannelOptions; 2]) -> Vec<Warning> {
+    let losses = &grid.losses;
+    let columns: Vec<ColumnLoss> = (0..2)
+        .map(|a| ColumnLoss {
+            field: axes[a].field.clone(),
+            missing: losses.missing[a] as usize,
+            infinite: losses.infinite[a] as usize,
+            non_positive: losses.non_positive[a] as usize,
+        })
+        .filter(|c| c.missing + c.infinite + c.non_positive > 0)
+        .collect();
+    let mut warnings = Vec::new();
+    if grid.missing > 0 {
+        warnings.push(Warning::DroppedRows {
+            chart: chart.name.clone(),
+            dropped: grid.missing as usize,
+            rows: total as usize,
+            columns,
+        });
+    }
+    let placeable = (grid.placed() + grid.outside) as usize;
+    for (a, options) in axes.into_iter().enumerate() {
+        if let Some([lo, hi]) = options.domain {
+            let outside = losses.outside[a] as usize;
+            warnings.extend(Warning::outside_domain(&options.field, outside, placeable, [lo.min(hi), lo.max(hi)]));
+        }
+    }
+    warnings
 }
 
 /// A position axis over the placed rows' extent (or the channel's `domain`).

@@ -48,6 +48,17 @@ pub struct ColumnLoss {
 }
 
 impl Warning {
+    /// The note for `left_out` of `rows` rows whose `field` lies outside the domain `[lo, hi]`;
+    /// `None` when no row was left out.
+    pub fn outside_domain(field: &str, left_out: usize, rows: usize, [lo, hi]: [f64; 2]) -> Option<Warning> {
+        (left_out > 0).then(|| Warning::OutsideDomain {
+            field: field.to_string(),
+            outside: left_out,
+            rows,
+            text: format!("left out {left_out} of {rows} rows whose `{field}` lies outside the domain [{lo}, {hi}]"),
+        })
+    }
+
     /// The rows dropped and the table's rows, for a [`Warning::DroppedRows`].
     pub fn dropped_rows(&self) -> Option<(usize, usize)> {
         match self {
