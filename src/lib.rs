@@ -73,6 +73,8 @@ pub mod render;
 pub mod report;
 pub mod scene;
 pub mod selection;
+#[cfg(feature = "serve")]
+pub mod serve;
 pub mod spec;
 pub mod text;
 pub mod timing;

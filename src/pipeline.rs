@@ -90,6 +90,12 @@ pub fn load(spec_path: &Path, policy: PathPolicy) -> Result<Loaded, Failed> {
         unread(format!("spec file `{}` is not UTF-8 text", spec_path.display()), "save the spec as UTF-8")
     })?;
     let source = SourceFile { path: spec_path.to_path_buf(), text };
+    let spec_dir = spec_path.parent().map(Path::to_path_buf).unwrap_or_else(|| PathBuf::from("."));
+    load_source(source, &spec_dir, policy)
+}
+
+/// [`load`] for a spec already read: its data paths resolve against `spec_dir`.
+pub fn load_source(source: SourceFile, spec_dir: &Path, policy: PathPolicy) -> Result<Loaded, Failed> {
     let (checked, deferred) = spec::check_deferring(&source);
     // Problems with the spec itself, replaced when it is checked again with its defaults filled.
     let mut spec_problems = checked.diagnostics;
@@ -98,7 +104,7 @@ pub fn load(spec_path: &Path, policy: PathPolicy) -> Result<Loaded, Failed> {
         return Err(Failed { source, diagnostics: spec_problems });
     };
     let mut json = doc.to_json();
-    let spec_dir = spec_path.parent().map(Path::to_path_buf).unwrap_or_else(|| PathBuf::from("."));
+    let spec_dir = spec_dir.to_path_buf();
 
     // Load every data source that is itself valid, even if other parts of the spec are not, so
     // that column names can be checked in the same run.

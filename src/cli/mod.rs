@@ -1,6 +1,7 @@
 //! Command-line interface: argument parsing and exit codes. Thin: all work is in the library.
 
 mod output;
+mod serve;
 
 use std::io::IsTerminal;
 use std::path::PathBuf;
@@ -135,6 +136,16 @@ enum Command {
         #[arg(long)]
         allow_outside_paths: bool,
     },
+    /// Serve the pipeline over HTTP: post a spec (and its data files) and get a chart as SVG, PNG
+    /// or CSV, the lint findings (JSON, SARIF), the report page or the spec's diagnostics.
+    #[command(after_help = format!(
+        "Data paths resolve under --root (symlinks must stay inside it) unless the request uploads the files.\n\
+         GET /api/openapi.json describes the API. Needs a build with the `serve` feature:\n  \
+         cargo run --release --features serve -- serve --root examples\n\n\
+         Examples:\n  dataink serve --root examples\n  \
+         curl --data-binary @examples/gallery.toml 'http://127.0.0.1:8700/api/render?chart=iris-scatter&format=png' -o iris.png\n\n{EXIT_CODES}"
+    ))]
+    Serve(serve::ServeArgs),
     /// Print the JSON Schema of the spec format (for editor completion and validation).
     #[command(after_help = "Example:\n  dataink schema > dataink.schema.json")]
     Schema,
@@ -363,6 +374,7 @@ pub fn run() -> ExitCode {
             let policy = if allow_outside_paths { PathPolicy::AllowOutside } else { PathPolicy::InsideSpecFolder };
             data_preview(&spec, source.as_deref(), rows, policy)
         }
+        Command::Serve(args) => serve::serve(args),
         Command::Explore { spec, out, allow_outside_paths } => {
             let policy = if allow_outside_paths { PathPolicy::AllowOutside } else { PathPolicy::InsideSpecFolder };
             explore(&spec, out, policy)

@@ -40,6 +40,7 @@ mod networks;
 mod report;
 mod resources;
 mod safe_output;
+mod serve;
 mod slices;
 mod tooltips;
 mod transform;

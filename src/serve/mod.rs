@@ -1,0 +1,158 @@
+//! `dataink serve`: the pipeline over HTTP. A client posts a spec (TOML text, or a multipart form
+//! with the spec and its data files) and gets a chart back as SVG, PNG or derived CSV, the lint
+//! findings as JSON or SARIF, the report page, or the spec's diagnostics as JSON with line and
+//! column. Data comes only from the request's uploads or from under the server's root folder.
+//!
+//! One module per job: [`limits`] (what a request may ask for), [`submitted`] (reading a
+//! request's spec and files), [`job`] (loading, drawing and writing one answer, on a blocking
+//! thread), [`cache`] (answers by the hash of what was asked), [`reply`] (JSON bodies and the
+//! headers every response carries) and [`openapi`] (the API's description).
+
+pub mod cache;
+pub mod job;
+pub mod limits;
+pub mod openapi;
+pub mod reply;
+pub mod submitted;
+
+use std::collections::HashMap;
+use std::net::SocketAddr;
+use std::path::PathBuf;
+use std::sync::Arc;
+
+use axum::Router;
+use axum::extract::{DefaultBodyLimit, Query, Request, State};
+use axum::http::StatusCode;
+use axum::response::{IntoResponse, Response};
+use axum::routing::{get, post};
+use tokio::sync::Semaphore;
+
+pub use limits::Limits;
+
+use job::{Answer, Asked, Format};
+use reply::{Problem, error_json};
+
+/// What the server holds between requests.
+pub struct Server {
+    /// Data named by a spec's relative paths resolves here (symlinks must stay inside).
+    root: PathBuf,
+    limits: Limits,
+    cache: cache::Cache,
+    /// One permit per render running; a render past its time keeps its permit until its thread
+    /// ends, so abandoned work cannot pile up.
+    slots: Arc<Semaphore>,
+}
+
+impl Server {
+    /// A server over `root` (made absolute and resolved) with `limits`.
+    pub fn new(root: PathBuf, limits: Limits) -> std::io::Result<Server> {
+        let root = root.canonicalize()?;
+        if !root.is_dir() {
+            return Err(std::io::Error::other(format!("`{}` is not a folder", root.display())));
+        }
+        let slots = Arc::new(Semaphore::new(limits.concurrent_renders.max(1)));
+        let cache = cache::Cache::new(limits.cache_bytes);
+        Ok(Server { root, limits, cache, slots })
+    }
+}
+
+/// The HTTP API over `server`: every route, the body limit, and the headers every response
+/// carries.
+pub fn router(server: Server) -> Router {
+    let body_limit = server.limits.upload_bytes;
+    Router::new()
+        .route("/", get(index))
+        .route("/api/openapi.json", get(openapi_json))
+        .route("/api/check", post(check))
+        .route("/api/render", post(render))
+        .with_state(Arc::new(server))
+        .fallback(not_found)
+        .layer(DefaultBodyLimit::max(body_limit))
+        .layer(axum::middleware::map_response(reply::secure))
+}
+
+/// Serve `router` on `addr` until Ctrl-C; `ready` is told the bound address.
+pub async fn run(addr: SocketAddr, server: Server, ready: impl FnOnce(SocketAddr)) -> std::io::Result<()> {
+    let listener = tokio::net::TcpListener::bind(addr).await?;
+    ready(listener.local_addr()?);
+    axum::serve(listener, router(server))
+        .with_graceful_shutdown(async {
+            let _ = tokio::signal::ctrl_c().await;
+        })
+        .await
+}
+
+async fn index() -> Response {
+    let body = serde_json::json!({
+        "name": "dataink",
+        "version": env!("CARGO_PKG_VERSION"),
+        "api": "/api/openapi.json",
+        "endpoints": ["POST /api/check", "POST /api/render?format=svg|png|csv|lint|sarif|report&chart=NAME&scale=S"],
+    });
+    reply::json(StatusCode::OK, &body)
+}
+
+async fn openapi_json() -> Response {
+    reply::json(StatusCode::OK, &openapi::document())
+}
+
+async fn not_found() -> Response {
+    error_json(StatusCode::NOT_FOUND, "no such endpoint; GET /api/openapi.json lists them")
+}
+
+/// `POST /api/check`: the spec's diagnostics (errors and warnings), after loading its data.
+async fn check(State(server): State<Arc<Server>>, request: Request) -> Response {
+    answer(server, request, HashMap::new(), true).await
+}
+
+/// `POST /api/render`: one chart (or the lint findings, or the report) in the asked format.
+async fn render(
+    State(server): State<Arc<Server>>,
+    Query(query): Query<HashMap<String, String>>,
+    request: Request,
+) -> Response {
+    answer(server, request, query, false).await
+}
+
+async fn answer(server: Arc<Server>, request: Request, query: HashMap<String, String>, check_only: bool) -> Response {
+    let asked = match Asked::from_query(&query, check_only) {
+        Ok(asked) => asked,
+        Err(problem) => return problem.into_response(),
+    };
+    let submitted = match submitted::read(request, &server.limits).await {
+        Ok(s) => s,
+        Err(problem) => return problem.into_response(),
+    };
+    let key = cache::key(&asked, &submitted);
+    if let Some(hit) = server.cache.get(&key) {
+        return hit.into_response_marked(true);
+    }
+    // One deadline for waiting for a slot and rendering.
+    let deadline = tokio::time::Instant::now() + server.limits.render_time;
+    let Ok(permit) = tokio::time::timeout_at(deadline, Arc::clone(&server.slots).acquire_owned()).await else {
+        return Problem::busy(&server.limits).into_response();
+    };
+    let Ok(permit) = permit else { return Problem::busy(&server.limits).into_response() };
+    let (root, limits) = (server.root.clone(), server.limits.clone());
+    let work = tokio::task::spawn_blocking(move || {
+        let answer = job::run(&root, &limits, &asked, submitted);
+        drop(permit);
+        answer
+    });
+    match tokio::time::timeout_at(deadline, work).await {
+        Ok(Ok(Ok(Answer { reply, inputs }))) => {
+            if reply.status == StatusCode::OK {
+                server.cache.put(key, reply.clone(), inputs);
+            }
+            reply.into_response_marked(false)
+        }
+        Ok(Ok(Err(problem))) => problem.into_response(),
+        Ok(Err(_)) => error_json(StatusCode::INTERNAL_SERVER_ERROR, "the render failed unexpectedly"),
+        Err(_) => Problem::too_slow(&server.limits).into_response(),
+    }
+}
+
+impl Format {
+    /// The formats `render` answers in, as the query names them.
+    pub const NAMES: &'static str = "svg, png, csv, lint, sarif or report";
+}
