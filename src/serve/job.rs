@@ -121,7 +121,11 @@ fn answer(loaded: &Loaded, limits: &Limits, asked: &Asked) -> Result<Reply, Prob
     let names: Vec<String> = asked.chart.iter().cloned().collect();
     match asked.format {
         Format::Check => {
-            let body = serde_json::json!({ "diagnostics": diagnostics_json(&loaded.source, &loaded.warnings) });
+            let charts: Vec<&str> = loaded.spec.chart.iter().map(|c| c.name.as_str()).collect();
+            let body = serde_json::json!({
+                "charts": charts,
+                "diagnostics": diagnostics_json(&loaded.source, &loaded.warnings),
+            });
             Ok(Reply::ok("application/json", serde_json::to_string_pretty(&body).unwrap_or_default()))
         }
         Format::Svg | Format::Png | Format::Csv => {

@@ -6,12 +6,14 @@
 //! One module per job: [`limits`] (what a request may ask for), [`submitted`] (reading a
 //! request's spec and files), [`job`] (loading, drawing and writing one answer, on a blocking
 //! thread), [`cache`] (answers by the hash of what was asked), [`reply`] (JSON bodies and the
-//! headers every response carries) and [`openapi`] (the API's description).
+//! headers every response carries), [`openapi`] (the API's description) and [`page`] (the
+//! browser page).
 
 pub mod cache;
 pub mod job;
 pub mod limits;
 pub mod openapi;
+pub mod page;
 pub mod reply;
 pub mod submitted;
 
@@ -61,7 +63,10 @@ impl Server {
 pub fn router(server: Server) -> Router {
     let body_limit = server.limits.upload_bytes;
     Router::new()
-        .route("/", get(index))
+        .route("/", get(page::index))
+        .route("/app.js", get(page::script))
+        .route("/app.css", get(page::style))
+        .route("/api", get(index))
         .route("/api/openapi.json", get(openapi_json))
         .route("/api/check", post(check))
         .route("/api/render", post(render))

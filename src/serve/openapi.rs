@@ -46,10 +46,11 @@ pub fn document() -> Value {
                 "requestBody": body,
                 "responses": merge(json!({
                     "200": { "description": "the spec is valid", "content": { "application/json": { "schema": {
-                        "type": "object", "properties": { "diagnostics": { "type": "array", "items": { "$ref": "#/components/schemas/Diagnostic" } } } } } } }
+                        "type": "object", "properties": { "charts": { "type": "array", "items": { "type": "string" }, "description": "the spec's charts by name, in order" }, "diagnostics": { "type": "array", "items": { "$ref": "#/components/schemas/Diagnostic" } } } } } } }
                 }), &errors)
             } },
-            "/api/openapi.json": { "get": { "summary": "This description", "responses": { "200": { "description": "OpenAPI 3.1" } } } }
+            "/api/openapi.json": { "get": { "summary": "This description", "responses": { "200": { "description": "OpenAPI 3.1" } } } },
+            "/": { "get": { "summary": "The browser page: a spec editor with the chart drawn as you type", "responses": { "200": { "description": "HTML", "content": { "text/html": {} } } } } }
         },
         "components": { "schemas": {
             "Diagnostic": { "type": "object", "required": ["severity", "message"], "properties": {

@@ -137,10 +137,12 @@ fn diagnostics_come_back_at_their_line_and_column() {
     );
     assert!(typo["hint"].as_str().is_some_and(|h| h.contains('x')), "{typo}");
 
-    // A valid spec: 200 and no errors.
+    // A valid spec: 200, its charts by name and no errors.
     let (status, _, body) = send(&app, post("/api/check", spec("Points")));
     assert_eq!(status, StatusCode::OK);
-    assert!(json(&body)["diagnostics"].as_array().unwrap().iter().all(|d| d["severity"] != "error"));
+    let body = json(&body);
+    assert_eq!(body["charts"], serde_json::json!(["pts", "bars"]));
+    assert!(body["diagnostics"].as_array().unwrap().iter().all(|d| d["severity"] != "error"));
 
     // An unknown chart, an unknown format, a bad scale, an unknown key.
     let (status, _, body) = send(&app, post("/api/render?chart=nope", spec("Points")));
@@ -185,6 +187,36 @@ fn every_response_carries_the_security_headers_and_the_api_is_described() {
     assert_eq!(doc["openapi"], "3.1.0");
     for path in ["/api/render", "/api/check"] {
         assert!(doc["paths"][path]["post"]["responses"]["422"].is_object(), "{path}");
+    }
+}
+
+#[test]
+fn the_page_is_in_the_binary_and_asks_nothing_of_other_servers() {
+    let (_dir, app) = root(Limits::default());
+    let get = |path: &str| send(&app, Request::get(path).body(Body::empty()).unwrap());
+    let (status, headers, html) = get("/");
+    assert_eq!((status, headers[header::CONTENT_TYPE].to_str().unwrap()), (StatusCode::OK, "text/html; charset=utf-8"));
+    let html = String::from_utf8(html).unwrap();
+    // The script is a file of its own (the policy allows no inline script) and every asset is local.
+    assert!(html.contains("<script src=\"/app.js\"></script>"));
+    assert_eq!(html.matches("<script").count(), 1, "no inline script");
+    let (_, js_headers, js) = get("/app.js");
+    let (_, css_headers, css) = get("/app.css");
+    assert_eq!(js_headers[header::CONTENT_TYPE], "text/javascript; charset=utf-8");
+    assert_eq!(css_headers[header::CONTENT_TYPE], "text/css; charset=utf-8");
+    let js = String::from_utf8(js).unwrap();
+    for text in [&html, &js, &String::from_utf8(css).unwrap()] {
+        assert!(
+            !text.contains("http://") && !text.contains("https://") && !text.contains("//cdn"),
+            "an external address"
+        );
+    }
+    // What the server sends goes into the page as text, never as markup.
+    assert!(!js.contains("innerHTML") && !js.contains("outerHTML") && !js.contains("insertAdjacentHTML"));
+    assert!(!js.contains("eval(") && !js.contains("new Function"));
+    // The endpoints the script calls exist.
+    for endpoint in ["/api/check", "/api/render?format=svg", "/api/render?format=lint"] {
+        assert!(js.contains(endpoint), "{endpoint}");
     }
 }
 
