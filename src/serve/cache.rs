@@ -6,7 +6,7 @@
 
 use std::collections::{HashMap, VecDeque};
 use std::path::PathBuf;
-use std::sync::Mutex;
+use std::sync::{Arc, Mutex};
 use std::time::SystemTime;
 
 use sha2::{Digest, Sha256};
@@ -123,6 +123,30 @@ impl Entries {
     fn touch(&mut self, key: &Key) {
         self.order.retain(|k| k != key);
         self.order.push_back(*key);
+    }
+}
+
+/// One turn per key: requests for the same answer made at once wait for the first to make it
+/// (and then find it in the cache) instead of all making it.
+#[derive(Default)]
+pub struct Gates {
+    by_key: Mutex<HashMap<Key, Arc<tokio::sync::Mutex<()>>>>,
+}
+
+impl Gates {
+    /// The gate of `key`, shared with every request for it now.
+    pub fn of(&self, key: &Key) -> Arc<tokio::sync::Mutex<()>> {
+        let mut gates = self.by_key.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
+        Arc::clone(gates.entry(*key).or_default())
+    }
+
+    /// Forget `key`'s gate when no other request holds it.
+    pub fn done(&self, key: &Key, gate: Arc<tokio::sync::Mutex<()>>) {
+        let mut gates = self.by_key.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
+        // The map's reference and this one: nobody else waits.
+        if Arc::strong_count(&gate) <= 2 {
+            gates.remove(key);
+        }
     }
 }
 

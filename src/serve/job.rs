@@ -35,6 +35,11 @@ pub enum Format {
     Check,
 }
 
+impl Format {
+    /// The formats `render` answers in, as the query names them.
+    pub const NAMES: &'static str = "svg, png, csv, lint, sarif or report";
+}
+
 /// The request's query, checked.
 #[derive(Clone, Debug)]
 pub struct Asked {

@@ -31,7 +31,7 @@ use tokio::sync::Semaphore;
 
 pub use limits::Limits;
 
-use job::{Answer, Asked, Format};
+use job::{Answer, Asked};
 use reply::{Problem, error_json};
 
 /// What the server holds between requests.
@@ -40,6 +40,8 @@ pub struct Server {
     root: PathBuf,
     limits: Limits,
     cache: cache::Cache,
+    /// Requests for the same answer made at once take turns, so it is made once.
+    gates: cache::Gates,
     /// One permit per render running; a render past its time keeps its permit until its thread
     /// ends, so abandoned work cannot pile up.
     slots: Arc<Semaphore>,
@@ -54,7 +56,7 @@ impl Server {
         }
         let slots = Arc::new(Semaphore::new(limits.concurrent_renders.max(1)));
         let cache = cache::Cache::new(limits.cache_bytes);
-        Ok(Server { root, limits, cache, slots })
+        Ok(Server { root, limits, cache, gates: cache::Gates::default(), slots })
     }
 }
 
@@ -132,12 +134,31 @@ async fn answer(server: Arc<Server>, request: Request, query: HashMap<String, St
     if let Some(hit) = server.cache.get(&key) {
         return hit.into_response_marked(true);
     }
-    // One deadline for waiting for a slot and rendering.
+    // One deadline for waiting (for the same answer, or for a render slot) and rendering.
     let deadline = tokio::time::Instant::now() + server.limits.render_time;
-    let Ok(permit) = tokio::time::timeout_at(deadline, Arc::clone(&server.slots).acquire_owned()).await else {
+    let gate = server.gates.of(&key);
+    let answered = match tokio::time::timeout_at(deadline, gate.lock()).await {
+        Ok(_turn) => match server.cache.get(&key) {
+            Some(hit) => hit.into_response_marked(true),
+            None => make(&server, key, asked, submitted, deadline).await,
+        },
+        Err(_) => Problem::busy(&server.limits).into_response(),
+    };
+    server.gates.done(&key, gate);
+    answered
+}
+
+/// Make the answer on a blocking thread within `deadline`, and keep it when it is a success.
+async fn make(
+    server: &Arc<Server>,
+    key: cache::Key,
+    asked: Asked,
+    submitted: submitted::Submitted,
+    deadline: tokio::time::Instant,
+) -> Response {
+    let Ok(Ok(permit)) = tokio::time::timeout_at(deadline, Arc::clone(&server.slots).acquire_owned()).await else {
         return Problem::busy(&server.limits).into_response();
     };
-    let Ok(permit) = permit else { return Problem::busy(&server.limits).into_response() };
     let (root, limits) = (server.root.clone(), server.limits.clone());
     let work = tokio::task::spawn_blocking(move || {
         let answer = job::run(&root, &limits, &asked, submitted);
@@ -155,9 +176,4 @@ async fn answer(server: Arc<Server>, request: Request, query: HashMap<String, St
         Ok(Err(_)) => error_json(StatusCode::INTERNAL_SERVER_ERROR, "the render failed unexpectedly"),
         Err(_) => Problem::too_slow(&server.limits).into_response(),
     }
-}
-
-impl Format {
-    /// The formats `render` answers in, as the query names them.
-    pub const NAMES: &'static str = "svg, png, csv, lint, sarif or report";
 }

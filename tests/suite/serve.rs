@@ -327,6 +327,30 @@ fn answers_are_cached_until_the_spec_or_its_data_changes() {
 }
 
 #[test]
+fn the_same_answer_asked_at_once_is_made_once() {
+    let (_dir, app) = root(Limits::default());
+    let rt = tokio::runtime::Builder::new_multi_thread().worker_threads(2).enable_all().build().expect("rt");
+    let marks: Vec<String> = rt.block_on(async {
+        let tasks: Vec<_> = (0..8)
+            .map(|_| {
+                let app = app.clone();
+                tokio::spawn(async move {
+                    let response = app.oneshot(post("/api/render?format=png", spec("Together"))).await.expect("answer");
+                    assert_eq!(response.status(), StatusCode::OK);
+                    response.headers()["x-dataink-cache"].to_str().unwrap().to_string()
+                })
+            })
+            .collect();
+        let mut marks = Vec::new();
+        for task in tasks {
+            marks.push(task.await.expect("task"));
+        }
+        marks
+    });
+    assert_eq!(marks.iter().filter(|m| *m == "miss").count(), 1, "{marks:?}");
+}
+
+#[test]
 fn hostile_text_never_becomes_markup() {
     let (_dir, app) = root(Limits::default());
     let title = "<script>alert(1)</script> & \\\"quoted\\\"";
