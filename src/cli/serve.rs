@@ -62,6 +62,8 @@ pub fn serve(args: ServeArgs) -> ExitCode {
     let served = runtime.block_on(run(args.addr, server, |addr| {
         outln!("dataink serve: listening on http://{addr} (data from `{root}`); API at http://{addr}/api/openapi.json");
     }));
+    // Renders past their time may still run on blocking threads: do not wait for them.
+    runtime.shutdown_timeout(std::time::Duration::from_secs(1));
     match served {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {

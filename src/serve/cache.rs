@@ -133,19 +133,51 @@ pub struct Gates {
     by_key: Mutex<HashMap<Key, Arc<tokio::sync::Mutex<()>>>>,
 }
 
+/// A request's place at its key's gate; leaving (also when the request is dropped part way, as
+/// when its client goes away) forgets the gate once nobody else holds it.
+pub struct Entered<'a> {
+    gates: &'a Gates,
+    key: Key,
+    gate: Option<Arc<tokio::sync::Mutex<()>>>,
+}
+
 impl Gates {
-    /// The gate of `key`, shared with every request for it now.
-    pub fn of(&self, key: &Key) -> Arc<tokio::sync::Mutex<()>> {
+    /// Take a place at `key`'s gate, shared with every request for it now.
+    pub fn enter(&self, key: &Key) -> Entered<'_> {
         let mut gates = self.by_key.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
-        Arc::clone(gates.entry(*key).or_default())
+        let gate = Arc::clone(gates.entry(*key).or_default());
+        Entered { gates: self, key: *key, gate: Some(gate) }
     }
 
-    /// Forget `key`'s gate when no other request holds it.
-    pub fn done(&self, key: &Key, gate: Arc<tokio::sync::Mutex<()>>) {
-        let mut gates = self.by_key.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
-        // The map's reference and this one: nobody else waits.
-        if Arc::strong_count(&gate) <= 2 {
-            gates.remove(key);
+    /// Gates held now.
+    pub fn len(&self) -> usize {
+        self.by_key.lock().map_or(0, |g| g.len())
+    }
+
+    /// Whether no gate is held.
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+}
+
+impl Entered<'_> {
+    /// Wait for this key's turn (the gate is held until the place is dropped, so there always is
+    /// one).
+    pub async fn turn(&self) -> Option<tokio::sync::MutexGuard<'_, ()>> {
+        match &self.gate {
+            Some(gate) => Some(gate.lock().await),
+            None => None,
+        }
+    }
+}
+
+impl Drop for Entered<'_> {
+    fn drop(&mut self) {
+        // References are taken and dropped only under the map's lock, so the count is exact.
+        let mut gates = self.gates.by_key.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
+        drop(self.gate.take());
+        if gates.get(&self.key).is_some_and(|g| Arc::strong_count(g) == 1) {
+            gates.remove(&self.key);
         }
     }
 }
@@ -169,6 +201,20 @@ mod tests {
         assert!(cache.get(&[1; 32]).is_some() && cache.get(&[3; 32]).is_some());
         cache.put([4; 32], reply(300), Vec::new());
         assert!(cache.get(&[4; 32]).is_none(), "an answer larger than the cache is not kept");
+    }
+
+    #[test]
+    fn a_gate_is_forgotten_when_its_last_holder_leaves() {
+        let gates = Gates::default();
+        let first = gates.enter(&[1; 32]);
+        let second = gates.enter(&[1; 32]);
+        let other = gates.enter(&[2; 32]);
+        assert_eq!(gates.len(), 2);
+        drop(first);
+        assert_eq!(gates.len(), 2, "the second request still holds key 1");
+        drop(second);
+        drop(other);
+        assert!(gates.is_empty());
     }
 
     #[test]

@@ -4,7 +4,6 @@
 
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
-use std::sync::atomic::{AtomicU64, Ordering};
 
 use axum::http::StatusCode;
 
@@ -99,14 +98,18 @@ pub struct Answer {
     pub reply: Reply,
     /// Files under the root the spec read (none for uploads, which the cache key holds).
     pub inputs: Vec<Input>,
+    /// Whether the answer may be kept: no input changed after the work began (a file rewritten
+    /// during the render would otherwise keep the old answer under the new file's stamp).
+    pub cacheable: bool,
 }
 
 /// Do the work `asked` and `submitted` describe, data paths resolving in `root` unless files
 /// were uploaded.
 pub fn run(root: &Path, limits: &Limits, asked: &Asked, submitted: Submitted) -> Result<Answer, Problem> {
+    let started = std::time::SystemTime::now();
     refuse_engines(&submitted.spec)?;
     let uploads = Uploads::write(&submitted.files)?;
-    let dir = uploads.as_ref().map_or(root, |u| u.dir.as_path());
+    let dir = uploads.as_ref().map_or(root, Uploads::path);
     let source = SourceFile { path: dir.join("request.toml"), text: submitted.spec };
     let loaded = match pipeline::load_source(source, dir, PathPolicy::InsideSpecFolder) {
         Ok(loaded) => loaded,
@@ -114,11 +117,12 @@ pub fn run(root: &Path, limits: &Limits, asked: &Asked, submitted: Submitted) ->
     };
     check_rows(&loaded, limits)?;
     let reply = answer(&loaded, limits, asked)?;
-    let inputs = match uploads {
+    let inputs: Vec<Input> = match uploads {
         Some(_) => Vec::new(),
         None => pipeline::input_files(&loaded).into_iter().skip(1).map(Input::now).collect(),
     };
-    Ok(Answer { reply, inputs })
+    let cacheable = inputs.iter().all(|i| i.stamp.is_some_and(|(_, modified)| modified < started));
+    Ok(Answer { reply, inputs, cacheable })
 }
 
 fn answer(loaded: &Loaded, limits: &Limits, asked: &Asked) -> Result<Reply, Problem> {
@@ -238,9 +242,10 @@ fn check_canvas(loaded: &Loaded, chart: &crate::spec::Chart, scale: f64, limits:
     Ok(())
 }
 
-/// A request's uploaded files in a folder of their own, removed when done.
+/// A request's uploaded files in a folder of their own (readable by this user only, under an
+/// unpredictable name), removed when done.
 struct Uploads {
-    dir: PathBuf,
+    dir: tempfile::TempDir,
 }
 
 impl Uploads {
@@ -249,27 +254,21 @@ impl Uploads {
         if files.is_empty() {
             return Ok(None);
         }
-        static NEXT: AtomicU64 = AtomicU64::new(0);
-        let n = NEXT.fetch_add(1, Ordering::Relaxed);
-        let dir = std::env::temp_dir().join(format!("dataink-serve-{}-{n}", std::process::id()));
         let failed = |e: std::io::Error| {
             Problem::new(StatusCode::INTERNAL_SERVER_ERROR, format!("cannot keep the uploaded files: {e}"))
         };
-        std::fs::create_dir(&dir).map_err(failed)?;
-        let uploads = Uploads { dir };
+        let dir = tempfile::Builder::new().prefix("dataink-serve-").tempdir().map_err(failed)?;
         for (name, bytes) in files {
-            let path = uploads.dir.join(name);
+            let path = dir.path().join(name);
             if let Some(parent) = path.parent() {
                 std::fs::create_dir_all(parent).map_err(failed)?;
             }
             std::fs::write(path, bytes).map_err(failed)?;
         }
-        Ok(Some(uploads))
+        Ok(Some(Uploads { dir }))
     }
-}
 
-impl Drop for Uploads {
-    fn drop(&mut self) {
-        let _ = std::fs::remove_dir_all(&self.dir);
+    fn path(&self) -> &Path {
+        self.dir.path()
     }
 }

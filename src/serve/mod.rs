@@ -10,6 +10,7 @@
 //! browser page).
 
 pub mod cache;
+pub mod hosts;
 pub mod job;
 pub mod limits;
 pub mod openapi;
@@ -39,12 +40,17 @@ pub struct Server {
     /// Data named by a spec's relative paths resolves here (symlinks must stay inside).
     root: PathBuf,
     limits: Limits,
+    /// Which `Host` names are answered (loopback names only, for a loopback address).
+    hosts: hosts::HostCheck,
     cache: cache::Cache,
     /// Requests for the same answer made at once take turns, so it is made once.
     gates: cache::Gates,
     /// One permit per render running; a render past its time keeps its permit until its thread
     /// ends, so abandoned work cannot pile up.
     slots: Arc<Semaphore>,
+    /// One permit per request past its query check, held until it is answered: bounds the
+    /// request bodies held at once (each up to the upload limit).
+    readers: Semaphore,
 }
 
 impl Server {
@@ -56,14 +62,33 @@ impl Server {
         }
         let slots = Arc::new(Semaphore::new(limits.concurrent_renders.max(1)));
         let cache = cache::Cache::new(limits.cache_bytes);
-        Ok(Server { root, limits, cache, gates: cache::Gates::default(), slots })
+        let readers = Semaphore::new(limits.concurrent_renders.max(1) * 4);
+        Ok(Server {
+            root,
+            limits,
+            hosts: hosts::HostCheck::Loopback,
+            cache,
+            gates: cache::Gates::default(),
+            slots,
+            readers,
+        })
     }
 }
 
-/// The HTTP API over `server`: every route, the body limit, and the headers every response
-/// carries.
+impl Server {
+    /// Answer requests to any host name (for a server bound to an address others reach it by);
+    /// by default only loopback names are answered.
+    pub fn answering_any_host(mut self) -> Server {
+        self.hosts = hosts::HostCheck::Any;
+        self
+    }
+}
+
+/// The HTTP API over `server`: every route, the body limit, the host check, and the headers every
+/// response carries.
 pub fn router(server: Server) -> Router {
     let body_limit = server.limits.upload_bytes;
+    let host_check = server.hosts;
     Router::new()
         .route("/", get(page::index))
         .route("/app.js", get(page::script))
@@ -75,12 +100,14 @@ pub fn router(server: Server) -> Router {
         .with_state(Arc::new(server))
         .fallback(not_found)
         .layer(DefaultBodyLimit::max(body_limit))
+        .layer(axum::middleware::from_fn_with_state(host_check, hosts::check))
         .layer(axum::middleware::map_response(reply::secure))
 }
 
 /// Serve `router` on `addr` until Ctrl-C; `ready` is told the bound address.
 pub async fn run(addr: SocketAddr, server: Server, ready: impl FnOnce(SocketAddr)) -> std::io::Result<()> {
     let listener = tokio::net::TcpListener::bind(addr).await?;
+    let server = if addr.ip().is_loopback() { server } else { server.answering_any_host() };
     ready(listener.local_addr()?);
     axum::serve(listener, router(server))
         .with_graceful_shutdown(async {
@@ -126,6 +153,9 @@ async fn answer(server: Arc<Server>, request: Request, query: HashMap<String, St
         Ok(asked) => asked,
         Err(problem) => return problem.into_response(),
     };
+    let Ok(Ok(_reading)) = tokio::time::timeout(server.limits.render_time, server.readers.acquire()).await else {
+        return Problem::busy(&server.limits).into_response();
+    };
     let submitted = match submitted::read(request, &server.limits).await {
         Ok(s) => s,
         Err(problem) => return problem.into_response(),
@@ -136,16 +166,14 @@ async fn answer(server: Arc<Server>, request: Request, query: HashMap<String, St
     }
     // One deadline for waiting (for the same answer, or for a render slot) and rendering.
     let deadline = tokio::time::Instant::now() + server.limits.render_time;
-    let gate = server.gates.of(&key);
-    let answered = match tokio::time::timeout_at(deadline, gate.lock()).await {
+    let entered = server.gates.enter(&key);
+    match tokio::time::timeout_at(deadline, entered.turn()).await {
         Ok(_turn) => match server.cache.get(&key) {
             Some(hit) => hit.into_response_marked(true),
             None => make(&server, key, asked, submitted, deadline).await,
         },
         Err(_) => Problem::busy(&server.limits).into_response(),
-    };
-    server.gates.done(&key, gate);
-    answered
+    }
 }
 
 /// Make the answer on a blocking thread within `deadline`, and keep it when it is a success.
@@ -166,8 +194,8 @@ async fn make(
         answer
     });
     match tokio::time::timeout_at(deadline, work).await {
-        Ok(Ok(Ok(Answer { reply, inputs }))) => {
-            if reply.status == StatusCode::OK {
+        Ok(Ok(Ok(Answer { reply, inputs, cacheable }))) => {
+            if cacheable && reply.status == StatusCode::OK {
                 server.cache.put(key, reply.clone(), inputs);
             }
             reply.into_response_marked(false)

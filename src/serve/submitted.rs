@@ -80,6 +80,12 @@ async fn read_form(request: Request, limits: &Limits) -> Result<Submitted, Probl
                 format!("more than {} files in one request", limits.files),
             ));
         }
+        if let Some((other, _)) = files.iter().find(|(f, _): &&(String, Bytes)| inside(f, &file) || inside(&file, f)) {
+            return Err(Problem::new(
+                StatusCode::BAD_REQUEST,
+                format!("`{other}` and `{file}` cannot both be sent: one would be a folder holding the other"),
+            ));
+        }
         files.push((file, bytes));
     }
     let spec = spec.ok_or_else(|| Problem::new(StatusCode::BAD_REQUEST, "the form has no `spec` field"))?;
@@ -105,6 +111,11 @@ pub fn check_file_name(name: &str) -> Result<(), Problem> {
             ),
         ))
     }
+}
+
+/// Whether `name` would be a file inside the folder `folder`.
+fn inside(name: &str, folder: &str) -> bool {
+    name.strip_prefix(folder).is_some_and(|rest| rest.starts_with('/'))
 }
 
 fn too_large(limits: &Limits) -> Problem {

@@ -255,6 +255,7 @@ fn data_comes_only_from_under_the_root_or_the_uploads() {
         (vec![("/etc/d.csv", other.as_bytes())], "not a relative path of plain names"),
         (vec![("a/.hidden", other.as_bytes())], "not a relative path of plain names"),
         (vec![("d.csv", other.as_bytes()), ("d.csv", other.as_bytes())], "sent twice"),
+        (vec![("d", other.as_bytes()), ("d/e.csv", other.as_bytes())], "one would be a folder holding the other"),
     ] {
         let (status, _, body) = send(&app, form(&spec("U"), &files));
         assert_eq!(status, StatusCode::BAD_REQUEST, "{says}");
@@ -268,6 +269,42 @@ fn data_comes_only_from_under_the_root_or_the_uploads() {
     std::fs::write(dir.path().join("e.csv"), CSV).expect("write");
     let (status, _, _) = send(&app, form(&spec("U").replace("d.csv", "e.csv"), &[("d.csv", other.as_bytes())]));
     assert_eq!(status, StatusCode::UNPROCESSABLE_ENTITY);
+}
+
+#[test]
+fn sql_cannot_read_files_and_other_host_names_are_refused() {
+    let (_dir, app) = root(Limits::default());
+    // polars' SQL table functions would read any file past the path policy.
+    let reads = spec("P").replace(
+        "path = \"d.csv\"\n",
+        "path = \"d.csv\"\ntransform = [{ sql = \"SELECT * FROM read_csv('/etc/passwd')\" }]\n",
+    );
+    let (status, _, body) = send(&app, post("/api/render?format=csv", reads));
+    assert_eq!(status, StatusCode::UNPROCESSABLE_ENTITY);
+    let body = json(&body);
+    assert!(body["error"].as_str().unwrap().contains("reads `read_csv(...)`"), "{body}");
+    assert!(!body.to_string().contains("root:"), "nothing of the file comes back");
+
+    // A page on another domain resolving to 127.0.0.1 sends its own name as Host: refused.
+    let with_host = |host: &str| {
+        Request::post("/api/render")
+            .header(header::HOST, host)
+            .header(header::CONTENT_TYPE, "application/toml")
+            .body(Body::from(spec("P")))
+            .unwrap()
+    };
+    let (status, headers, body) = send(&app, with_host("rebound.example:8700"));
+    assert_eq!(status, StatusCode::FORBIDDEN);
+    assert!(json(&body)["error"].as_str().unwrap().contains("only requests to localhost"));
+    assert!(headers.contains_key(header::CONTENT_SECURITY_POLICY));
+    for host in ["127.0.0.1:8700", "localhost:8700", "[::1]:8700"] {
+        assert_eq!(send(&app, with_host(host)).0, StatusCode::OK, "{host}");
+    }
+    // A server bound where others reach it answers any name.
+    let dir = tempfile::tempdir().expect("dir");
+    std::fs::write(dir.path().join("d.csv"), CSV).expect("write");
+    let open = router(Server::new(dir.path().to_path_buf(), Limits::default()).expect("server").answering_any_host());
+    assert_eq!(send(&open, with_host("charts.example")).0, StatusCode::OK);
 }
 
 #[test]
@@ -288,6 +325,12 @@ fn every_limit_answers_with_its_status_and_number() {
             "more than 1 files",
         ),
         (post("/api/render", spec("P")), StatusCode::UNPROCESSABLE_ENTITY, "has 4 rows; this server draws at most 3"),
+        // A form over the body limit: its file is not read past the limit.
+        (
+            form(&spec("P"), &[("d.csv", "a\n1\n".repeat(1_500).as_bytes())]),
+            StatusCode::PAYLOAD_TOO_LARGE,
+            "limit of 2000 bytes",
+        ),
     ];
     for (request, status, says) in cases {
         let (got, _, body) = send(&app, request);
@@ -305,7 +348,10 @@ fn every_limit_answers_with_its_status_and_number() {
     let (_dir, app) = root(Limits { render_time: Duration::from_nanos(1), ..Limits::default() });
     let (status, _, body) = send(&app, post("/api/render", spec("P")));
     assert_eq!(status, StatusCode::SERVICE_UNAVAILABLE);
-    assert!(json(&body)["error"].as_str().unwrap().contains("longer than the server's limit"));
+    // Past the deadline while rendering or (on a loaded machine) already while waiting for a
+    // slot: 503 either way, naming the limit.
+    let error = json(&body)["error"].as_str().unwrap().to_string();
+    assert!(error.contains("0.000000001 s") && (error.contains("longer than") || error.contains("busy")), "{error}");
 }
 
 #[test]
@@ -362,6 +408,14 @@ fn hostile_text_never_becomes_markup() {
     assert_eq!(status, StatusCode::OK);
     let page = String::from_utf8(page).unwrap();
     assert!(!page.contains("<script>alert"), "the report escapes the title");
+    // A hostile category, uploaded: its bar label and the derived CSV carry it as text.
+    let hostile = "a,b,kind\n1,2,<img src=x onerror=alert(1)>\n2,4,y\n";
+    let mut bars = form(&spec("P"), &[("d.csv", hostile.as_bytes())]);
+    *bars.uri_mut() = "/api/render?format=svg&chart=bars".parse().unwrap();
+    let (status, _, svg) = send(&app, bars);
+    assert_eq!(status, StatusCode::OK);
+    let svg = String::from_utf8(svg).unwrap();
+    assert!(!svg.contains("<img") && svg.contains("&lt;img src=x onerror=alert(1)&gt;"), "{svg:.400}");
     let (status, _, body) = send(&app, form(&spec("P"), &[("d\u{7}.csv", CSV.as_bytes())]));
     assert_eq!(status, StatusCode::BAD_REQUEST);
     assert!(!String::from_utf8_lossy(&body).contains('\u{7}'));

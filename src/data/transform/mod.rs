@@ -15,6 +15,7 @@ pub mod expr;
 pub mod lower;
 pub mod place;
 pub mod plan;
+mod sql_files;
 mod steps;
 pub mod window;
 

@@ -604,6 +604,14 @@ impl<'v> Step<'v> {
 
     fn sql(&self, lf: LazyFrame, env: &Env<'_>) -> Result<LazyFrame, TransformError> {
         let query = self.text("sql").unwrap_or("");
+        if let Some(function) = super::sql_files::table_function(query) {
+            return Err(self
+                .error("sql", format!("the SQL query reads `{function}(...)`: a `sql` step reads only data sources"))
+                .with_hint(
+                    "name the file as a data source (`[data.NAME] path = ...`, which stays inside the spec's folder) \
+                     and query it by its name",
+                ));
+        }
         let mut ctx = polars::sql::SQLContext::new();
         for (name, other) in env.others {
             ctx.register(name, other.clone());
