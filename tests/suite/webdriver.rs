@@ -19,10 +19,20 @@ const ELEMENT: &str = "element-6066-11e4-a52e-4f735466cecf";
 
 /// A running chromedriver and one browser session; both end when dropped.
 pub struct Browser {
-    driver: Child,
+    driver: Driver,
     addr: SocketAddr,
     session: String,
     _profile: tempfile::TempDir,
+}
+
+/// The chromedriver process, killed when dropped (also when starting the session fails).
+struct Driver(Child);
+
+impl Drop for Driver {
+    fn drop(&mut self) {
+        let _ = self.0.kill();
+        let _ = self.0.wait();
+    }
 }
 
 fn free_port() -> u16 {
@@ -70,13 +80,15 @@ impl Browser {
     /// Start chromedriver and a headless Chromium session.
     pub fn start() -> Browser {
         let port = free_port();
-        let driver = Command::new(CHROMEDRIVER)
-            .arg(format!("--port={port}"))
-            .arg("--allowed-ips=127.0.0.1")
-            .stdout(Stdio::null())
-            .stderr(Stdio::null())
-            .spawn()
-            .expect("start chromedriver");
+        let driver = Driver(
+            Command::new(CHROMEDRIVER)
+                .arg(format!("--port={port}"))
+                .arg("--allowed-ips=127.0.0.1")
+                .stdout(Stdio::null())
+                .stderr(Stdio::null())
+                .spawn()
+                .expect("start chromedriver"),
+        );
         let addr: SocketAddr = format!("127.0.0.1:{port}").parse().expect("addr");
         let deadline = Instant::now() + Duration::from_secs(30);
         while command(addr, "GET", "/status", None).map(|v| v["ready"] == true) != Ok(true) {
@@ -148,8 +160,6 @@ impl Drop for Browser {
         if !self.session.is_empty() {
             let _ = command(self.addr, "DELETE", &format!("/session/{}", self.session), None);
         }
-        let _ = self.driver.kill();
-        let _ = self.driver.wait();
     }
 }
 
