@@ -1155,6 +1155,21 @@ pub fn mark_diagnostic(loaded: &Loaded, error: &MarkError) -> Diagnostic {
     d
 }
 
+/// The pixel size of chart `index`'s PNG at `scale` (its canvas as drawn over its table), or the
+/// error at its `size` when the renderer would refuse that canvas; checked before any drawing.
+pub fn png_canvas(loaded: &Loaded, index: usize, chart: &spec::Chart, scale: f64) -> Result<(u32, u32), Diagnostic> {
+    let [w, h] = match loaded.tables.get(&chart.data) {
+        Some(table) => mark::canvas_size_in(chart, table),
+        None => mark::canvas_size(chart),
+    };
+    render::png::check_canvas(w, h, scale).map_err(|e| {
+        mark_diagnostic(
+            loaded,
+            &MarkError::at(&["size"], e.to_string(), "reduce `size` or `--scale`").in_chart(index, &chart.name),
+        )
+    })
+}
+
 /// Draw and write the selected charts in parallel. `progress` is called once per finished chart.
 /// When some charts fail, the others are still written and the failure lists them.
 pub fn render_all(
@@ -1166,17 +1181,10 @@ pub fn render_all(
     // Check every canvas before any drawing allocates it.
     let mut problems = Vec::new();
     for (index, chart) in &selected {
-        let [w, h] = match loaded.tables.get(&chart.data) {
-            Some(table) => mark::canvas_size_in(chart, table),
-            None => mark::canvas_size(chart),
-        };
         if options.formats.png
-            && let Err(e) = render::png::check_canvas(w, h, options.scale)
+            && let Err(problem) = png_canvas(loaded, *index, chart, options.scale)
         {
-            problems.push(mark_diagnostic(
-                loaded,
-                &MarkError::at(&["size"], e.to_string(), "reduce `size` or `--scale`").in_chart(*index, &chart.name),
-            ));
+            problems.push(problem);
         }
     }
     if !problems.is_empty() {

@@ -143,7 +143,7 @@ fn answer(loaded: &Loaded, limits: &Limits, asked: &Asked) -> Result<Reply, Prob
                 return Err(Problem::new(StatusCode::UNPROCESSABLE_ENTITY, "the spec has no chart"));
             };
             if asked.format == Format::Png {
-                check_canvas(loaded, chart, asked.scale, limits).map_err(|d| failed(vec![d]))?;
+                check_canvas(loaded, index, chart, asked.scale, limits).map_err(|d| failed(vec![d]))?;
             }
             let out = pipeline::draw_chart(loaded, index, chart)
                 .map_err(|e| failed(vec![pipeline::mark_diagnostic(loaded, &e)]))?;
@@ -223,21 +223,22 @@ fn check_rows(loaded: &Loaded, limits: &Limits) -> Result<(), Problem> {
     Ok(())
 }
 
-/// The chart's PNG within the pixel limit (and a canvas the renderer accepts).
-fn check_canvas(loaded: &Loaded, chart: &crate::spec::Chart, scale: f64, limits: &Limits) -> Result<(), Diagnostic> {
-    let [w, h] = match loaded.tables.get(&chart.data) {
-        Some(table) => crate::mark::canvas_size_in(chart, table),
-        None => crate::mark::canvas_size(chart),
-    };
-    let (pw, ph) = crate::render::png::check_canvas(w, h, scale)
-        .map_err(|e| Diagnostic::error(format!("chart \"{}\": {e}", chart.name)))?;
+/// The chart's PNG within the pixel limit (and a canvas the renderer accepts), checked as
+/// `dataink render` checks it, before drawing.
+fn check_canvas(
+    loaded: &Loaded,
+    index: usize,
+    chart: &crate::spec::Chart,
+    scale: f64,
+    limits: &Limits,
+) -> Result<(), Diagnostic> {
+    let (pw, ph) = pipeline::png_canvas(loaded, index, chart, scale)?;
     let pixels = u64::from(pw) * u64::from(ph);
     if pixels > limits.pixels {
-        return Err(Diagnostic::error(format!(
-            "chart \"{}\" would be {pw} × {ph} = {pixels} pixels; this server draws at most {}",
-            chart.name, limits.pixels
-        ))
-        .with_hint("make `size` or `scale` smaller"));
+        let message =
+            format!("the PNG would be {pw} × {ph} = {pixels} pixels; this server draws at most {}", limits.pixels);
+        let error = crate::mark::MarkError::at(&["size"], message, "make `size` or `scale` smaller");
+        return Err(pipeline::mark_diagnostic(loaded, &error.in_chart(index, &chart.name)));
     }
     Ok(())
 }

@@ -340,7 +340,9 @@ fn every_limit_answers_with_its_status_and_number() {
     let (_dir, app) = root(Limits { pixels: 300_000, ..Limits::default() });
     let (status, _, body) = send(&app, post("/api/render?format=png&scale=2", spec("P")));
     assert_eq!(status, StatusCode::UNPROCESSABLE_ENTITY);
-    assert!(json(&body)["error"].as_str().unwrap().contains("this server draws at most 300000"));
+    let body = json(&body);
+    assert!(body["error"].as_str().unwrap().contains("this server draws at most 300000"));
+    assert!(body["diagnostics"][0]["line"].is_u64(), "placed in the spec, as `dataink render` places it: {body}");
     let (status, _, _) = send(&app, post("/api/render?format=png&scale=1", spec("P")));
     assert_eq!(status, StatusCode::OK, "the same chart at scale 1 fits");
 
